@@ -1,0 +1,36 @@
+// A homogeneous scattering medium, per colour channel: absorption sigma_a, scattering sigma_s and
+// Henyey-Greenstein anisotropy g (all in 1/mm), with one relative index of refraction
+// eta = n_medium / n_outside. Construct, then validate(): the rest of the library assumes a
+// validated medium.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "bssrdf/reduced.hpp"
+
+namespace bssrdf {
+
+struct Medium {
+  std::vector<std::string> channel_names;  // e.g. {"R", "G", "B"}
+  std::vector<double> sigma_a;             // 1/mm
+  std::vector<double> sigma_s;             // 1/mm
+  std::vector<double> g;                   // mean cosine, in (-1, 1)
+  double eta = 1.0;                        // n_medium / n_outside
+
+  std::size_t channels() const { return sigma_a.size(); }
+
+  // Throws InvalidInput naming the first offending field, e.g. "sigma_a[G] = -1: accepted range
+  // is >= 0 and finite". Checks: equal channel counts (>= 1), sigma_a >= 0, sigma_s >= 0,
+  // sigma_a + sigma_s > 0, -1 < g < 1, eta > 0, all finite, channel names unique and non-empty.
+  void validate() const;
+
+  // The similarity-reduced coefficients of one channel, used by every diffusion model.
+  Reduced<double> reduced(std::size_t channel) const;
+};
+
+// Channel names for n channels: R, G, B for three, c0, c1, ... otherwise.
+std::vector<std::string> default_channel_names(std::size_t count);
+
+}  // namespace bssrdf

@@ -1,0 +1,62 @@
+// Classical dipole (Jensen, Marschner, Levoy, Hanrahan 2001), reference/MODELS.md section 2.
+// Real source at depth z_r = ell, negative image at height z_v = ell (1 + 4A/3) above the surface,
+// classical D = 1/(3 sigma_t'), classical A from the Egan-Hilgeman F_dr. Multiple scattering only.
+//
+//   R(r) = alpha' [ flux(z_r, r) + flux(z_v, r) ]        (flux() of point_source.hpp)
+//   R_total = (alpha'/2) (1 + e^{-(4/3) A sqrt(3(1 - alpha'))}) e^{-sqrt(3(1 - alpha'))}
+#pragma once
+
+#include <cmath>
+
+#include "bssrdf/fresnel.hpp"
+#include "bssrdf/model.hpp"
+#include "bssrdf/models/point_source.hpp"
+
+namespace bssrdf::classical_dipole {
+
+template <class T>
+struct Sources {
+  T z_r, z_v, sigma_tr;
+};
+
+template <class T>
+Sources<T> sources(const Reduced<T>& m) {
+  const T A = boundary_A_classical(m.eta);
+  return {m.ell, m.ell * (T(1) + T(4) / T(3) * A), m.sigma_tr};
+}
+
+template <class T>
+T reflectance(const Reduced<T>& m, T r) {
+  const auto s = sources(m);
+  return m.albedo_prime * (point_source::flux(s.z_r, s.sigma_tr, r) + point_source::flux(s.z_v, s.sigma_tr, r));
+}
+
+template <class T>
+T cumulative_reflectance(const Reduced<T>& m, T r) {
+  const auto s = sources(m);
+  return m.albedo_prime * (point_source::flux_cumulative(s.z_r, s.sigma_tr, r) +
+                           point_source::flux_cumulative(s.z_v, s.sigma_tr, r));
+}
+
+// Depends only on alpha' and eta (the profile's shape scales with ell).
+template <class T>
+T total_reflectance(T albedo_prime, T eta) {
+  using std::exp;
+  using std::sqrt;
+  const T A = boundary_A_classical(eta);
+  const T s = sqrt(T(3) * (T(1) - albedo_prime));
+  return albedo_prime * T(0.5) * (T(1) + exp(T(-4) / T(3) * A * s)) * exp(-s);
+}
+
+class Model final : public bssrdf::Model {
+ public:
+  std::string name() const override { return "dipole"; }
+  std::string description() const override;
+  bool includes_single_scattering() const override { return false; }
+  double reflectance(const Reduced<double>& m, double r) const override;
+  double total_reflectance(const Reduced<double>& m) const override;
+  double cumulative_reflectance(const Reduced<double>& m, double r) const override;
+  ValidityReport validity(const Reduced<double>& m) const override;
+};
+
+}  // namespace bssrdf::classical_dipole

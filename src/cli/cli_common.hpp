@@ -1,0 +1,50 @@
+// Pieces every subcommand shares: the medium options, number-list parsing, output formats and
+// writing results to stdout or atomically to a file.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bssrdf/materials.hpp"
+#include "bssrdf/medium.hpp"
+#include "bssrdf/units.hpp"
+
+namespace bssrdf::cli {
+
+// "1,2.5,3" -> {1, 2.5, 3}; throws InvalidInput naming `field` for anything that is not a number.
+std::vector<double> parse_number_list(const std::string& text, const std::string& field);
+double parse_number(const std::string& text, const std::string& field);
+
+// --material NAME | --sigma-a/--sigma-s [--g] [--channels], with --eta, --unit and --db.
+struct MediumOptions {
+  std::string material, sigma_a, sigma_s, g, eta, unit = "mm", channels, db;
+
+  void add_to(CLI::App& app);
+
+  struct Resolved {
+    Medium medium;  // 1/mm
+    std::optional<Material> material;
+    LengthUnit unit;  // the unit of inputs and outputs
+  };
+  // Validates everything; throws InvalidInput with the option's name.
+  Resolved resolve() const;
+};
+
+enum class Format { table, json, csv };
+
+struct OutputOptions {
+  std::string format;  // empty: table on stdout, or from the -o file's extension
+  std::string output;  // -o FILE
+  bool quiet = false;
+
+  void add_to(CLI::App& app);
+  // The format of the file (-o) or of stdout.
+  Format file_format() const;
+};
+
+// Writes `file_content` to -o atomically (if given) and prints `stdout_content` unless quiet.
+void emit(const OutputOptions& options, const std::string& file_content, const std::string& stdout_content);
+
+}  // namespace bssrdf::cli

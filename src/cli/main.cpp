@@ -1,0 +1,50 @@
+// bssrdf: diffusion profiles, Monte Carlo references, fits and lookup tables for subsurface
+// scattering. A thin shell over the library: parse, validate at the edge, call, print.
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+#include <map>
+
+#include "bssrdf/error.hpp"
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"bssrdf " BSSRDF_VERSION
+               ": subsurface-scattering diffusion profiles, references, fits and lookup tables.\n"
+               "Run 'bssrdf COMMAND --help' for a command's options."};
+  app.set_version_flag("--version", std::string("bssrdf ") + BSSRDF_VERSION);
+  app.require_subcommand(1);
+  app.fallthrough(false);
+
+  std::map<CLI::App*, bssrdf::cli::Action> actions;
+  for (auto* register_command : {&bssrdf::cli::register_profile, &bssrdf::cli::register_models,
+                                 &bssrdf::cli::register_materials}) {
+    const auto before = app.get_subcommands({});
+    auto action = (*register_command)(app);
+    for (auto* sub : app.get_subcommands({}))
+      if (std::find(before.begin(), before.end(), sub) == before.end()) actions[sub] = action;
+  }
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);  // --help, --version
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "bssrdf: error: " << e.what() << "\n";
+    return 2;
+  }
+  try {
+    for (auto* sub : app.get_subcommands()) {
+      // Nested subcommands (e.g. "materials list") register their own actions on the child.
+      auto it = actions.find(sub);
+      if (it != actions.end()) it->second();
+    }
+  } catch (const bssrdf::InvalidInput& e) {
+    std::cerr << "bssrdf: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "bssrdf: internal error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

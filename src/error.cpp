@@ -1,0 +1,29 @@
+#include "bssrdf/error.hpp"
+
+#include <charconv>
+#include <cmath>
+
+namespace bssrdf {
+
+InvalidInput::InvalidInput(std::string field, std::string value, std::string accepted)
+    : std::invalid_argument(field + " = " + value + ": accepted range is " + accepted),
+      field_(std::move(field)),
+      value_(std::move(value)),
+      accepted_(std::move(accepted)) {}
+
+InvalidInput::InvalidInput(const std::string& message) : std::invalid_argument(message) {}
+
+FileError::FileError(const std::string& file, int line, const std::string& what)
+    : InvalidInput(line > 0 ? file + ":" + std::to_string(line) + ": " + what : file + ": " + what),
+      file_(file),
+      line_(line) {}
+
+std::string format_number(double value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char buffer[32];
+  auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
+}  // namespace bssrdf

@@ -1,0 +1,242 @@
+#include "bssrdf/materials.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "bssrdf/error.hpp"
+
+namespace bssrdf {
+namespace {
+
+using json = nlohmann::json;
+
+std::string lower(std::string_view text) {
+  std::string out(text);
+  std::transform(out.begin(), out.end(), out.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return out;
+}
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+int line_of_offset(const std::string& text, std::size_t offset) {
+  offset = std::min(offset, text.size());
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
+}
+
+// Reads one file's JSON; errors name the file and the JSON path of the offending field.
+class FileReader {
+ public:
+  explicit FileReader(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
+    throw FileError(file_, 0, path + ": " + what);
+  }
+
+  const json& member(const json& object, const std::string& key, const std::string& path) const {
+    if (!object.is_object()) fail(path, "expected an object");
+    auto it = object.find(key);
+    if (it == object.end()) fail(path, "missing required field '" + key + "'");
+    return *it;
+  }
+
+  std::string string(const json& value, const std::string& path) const {
+    if (!value.is_string()) fail(path, "expected a string, found " + std::string(value.type_name()));
+    return value.get<std::string>();
+  }
+
+  double number(const json& value, const std::string& path) const {
+    if (!value.is_number()) fail(path, "expected a number, found " + std::string(value.type_name()));
+    return value.get<double>();
+  }
+
+  std::vector<double> numbers(const json& value, const std::string& path, std::size_t count) const {
+    if (!value.is_array()) fail(path, "expected an array of " + std::to_string(count) + " numbers");
+    if (value.size() != count)
+      fail(path, std::to_string(value.size()) + " values given, the file declares " +
+                     std::to_string(count) + " channels");
+    std::vector<double> out;
+    for (std::size_t i = 0; i < count; ++i) out.push_back(number(value[i], path + "[" + std::to_string(i) + "]"));
+    return out;
+  }
+
+  std::vector<std::string> notes(const json& object, const std::string& path) const {
+    std::vector<std::string> out;
+    auto it = object.find("notes");
+    if (it == object.end()) return out;
+    if (it->is_string()) return {it->get<std::string>()};
+    if (!it->is_array()) fail(path + ".notes", "expected a string or an array of strings");
+    for (std::size_t i = 0; i < it->size(); ++i)
+      out.push_back(string((*it)[i], path + ".notes[" + std::to_string(i) + "]"));
+    return out;
+  }
+
+  const std::string& file() const { return file_; }
+
+ private:
+  std::string file_;
+};
+
+}  // namespace
+
+std::vector<std::string> close_matches(std::string_view name, const std::vector<std::string>& names,
+                                       std::size_t max_results) {
+  const std::string key = lower(name);
+  std::vector<std::pair<std::size_t, std::string>> scored;
+  for (const auto& candidate : names) {
+    const std::string c = lower(candidate);
+    std::size_t d = edit_distance(key, c);
+    if (!key.empty() && (c.find(key) != std::string::npos || key.find(c) != std::string::npos)) d = std::min<std::size_t>(d, 1);
+    if (d <= std::max<std::size_t>(2, key.size() / 3)) scored.emplace_back(d, candidate);
+  }
+  std::stable_sort(scored.begin(), scored.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<std::string> out;
+  for (const auto& [d, n] : scored) {
+    if (out.size() == max_results) break;
+    out.push_back(n);
+  }
+  return out;
+}
+
+MaterialDatabase MaterialDatabase::load(const std::filesystem::path& path) {
+  MaterialDatabase db;
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    std::vector<std::filesystem::path> files;
+    for (const auto& entry : std::filesystem::directory_iterator(path))
+      if (entry.path().extension() == ".json" && entry.path().filename().string().find("schema") == std::string::npos)
+        files.push_back(entry.path());
+    std::sort(files.begin(), files.end());
+    if (files.empty()) throw FileError(path.string(), 0, "no material files (*.json) in this directory");
+    for (const auto& f : files) db.add_file(f);
+  } else {
+    db.add_file(path);
+  }
+  return db;
+}
+
+void MaterialDatabase::add_file(const std::filesystem::path& path) {
+  const FileReader reader(path.string());
+  std::ifstream in(path);
+  if (!in) throw FileError(path.string(), 0, "cannot open the materials file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::parse_error& e) {
+    std::string what = e.what();
+    // nlohmann's messages start "[json.exception.parse_error.101] parse error at line L, column C: ..."
+    const auto colon = what.find("]");
+    throw FileError(path.string(), line_of_offset(text, e.byte), "malformed JSON: " +
+                    (colon == std::string::npos ? what : what.substr(colon + 2)));
+  }
+
+  if (reader.string(reader.member(root, "format", "$"), "$.format") != "bssrdf-materials")
+    reader.fail("$.format", "expected \"bssrdf-materials\"");
+  if (reader.number(reader.member(root, "version", "$"), "$.version") != 1)
+    reader.fail("$.version", "only version 1 is understood");
+  const std::string source = reader.string(reader.member(root, "source", "$"), "$.source");
+  const std::string citation = reader.string(reader.member(root, "citation", "$"), "$.citation");
+  LengthUnit unit;
+  try {
+    unit = parse_length_unit(reader.string(reader.member(root, "unit", "$"), "$.unit"), "unit");
+  } catch (const InvalidInput& e) {
+    reader.fail("$.unit", e.what());
+  }
+  std::vector<std::string> channels;
+  const json& channel_list = reader.member(root, "channels", "$");
+  if (!channel_list.is_array() || channel_list.empty()) reader.fail("$.channels", "expected a non-empty array of names");
+  for (std::size_t i = 0; i < channel_list.size(); ++i)
+    channels.push_back(reader.string(channel_list[i], "$.channels[" + std::to_string(i) + "]"));
+  const auto file_notes = reader.notes(root, "$");
+
+  const json& list = reader.member(root, "materials", "$");
+  if (!list.is_array() || list.empty()) reader.fail("$.materials", "expected a non-empty array");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    std::string where = "$.materials[" + std::to_string(i) + "]";
+    const json& entry = list[i];
+    Material m;
+    m.name = reader.string(reader.member(entry, "name", where), where + ".name");
+    where += " (" + m.name + ")";
+    m.source = source;
+    m.citation = citation;
+    m.file = path.string();
+    m.unit = unit;
+    m.notes = file_notes;
+    for (auto& n : reader.notes(entry, where)) m.notes.push_back(std::move(n));
+    const std::size_t n = channels.size();
+    m.medium.channel_names = channels;
+    m.medium.eta = reader.number(reader.member(entry, "eta", where), where + ".eta");
+    m.medium.sigma_a = reader.numbers(reader.member(entry, "sigma_a", where), where + ".sigma_a", n);
+    const bool has_prime = entry.contains("sigma_s_prime"), has_sigma_s = entry.contains("sigma_s");
+    if (has_prime == has_sigma_s)
+      reader.fail(where, "give exactly one of 'sigma_s' (with 'g') or 'sigma_s_prime'");
+    if (has_prime) {
+      if (entry.contains("g")) reader.fail(where + ".g", "'g' cannot be given with 'sigma_s_prime'");
+      m.reduced_scattering_only = true;
+      m.medium.sigma_s = reader.numbers(entry["sigma_s_prime"], where + ".sigma_s_prime", n);
+      m.medium.g.assign(n, 0.0);
+    } else {
+      m.medium.sigma_s = reader.numbers(entry["sigma_s"], where + ".sigma_s", n);
+      m.medium.g = entry.contains("g") ? reader.numbers(entry["g"], where + ".g", n) : std::vector<double>(n, 0.0);
+    }
+    for (auto& v : m.medium.sigma_a) v = coefficient_to_per_mm(v, unit);
+    for (auto& v : m.medium.sigma_s) v = coefficient_to_per_mm(v, unit);
+    try {
+      m.medium.validate();
+    } catch (const InvalidInput& e) {
+      reader.fail(where, e.what());
+    }
+    for (const auto& existing : materials_)
+      if (lower(existing.name) == lower(m.name))
+        reader.fail(where + ".name", "'" + m.name + "' is already defined in " + existing.file);
+    materials_.push_back(std::move(m));
+  }
+}
+
+const Material& MaterialDatabase::find(std::string_view name) const {
+  const std::string key = lower(name);
+  for (const auto& m : materials_)
+    if (lower(m.name) == key) return m;
+  std::vector<std::string> names;
+  for (const auto& m : materials_) names.push_back(m.name);
+  const auto close = close_matches(name, names);
+  std::string hint;
+  for (const auto& c : close) hint += (hint.empty() ? "" : ", ") + c;
+  throw InvalidInput("material", "'" + std::string(name) + "'",
+                     hint.empty() ? "a name from 'bssrdf materials list' (" + std::to_string(names.size()) + " known)"
+                                  : "a known material; did you mean: " + hint + "?");
+}
+
+std::filesystem::path default_materials_dir() {
+  if (const char* env = std::getenv("BSSRDF_MATERIALS"); env && *env) return env;
+  std::error_code ec;
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const auto installed = exe.parent_path().parent_path() / "share" / "bssrdf" / "materials";
+    if (std::filesystem::is_directory(installed, ec)) return installed;
+  }
+  return BSSRDF_MATERIALS_DIR;
+}
+
+}  // namespace bssrdf

@@ -1,0 +1,55 @@
+#include "bssrdf/medium.hpp"
+
+#include <cmath>
+#include <set>
+
+#include "bssrdf/error.hpp"
+
+namespace bssrdf {
+
+std::vector<std::string> default_channel_names(std::size_t count) {
+  if (count == 3) return {"R", "G", "B"};
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < count; ++i) names.push_back("c" + std::to_string(i));
+  return names;
+}
+
+void Medium::validate() const {
+  const std::size_t n = sigma_a.size();
+  if (n == 0) throw InvalidInput("sigma_a", "(no values)", "at least one channel");
+  auto check_count = [n](const char* field, std::size_t count) {
+    if (count != n)
+      throw InvalidInput(std::string(field) + ": " + std::to_string(count) +
+                         " channels given, but sigma_a has " + std::to_string(n));
+  };
+  check_count("sigma_s", sigma_s.size());
+  check_count("g", g.size());
+  check_count("channel names", channel_names.size());
+
+  std::set<std::string> seen;
+  for (const auto& name : channel_names) {
+    if (name.empty()) throw InvalidInput("channel name", "''", "a non-empty name");
+    if (!seen.insert(name).second)
+      throw InvalidInput("channel name", "'" + name + "'", "unique names (it is repeated)");
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string tag = "[" + channel_names[i] + "]";
+    if (!std::isfinite(sigma_a[i]) || sigma_a[i] < 0)
+      throw InvalidInput("sigma_a" + tag, format_number(sigma_a[i]), ">= 0 and finite");
+    if (!std::isfinite(sigma_s[i]) || sigma_s[i] < 0)
+      throw InvalidInput("sigma_s" + tag, format_number(sigma_s[i]), ">= 0 and finite");
+    if (sigma_a[i] + sigma_s[i] <= 0)
+      throw InvalidInput("sigma_a" + tag + " + sigma_s" + tag, "0",
+                         "> 0 (the medium must absorb or scatter)");
+    if (!(g[i] > -1 && g[i] < 1))
+      throw InvalidInput("g" + tag, format_number(g[i]), "-1 < g < 1");
+  }
+  if (!std::isfinite(eta) || eta <= 0)
+    throw InvalidInput("eta", format_number(eta), "> 0 and finite (n_medium / n_outside)");
+}
+
+Reduced<double> Medium::reduced(std::size_t channel) const {
+  return reduce(sigma_a.at(channel), sigma_s.at(channel), g.at(channel), eta);
+}
+
+}  // namespace bssrdf

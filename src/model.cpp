@@ -1,0 +1,72 @@
+#include "bssrdf/model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "bssrdf/error.hpp"
+#include "bssrdf/models/better_dipole.hpp"
+#include "bssrdf/models/dipole.hpp"
+#include "bssrdf/quadrature.hpp"
+
+namespace bssrdf {
+
+double Model::cumulative_reflectance(const Reduced<double>& m, double r) const {
+  if (!(r > 0)) return 0;
+  return integrate_radial([&](double x) { return reflectance(m, x); }, 0.0, r, m.ell, 1e-9).value;
+}
+
+double Model::albedo_prime_from_total(double total, double eta) const {
+  const auto total_at = [&](double a) { return total_reflectance(reduced_optical(a, eta)); };
+  const double highest = total_at(1.0);
+  if (!(total >= 0 && total <= highest) || !std::isfinite(total))
+    throw InvalidInput("total_reflectance", format_number(total),
+                       "[0, " + format_number(highest) + "] for the " + name() + " model at eta = " +
+                           format_number(eta));
+  // The total rises monotonically with alpha': bisect, then polish with a few secant steps.
+  double lo = 0, hi = 1;
+  for (int iter = 0; iter < 200 && hi - lo > 1e-15; ++iter) {
+    const double mid = 0.5 * (lo + hi);
+    (total_at(mid) < total ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+double Model::radius_for_fraction(const Reduced<double>& m, double fraction) const {
+  if (!(fraction > 0 && fraction < 1))
+    throw InvalidInput("energy fraction", format_number(fraction), "0 < fraction < 1");
+  const double target = fraction * total_reflectance(m);
+  double lo = 0, hi = m.ell;
+  while (cumulative_reflectance(m, hi) < target) {
+    lo = hi;
+    hi *= 2;
+    if (!std::isfinite(hi)) return std::numeric_limits<double>::infinity();
+  }
+  // Bisect in log r (radii span decades); relative precision 1e-12.
+  if (lo == 0) lo = hi * 1e-12;
+  while (hi / lo - 1 > 1e-12) {
+    const double mid = std::sqrt(lo * hi);
+    (cumulative_reflectance(m, mid) < target ? lo : hi) = mid;
+  }
+  return std::sqrt(lo * hi);
+}
+
+SampledProfile Model::sample(const Reduced<double>& m, const std::vector<double>& radii) const {
+  SampledProfile p;
+  p.radius = radii;
+  p.value.reserve(radii.size());
+  for (double r : radii) p.value.push_back(reflectance(m, r));
+  return p;
+}
+
+std::unique_ptr<Model> make_model(std::string_view name) {
+  if (name == "dipole") return std::make_unique<classical_dipole::Model>();
+  if (name == "better-dipole") return std::make_unique<better_dipole::Model>();
+  std::string known;
+  for (const auto& n : model_names()) known += (known.empty() ? "" : ", ") + n;
+  throw InvalidInput("model", "'" + std::string(name) + "'", "one of " + known);
+}
+
+std::vector<std::string> model_names() { return {"dipole", "better-dipole"}; }
+
+}  // namespace bssrdf

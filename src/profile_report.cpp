@@ -1,0 +1,173 @@
+#include "bssrdf/profile_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "bssrdf/error.hpp"
+
+namespace bssrdf {
+
+std::vector<double> default_radii_mm(const Medium& medium, const Model& model, std::size_t samples) {
+  double r_min = std::numeric_limits<double>::infinity(), r_max = 0;
+  for (std::size_t c = 0; c < medium.channels(); ++c) {
+    const auto m = medium.reduced(c);
+    r_min = std::min(r_min, 1e-3 * m.ell);
+    r_max = std::max(r_max, model.radius_for_fraction(m, 0.999));
+  }
+  return log_spaced(r_min, r_max, samples);
+}
+
+ProfileReport compute_profile_report(const Medium& medium, const Model& model,
+                                     const std::vector<double>& radii_mm, LengthUnit unit) {
+  medium.validate();
+  ProfileReport report;
+  report.model = model.name();
+  report.model_description = model.description();
+  report.includes_single_scattering = model.includes_single_scattering();
+  report.unit = unit;
+  report.eta = medium.eta;
+  const double mm = millimetres_per(unit);  // lengths: x_unit = x_mm / mm
+  for (std::size_t c = 0; c < medium.channels(); ++c) {
+    const auto m = medium.reduced(c);
+    ChannelProfile ch;
+    ch.name = medium.channel_names[c];
+    ch.sigma_a = m.sigma_a * mm;
+    ch.sigma_s = m.sigma_s * mm;
+    ch.g = m.g;
+    ch.sigma_s_prime = m.sigma_s_prime * mm;
+    ch.albedo_prime = m.albedo_prime;
+    ch.transport_mfp = m.ell / mm;
+    ch.diffuse_mfp = m.sigma_tr > 0 ? m.ell_d / mm : std::numeric_limits<double>::infinity();
+    ch.total_reflectance = model.total_reflectance(m);
+    ch.radius_99 = model.radius_for_fraction(m, 0.99) / mm;
+    const auto sampled = model.sample(m, radii_mm);
+    for (std::size_t i = 0; i < sampled.size(); ++i) {
+      ch.profile.radius.push_back(sampled.radius[i] / mm);
+      ch.profile.value.push_back(sampled.value[i] * mm * mm);  // per area: 1/mm^2 -> 1/unit^2
+    }
+    ch.validity = model.validity(m);
+    report.channels.push_back(std::move(ch));
+  }
+  return report;
+}
+
+namespace {
+
+nlohmann::json number_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+std::string fixed(double v, int width, int precision = 5) {
+  char buffer[64];
+  if (!std::isfinite(v)) {
+    std::snprintf(buffer, sizeof buffer, "%*s", width, v > 0 ? "inf" : "nan");
+  } else {
+    std::snprintf(buffer, sizeof buffer, "%*.*g", width, precision, v);
+  }
+  return buffer;
+}
+
+}  // namespace
+
+std::string to_json(const ProfileReport& report) {
+  nlohmann::json doc;
+  doc["tool"] = std::string("bssrdf ") + BSSRDF_VERSION;
+  doc["model"] = report.model;
+  doc["model_description"] = report.model_description;
+  doc["includes_single_scattering"] = report.includes_single_scattering;
+  doc["unit"] = std::string(symbol(report.unit));
+  doc["reflectance_unit"] = "1/" + std::string(symbol(report.unit)) + "^2";
+  doc["normalization"] = "per_entered_flux";
+  doc["eta"] = report.eta;
+  if (report.material) {
+    doc["material"] = {{"name", report.material->name},
+                       {"source", report.material->source},
+                       {"citation", report.material->citation}};
+  } else {
+    doc["material"] = nullptr;
+  }
+  doc["channels"] = nlohmann::json::array();
+  for (const auto& ch : report.channels) {
+    nlohmann::json c;
+    c["name"] = ch.name;
+    c["sigma_a"] = ch.sigma_a;
+    c["sigma_s"] = ch.sigma_s;
+    c["g"] = ch.g;
+    c["sigma_s_prime"] = ch.sigma_s_prime;
+    c["albedo_prime"] = ch.albedo_prime;
+    c["transport_mfp"] = ch.transport_mfp;
+    c["diffuse_mfp"] = number_or_null(ch.diffuse_mfp);
+    c["total_reflectance"] = ch.total_reflectance;
+    c["radius_99"] = number_or_null(ch.radius_99);
+    c["radius"] = ch.profile.radius;
+    c["reflectance"] = ch.profile.value;
+    c["validity"] = nlohmann::json::array();
+    for (const auto& note : ch.validity)
+      c["validity"].push_back({{"severity", std::string(to_string(note.severity))},
+                               {"code", note.code},
+                               {"message", note.message}});
+    doc["channels"].push_back(std::move(c));
+  }
+  return doc.dump(2) + "\n";
+}
+
+std::string to_csv(const ProfileReport& report) {
+  std::ostringstream out;
+  const std::string u(symbol(report.unit));
+  out << "radius_" << u;
+  for (const auto& ch : report.channels) out << ',' << ch.name << "_per_" << u << "2";
+  out << '\n';
+  if (report.channels.empty()) return out.str();
+  const auto& radii = report.channels.front().profile.radius;
+  for (std::size_t i = 0; i < radii.size(); ++i) {
+    out << format_number(radii[i]);
+    for (const auto& ch : report.channels) out << ',' << format_number(ch.profile.value[i]);
+    out << '\n';
+  }
+  return out.str();
+}
+
+std::string to_table(const ProfileReport& report) {
+  std::ostringstream out;
+  const std::string u(symbol(report.unit));
+  out << "model     " << report.model << ": " << report.model_description << '\n';
+  if (report.material)
+    out << "material  " << report.material->name << " (" << report.material->source << ")\n";
+  out << "eta       " << format_number(report.eta) << "\n";
+  out << "units     radius in " << u << ", R(r) in 1/" << u << "^2 per unit entered flux"
+      << (report.includes_single_scattering ? "" : " (multiple scattering only)") << "\n\n";
+  out << "channel  sigma_a     sigma_s'    g        alpha'    ell (" << u << ")   R_total   r_99 (" << u << ")\n";
+  for (const auto& ch : report.channels)
+    out << std::string(ch.name).append(std::max<std::size_t>(1, 8 - ch.name.size()), ' ') << fixed(ch.sigma_a, 10, 4)
+        << fixed(ch.sigma_s_prime, 10, 4) << fixed(ch.g, 7, 3) << fixed(ch.albedo_prime, 10, 5)
+        << fixed(ch.transport_mfp, 11, 4) << fixed(ch.total_reflectance, 10, 5) << fixed(ch.radius_99, 11, 4)
+        << '\n';
+  const std::string radius_header = "radius (" + u + ")";
+  out << '\n' << std::string(13 - std::min<std::size_t>(12, radius_header.size()), ' ') << radius_header;
+  for (const auto& ch : report.channels)
+    out << std::string(14 - std::min<std::size_t>(13, ch.name.size()), ' ') << ch.name;
+  out << '\n';
+  if (!report.channels.empty()) {
+    const auto& radii = report.channels.front().profile.radius;
+    for (std::size_t i = 0; i < radii.size(); ++i) {
+      out << fixed(radii[i], 13, 5);
+      for (const auto& ch : report.channels) out << fixed(ch.profile.value[i], 14, 5);
+      out << '\n';
+    }
+  }
+  bool header = false;
+  for (const auto& ch : report.channels)
+    for (const auto& note : ch.validity) {
+      if (note.severity == Severity::note) continue;
+      if (!header) out << "\nvalidity\n";
+      header = true;
+      out << "  " << ch.name << ": " << to_string(note.severity) << " [" << note.code << "] " << note.message << '\n';
+    }
+  return out.str();
+}
+
+}  // namespace bssrdf

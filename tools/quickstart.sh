@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# README command 1: install what is missing, build, and run the main job on a bundled material.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash tools/setup.sh
+bash tools/build.sh
+mkdir -p out
+./build/bssrdf profile --material Skin1 --model better-dipole --samples 24 -o out/skin1-profile.json
