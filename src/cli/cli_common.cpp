@@ -115,6 +115,10 @@ MediumOptions::Resolved MediumOptions::resolve() const {
       std::string option = "--" + field;
       std::replace(option.begin(), option.end(), '_', '-');
       message = (out.material ? "material " + out.material->name + ": " + field : option) + message.substr(field.size());
+      if (!out.material) {
+        const auto plus = message.find(" + sigma_s[");
+        if (plus != std::string::npos) message.replace(plus, 11, " + --sigma-s[");
+      }
       break;
     }
     throw InvalidInput(message);

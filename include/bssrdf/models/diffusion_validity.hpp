@@ -1,24 +1,39 @@
-// The validity report shared by semi-infinite diffusion models. Each model passes the limits it was
-// measured to have against adding-doubling (tests/test_adding_doubling.cpp prints the tables).
+// The validity report shared by semi-infinite diffusion models. Each model states the worst total-
+// reflectance error it was measured to have against adding-doubling (tests/data/
+// ad_semi_infinite.tsv: eta 1 and 1.4, g 0 and 0.9), by band of reduced albedo; the test
+// tests/test_adding_doubling.cpp prints the full table and checks that every band holds.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "bssrdf/reduced.hpp"
 #include "bssrdf/validity.hpp"
 
 namespace bssrdf {
 
+struct AccuracyBand {
+  double min_albedo_prime;  // the band is alpha' >= this (down to the next band's bound)
+  double worst_error;       // worst |relative error| of the total against adding-doubling
+};
+
 struct DiffusionLimits {
-  double invalid_below_albedo_prime;  // total error beyond `invalid_error` below this alpha'
-  std::string invalid_error;          // e.g. "40 %"
-  double warn_below_albedo_prime;     // total error beyond `warn_error` below this alpha'
-  std::string warn_error;
-  double eta_min, eta_max;            // range of eta the model was checked over
+  // Highest band first; below the last band's bound the error is unknown (reported invalid).
+  // Measured at g = 0 (used for g < 0.5, negative g included) and at g = 0.9 (used for g >= 0.5).
+  std::vector<AccuracyBand> isotropic_bands, forward_bands;
+  double warn_above_error = 0.03;        // a warning where the band's worst error exceeds this
+  double invalid_above_error = 0.3;      // invalid where it exceeds this
+  double invalid_below_albedo_prime = 0.1;  // diffusion needs scattering to dominate absorption
+  double eta_min = 1.0, eta_max = 1.4;   // range of eta the bands were measured over
+  std::string context;                   // appended to the error figure, e.g. what it omits
 };
 
 DiffusionLimits dipole_limits();
 DiffusionLimits better_dipole_limits();
+
+// The worst measured total error for this alpha' and g (the band containing it), or infinity
+// below the last band.
+double documented_total_error(const DiffusionLimits& limits, double albedo_prime, double g);
 
 ValidityReport diffusion_validity(const Reduced<double>& m, const DiffusionLimits& limits);
 

@@ -1,0 +1,43 @@
+// Runs the bssrdf binary from tests and captures its exit status, stdout and stderr.
+#pragma once
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace bssrdf::test_cli {
+
+struct Run {
+  int status;
+  std::string out, err;
+};
+
+inline std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// `arguments` is appended to the binary's path as shell words.
+inline Run run(const std::string& arguments) {
+  static int counter = 0;
+  const auto dir = std::filesystem::temp_directory_path() / ("bssrdf-cli-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto out = dir / ("out" + std::to_string(counter));
+  const auto err = dir / ("err" + std::to_string(counter++));
+  const std::string command = std::string(BSSRDF_CLI) + " " + arguments + " >" + out.string() + " 2>" + err.string() + " </dev/null";
+  const int raw = std::system(command.c_str());
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+}
+
+inline int count_lines(const std::string& text) {
+  int n = 0;
+  for (char c : text) n += c == '\n';
+  return n;
+}
+
+}  // namespace bssrdf::test_cli

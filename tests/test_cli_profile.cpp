@@ -1,0 +1,141 @@
+// `bssrdf profile` end to end: valid runs give parseable output that agrees with the library;
+// every kind of bad input gives exit status 2, a one-line message and no output file.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "bssrdf/materials.hpp"
+#include "bssrdf/model.hpp"
+#include "cli_runner.hpp"
+
+using namespace bssrdf;
+using test_cli::count_lines;
+using test_cli::run;
+using json = nlohmann::json;
+
+TEST(CliProfile, JsonForABundledMaterial) {
+  const auto r = run("profile --material skin1 --model dipole --format json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto doc = json::parse(r.out);
+  EXPECT_EQ(doc["model"], "dipole");
+  EXPECT_EQ(doc["unit"], "mm");
+  EXPECT_EQ(doc["normalization"], "per_entered_flux");
+  EXPECT_EQ(doc["eta"], 1.3);
+  EXPECT_EQ(doc["material"]["name"], "Skin1");
+  ASSERT_EQ(doc["channels"].size(), 3u);
+  const auto skin = MaterialDatabase::load(default_materials_dir()).find("Skin1").medium;
+  const auto model = make_model("dipole");
+  for (std::size_t c = 0; c < 3; ++c) {
+    const auto& ch = doc["channels"][c];
+    for (const char* key : {"name", "sigma_a", "sigma_s", "g", "sigma_s_prime", "albedo_prime", "total_reflectance",
+                            "radius_99", "radius", "reflectance", "validity"})
+      EXPECT_TRUE(ch.contains(key)) << key;
+    EXPECT_EQ(ch["radius"].size(), 64u);
+    EXPECT_EQ(ch["reflectance"].size(), 64u);
+    EXPECT_DOUBLE_EQ(ch["sigma_a"].get<double>(), skin.sigma_a[c]);
+    EXPECT_NEAR(ch["total_reflectance"].get<double>(), model->total_reflectance(skin.reduced(c)), 1e-12);
+    const double r0 = ch["radius"][10].get<double>();
+    EXPECT_NEAR(ch["reflectance"][10].get<double>(), model->reflectance(skin.reduced(c), r0), 1e-12);
+    for (const auto& v : ch["reflectance"]) EXPECT_GE(v.get<double>(), 0.0);
+  }
+  EXPECT_EQ(doc["channels"][0]["name"], "R");
+  // Skin1 blue has alpha' = 0.68: the dipole's total is off by up to 29 % there, and it says so.
+  bool warned = false;
+  for (const auto& v : doc["channels"][2]["validity"]) warned |= v["severity"] == "warning" || v["severity"] == "invalid";
+  EXPECT_TRUE(warned);
+}
+
+TEST(CliProfile, WritesTheFileAndPrintsTheTable) {
+  const auto path = std::filesystem::temp_directory_path() / "bssrdf-cli-profile.json";
+  std::filesystem::remove(path);
+  const auto r = run("profile --material Marble -o " + path.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("R_total"), std::string::npos);
+  const auto doc = json::parse(test_cli::slurp(path));
+  EXPECT_EQ(doc["model"], "better-dipole");
+  EXPECT_EQ(doc["eta"], 1.5);
+}
+
+TEST(CliProfile, UnitsConvertAtTheEdge) {
+  // The same medium in 1/mm and in 1/cm: identical totals, radii scaled by 10, R(r) by 1/100.
+  const auto mm = json::parse(run("profile --sigma-a 0.1 --sigma-s 2 --g 0.5 --eta 1.4 --radii 0.5,1,2 -f json").out);
+  const auto cm = json::parse(run("profile --sigma-a 1 --sigma-s 20 --g 0.5 --eta 1.4 --radii 0.05,0.1,0.2 --unit cm -f json").out);
+  ASSERT_EQ(mm["channels"].size(), 1u);
+  EXPECT_EQ(cm["unit"], "cm");
+  EXPECT_NEAR(mm["channels"][0]["total_reflectance"].get<double>(), cm["channels"][0]["total_reflectance"].get<double>(), 1e-12);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR(cm["channels"][0]["reflectance"][i].get<double>(), 100 * mm["channels"][0]["reflectance"][i].get<double>(),
+                1e-9 * cm["channels"][0]["reflectance"][i].get<double>());
+  EXPECT_NEAR(cm["channels"][0]["radius_99"].get<double>() * 10, mm["channels"][0]["radius_99"].get<double>(), 1e-9);
+}
+
+TEST(CliProfile, CsvAndGrids) {
+  const auto r = run("profile --sigma-a 0.01,0.02 --sigma-s 1 --channels a,b --spacing linear --r-max 5 --samples 11 -f csv");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.substr(0, r.out.find('\n')), "radius_mm,a_per_mm2,b_per_mm2");
+  EXPECT_EQ(count_lines(r.out), 12);
+  EXPECT_EQ(r.out.substr(r.out.find('\n') + 1, 2), "0,");
+}
+
+TEST(CliProfile, VersionAndHelp) {
+  auto r = run("--version");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("bssrdf " BSSRDF_VERSION), std::string::npos);
+  r = run("--help");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("profile"), std::string::npos);
+  r = run("profile --help");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("--sigma-a"), std::string::npos);
+  r = run("models");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("better-dipole"), std::string::npos);
+  r = run("materials list");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(count_lines(r.out), 12);
+}
+
+struct BadInput {
+  const char* arguments;
+  const char* expected;  // a fragment the one-line message must contain
+};
+
+class CliBadInput : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(CliBadInput, ExitsTwoWithOneLineAndNoFile) {
+  const auto path = std::filesystem::temp_directory_path() / "bssrdf-bad-input.json";
+  std::filesystem::remove(path);
+  const auto r = run(std::string(GetParam().arguments) + " -o " + path.string());
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find(GetParam().expected), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_FALSE(std::filesystem::exists(path));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Profile, CliBadInput,
+    ::testing::Values(
+        BadInput{"profile --sigma-a 0.1,-1,0.1 --sigma-s 1", "--sigma-a[G] = -1: accepted range is >= 0"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --g 1.2", "--g[c0] = 1.2: accepted range is -1 < g < 1"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --eta 0", "--eta = 0"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --eta -1.3", "--eta = -1.3"},
+        BadInput{"profile --sigma-a 0,0 --sigma-s 0,1", "--sigma-a[c0] + --sigma-s[c0] = 0"},
+        BadInput{"profile --sigma-a abc --sigma-s 1", "--sigma-a = 'abc'"},
+        BadInput{"profile --sigma-a 0.1,0.2,0.3 --sigma-s 1,2", "--sigma-s: 2 values given, but --sigma-a has 3"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --channels a,b", "--channels: 2 names given"},
+        BadInput{"profile --material nosuchthing", "material = 'nosuchthing'"},
+        BadInput{"profile --material skim", "Skimmilk"},
+        BadInput{"profile --material Skin1 --sigma-a 1", "excludes"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --frobnicate", "frobnicate"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --model tripole", "one of dipole, better-dipole"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --radii 0.5,0.1", "--radii: radius[1] = 0.1"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --radii 0.5,x", "--radii = '0.5,x'"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --unit inch", "--unit = 'inch'"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --samples 1", "--samples = 1"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --r-min 5 --r-max 1", "--r-max = 1"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --format xml", "--format"},
+        BadInput{"profile --sigma-s 1", "give --material NAME, or both --sigma-a and --sigma-s"},
+        BadInput{"profile --material skin1 --db /nonexistent/db.json", "cannot open"},
+        BadInput{"frobnicate", "unknown command 'frobnicate'"}));
