@@ -7,6 +7,10 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/models/better_dipole.hpp"
 #include "bssrdf/models/dipole.hpp"
+#include "bssrdf/models/normalized_diffusion.hpp"
+#include "bssrdf/models/photon_beam_diffusion.hpp"
+#include "bssrdf/models/quantized_diffusion.hpp"
+#include "bssrdf/models/with_single_scattering.hpp"
 #include "bssrdf/quadrature.hpp"
 
 namespace bssrdf {
@@ -51,6 +55,16 @@ double Model::radius_for_fraction(const Reduced<double>& m, double fraction) con
   return std::sqrt(lo * hi);
 }
 
+ValidityReport Model::validity(const Reduced<double>& m) const {
+  auto report = check_validity(m);
+  const double total = total_reflectance(m);
+  if (total > 1)
+    report.insert(report.begin(), {Severity::invalid, "energy",
+                                   "total reflectance " + format_number(std::round(total * 1e5) / 1e5) +
+                                       " exceeds 1: the model creates energy here"});
+  return report;
+}
+
 SampledProfile Model::sample(const Reduced<double>& m, const std::vector<double>& radii) const {
   SampledProfile p;
   p.radius = radii;
@@ -60,13 +74,23 @@ SampledProfile Model::sample(const Reduced<double>& m, const std::vector<double>
 }
 
 std::unique_ptr<Model> make_model(std::string_view name) {
+  constexpr std::string_view kSingle = "+ss";
+  if (name.size() > kSingle.size() && name.substr(name.size() - kSingle.size()) == kSingle)
+    return std::make_unique<WithSingleScattering>(make_model(name.substr(0, name.size() - kSingle.size())));
   if (name == "dipole") return std::make_unique<classical_dipole::Model>();
   if (name == "better-dipole") return std::make_unique<better_dipole::Model>();
+  if (name == "pbd") return std::make_unique<photon_beam_diffusion::Model>();
+  if (name == "quantized") return std::make_unique<quantized_diffusion::Model>();
+  if (name == "burley") return std::make_unique<normalized_diffusion::Model>(normalized_diffusion::Scaling::searchlight_mfp);
+  if (name == "burley-diffuse") return std::make_unique<normalized_diffusion::Model>(normalized_diffusion::Scaling::diffuse_mfp);
+  if (name == "burley-dmfp") return std::make_unique<normalized_diffusion::Model>(normalized_diffusion::Scaling::searchlight_dmfp);
   std::string known;
   for (const auto& n : model_names()) known += (known.empty() ? "" : ", ") + n;
   throw InvalidInput("model", "'" + std::string(name) + "'", "one of " + known);
 }
 
-std::vector<std::string> model_names() { return {"dipole", "better-dipole"}; }
+std::vector<std::string> model_names() {
+  return {"dipole", "better-dipole", "pbd", "quantized", "burley", "burley-diffuse", "burley-dmfp"};
+}
 
 }  // namespace bssrdf

@@ -8,11 +8,6 @@
 
 namespace bssrdf {
 
-double henyey_greenstein(double cos_theta, double g) {
-  const double denom = 1 + g * g - 2 * g * cos_theta;
-  return (1 - g * g) / (4 * std::numbers::pi * denom * std::sqrt(denom));
-}
-
 double single_scattering_total(double albedo, double g, double eta) {
   // Light leaving with cosine mu below mu_c is totally reflected; substitute mu = mu_c + (1-mu_c)s^2
   // so the square-root onset of transmission at mu_c is smooth for the quadrature.

@@ -39,8 +39,9 @@ class Model {
   virtual double total_reflectance(const Reduced<double>& m) const = 0;
   // int_0^r 2 pi r' R(r') dr'. The default integrates reflectance() numerically.
   virtual double cumulative_reflectance(const Reduced<double>& m, double r) const;
-  // Where the model's assumptions fail for these coefficients.
-  virtual ValidityReport validity(const Reduced<double>& m) const = 0;
+  // Where the model's assumptions fail for these coefficients: the model's own checks, plus an
+  // "energy" entry (invalid) whenever its total reflectance exceeds 1.
+  ValidityReport validity(const Reduced<double>& m) const;
 
   // Albedo inversion: the reduced albedo alpha' whose total reflectance equals `total` at index
   // eta. Throws InvalidInput when `total` is outside what the model can produce at that eta.
@@ -51,6 +52,10 @@ class Model {
 
   // R(r) sampled at the given radii.
   SampledProfile sample(const Reduced<double>& m, const std::vector<double>& radii) const;
+
+ protected:
+  // The model-specific part of validity().
+  virtual ValidityReport check_validity(const Reduced<double>& m) const = 0;
 };
 
 // The models by command-line name. Throws InvalidInput listing the known names.

@@ -16,11 +16,16 @@ Action register_profile(CLI::App& app) {
     OutputOptions output;
     std::string model = "better-dipole", radii, r_min, r_max, spacing = "log";
     int samples = 64;
+    bool single_scattering = false;
   };
   auto options = std::make_shared<Options>();
   auto* sub = app.add_subcommand("profile", "Radial diffusion profile R(r) per channel (per unit entered flux)");
   options->medium.add_to(*sub);
-  sub->add_option("--model", options->model, "Model: dipole, better-dipole [better-dipole]");
+  sub->add_option("--model", options->model,
+                  "Model: dipole, better-dipole, pbd, quantized, burley, burley-diffuse, burley-dmfp; "
+                  "'bssrdf models' lists them [better-dipole]");
+  sub->add_flag("--single-scattering", options->single_scattering,
+                "Add exact single scattering to a model that omits it (same as --model NAME+ss)");
   auto* radii = sub->add_option("--radii", options->radii, "Explicit radii in --unit, comma-separated, increasing");
   auto* rmin = sub->add_option("--r-min", options->r_min, "Smallest radius [1e-3 of the smallest transport mfp]");
   auto* rmax = sub->add_option("--r-max", options->r_max, "Largest radius [the largest 99.9 %-energy radius]");
@@ -32,7 +37,7 @@ Action register_profile(CLI::App& app) {
 
   return [options] {
     const auto resolved = options->medium.resolve();
-    const auto model = make_model(options->model);
+    const auto model = make_model(options->model + (options->single_scattering ? "+ss" : ""));
     const double mm = millimetres_per(resolved.unit);
     std::vector<double> radii_mm;
     if (!options->radii.empty()) {

@@ -35,8 +35,8 @@ double Model::cumulative_reflectance(const Reduced<double>& m, double r) const {
   return better_dipole::cumulative_reflectance(m, boundary(m.eta), r);
 }
 
-ValidityReport Model::validity(const Reduced<double>& m) const {
-  return diffusion_validity(m, better_dipole_limits());
+ValidityReport Model::check_validity(const Reduced<double>& m) const {
+  return diffusion_validity(m, measured_limits(name()));
 }
 
 }  // namespace bssrdf::better_dipole

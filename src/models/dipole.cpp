@@ -21,8 +21,8 @@ double Model::cumulative_reflectance(const Reduced<double>& m, double r) const {
   return classical_dipole::cumulative_reflectance(m, r);
 }
 
-ValidityReport Model::validity(const Reduced<double>& m) const {
-  return diffusion_validity(m, dipole_limits());
+ValidityReport Model::check_validity(const Reduced<double>& m) const {
+  return diffusion_validity(m, measured_limits(name()));
 }
 
 }  // namespace bssrdf::classical_dipole

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "bssrdf/reduced.hpp"
@@ -28,12 +29,18 @@ struct DiffusionLimits {
   std::string context;                   // appended to the error figure, e.g. what it omits
 };
 
-DiffusionLimits dipole_limits();
-DiffusionLimits better_dipole_limits();
+// The measured accuracy of a model by its command-line name ("dipole", "better-dipole+ss", ...).
+// Throws std::out_of_range for a model that has not been measured.
+const DiffusionLimits& measured_limits(std::string_view model_name);
 
 // The worst measured total error for this alpha' and g (the band containing it), or infinity
 // below the last band.
 double documented_total_error(const DiffusionLimits& limits, double albedo_prime, double g);
+
+// Of the physical models whose totals include single scattering or approximate it well (dipole,
+// better-dipole+ss, pbd, quantized, quantized+ss), the one with the smallest measured total error
+// at this alpha' and g: the source of surface albedos where a model needs one.
+std::string most_accurate_total_model(double albedo_prime, double g);
 
 ValidityReport diffusion_validity(const Reduced<double>& m, const DiffusionLimits& limits);
 

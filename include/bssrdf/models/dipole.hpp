@@ -56,7 +56,7 @@ class Model final : public bssrdf::Model {
   double reflectance(const Reduced<double>& m, double r) const override;
   double total_reflectance(const Reduced<double>& m) const override;
   double cumulative_reflectance(const Reduced<double>& m, double r) const override;
-  ValidityReport validity(const Reduced<double>& m) const override;
+  ValidityReport check_validity(const Reduced<double>& m) const override;
 };
 
 }  // namespace bssrdf::classical_dipole
