@@ -12,5 +12,6 @@ using Action = std::function<void()>;
 Action register_profile(CLI::App& app);
 Action register_models(CLI::App& app);
 Action register_materials(CLI::App& app);
+Action register_reference(CLI::App& app);
 
 }  // namespace bssrdf::cli

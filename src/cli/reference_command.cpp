@@ -1,0 +1,190 @@
+// bssrdf reference: the Monte Carlo ground truth for a medium (shared options), a layer stack
+// (--layers FILE.json) or the runs of an MCML input file (--mci FILE.mci).
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "bssrdf/error.hpp"
+#include "bssrdf/io/layers_json.hpp"
+#include "bssrdf/io/mci.hpp"
+#include "bssrdf/montecarlo.hpp"
+#include "cli_common.hpp"
+#include "commands.hpp"
+
+namespace bssrdf::cli {
+namespace {
+
+// A one-line progress bar on stderr, only when stderr is a terminal.
+std::function<void(std::uint64_t, std::uint64_t)> progress_bar(const std::string& label) {
+  if (!::isatty(STDERR_FILENO)) return nullptr;
+  auto last = std::make_shared<int>(-1);
+  return [last, label](std::uint64_t done, std::uint64_t total) {
+    const int percent = static_cast<int>(100 * done / std::max<std::uint64_t>(1, total));
+    if (percent == *last) return;
+    *last = percent;
+    const int width = 40, filled = percent * width / 100;
+    std::fprintf(stderr, "\r%s [%s%s] %3d%%", label.c_str(), std::string(filled, '#').c_str(),
+                 std::string(width - filled, '.').c_str(), percent);
+    if (done >= total) std::fprintf(stderr, "\r%*s\r", width + 16 + static_cast<int>(label.size()), "");
+    std::fflush(stderr);
+  };
+}
+
+}  // namespace
+
+Action register_reference(CLI::App& app) {
+  struct Options {
+    MediumOptions medium;
+    OutputOptions output;
+    std::string thickness, layers, mci, r_max, r_min, spacing = "linear", absorption = "implicit";
+    std::uint64_t photons = 1'000'000, seed = 1;
+    unsigned threads = 0;
+    std::size_t bins = 100, depth_bins = 0;
+  };
+  auto options = std::make_shared<Options>();
+  auto* sub = app.add_subcommand(
+      "reference", "Monte Carlo reference: R_d, T_t, R(r), T(r) with standard errors (radiative transfer, exact phase function)");
+  options->medium.add_to(*sub);
+  auto* thickness = sub->add_option("--thickness", options->thickness, "Slab thickness in --unit [semi-infinite]");
+  auto* layers = sub->add_option("--layers", options->layers, "Layer stack file (JSON, format bssrdf-layers)");
+  auto* mci = sub->add_option("--mci", options->mci, "Run the cases of an MCML input file (cm, 1/cm; outputs in cm)");
+  sub->add_option("--photons,-n", options->photons, "Photons per channel (per run with --mci: default the file's) [1000000]");
+  sub->add_option("--seed", options->seed, "Random seed; the result depends only on inputs and seed [1]");
+  sub->add_option("--threads,-j", options->threads, "Worker threads, 0 = all cores; never changes the result [0]");
+  sub->add_option("--r-max", options->r_max, "Largest radius of R(r) in --unit [10 transport mfp; --mci: nr*dr]");
+  sub->add_option("--r-min", options->r_min, "Log spacing: outer radius of the first bin [r_max/1000]");
+  sub->add_option("--bins", options->bins, "Radial bins [100; --mci: nr]");
+  sub->add_option("--bin-spacing", options->spacing, "Radial bins: linear or log [linear]")
+      ->check(CLI::IsMember({"linear", "log"}));
+  sub->add_option("--depth-bins", options->depth_bins, "Absorbed fraction by depth in this many bins [0: off; --mci: nz]");
+  sub->add_option("--absorption", options->absorption, "Absorption estimator: implicit (weights + roulette) or analog [implicit]")
+      ->check(CLI::IsMember({"implicit", "analog"}));
+  options->output.add_to(*sub);
+  layers->excludes(thickness)->excludes(mci);
+  mci->excludes(thickness);
+  auto* unit_option = sub->get_option("--unit");
+  auto* photons_option = sub->get_option("--photons");
+  auto* bins_option = sub->get_option("--bins");
+  auto* depth_option = sub->get_option("--depth-bins");
+
+  return [options, unit_option, photons_option, bins_option, depth_option] {
+    const auto& o = *options;
+    if (!o.layers.empty() || !o.mci.empty()) {
+      if (!o.medium.material.empty() || !o.medium.sigma_a.empty() || !o.medium.sigma_s.empty() || !o.medium.g.empty() ||
+          !o.medium.eta.empty())
+        throw InvalidInput(std::string(o.mci.empty() ? "--layers" : "--mci") +
+                           " describes the medium: do not combine it with --material, --sigma-a, --sigma-s, --g or --eta");
+    }
+    MonteCarloOptions base;
+    base.photons = o.photons;
+    base.seed = o.seed;
+    base.threads = o.threads;
+    base.bins = o.bins;
+    base.spacing = o.spacing == "log" ? BinSpacing::log : BinSpacing::linear;
+    base.depth_bins = o.depth_bins;
+    base.absorption = o.absorption == "analog" ? AbsorptionEstimator::analog : AbsorptionEstimator::implicit_capture;
+    if (o.photons < 1) throw InvalidInput("--photons", std::to_string(o.photons), ">= 1");
+
+    struct Case {
+      std::string label;
+      LayerStack stack;
+      MonteCarloOptions options;
+    };
+    std::vector<Case> cases;
+    LengthUnit unit = LengthUnit::millimetre;
+    const auto lengths = [&](MonteCarloOptions& mc, LengthUnit u) {
+      if (!o.r_max.empty()) {
+        mc.r_max = to_mm(parse_number(o.r_max, "--r-max"), u);
+        if (!(mc.r_max > 0)) throw InvalidInput("--r-max", o.r_max, "> 0");
+      }
+      if (!o.r_min.empty()) {
+        mc.r_min = to_mm(parse_number(o.r_min, "--r-min"), u);
+        if (!(mc.r_min > 0)) throw InvalidInput("--r-min", o.r_min, "> 0");
+      }
+    };
+    if (!o.mci.empty()) {
+      unit = unit_option->count() ? parse_length_unit(o.medium.unit, "--unit") : LengthUnit::centimetre;
+      const MciFile file = read_mci(o.mci);
+      for (std::size_t k = 0; k < file.runs.size(); ++k) {
+        const MciRun& run = file.runs[k];
+        MonteCarloOptions mc = base;
+        if (!photons_option->count()) mc.photons = run.photons;
+        if (!bins_option->count()) {
+          mc.bins = static_cast<std::size_t>(std::max(2, run.nr));
+          mc.r_max = run.dr * static_cast<double>(mc.bins);
+          mc.spacing = BinSpacing::linear;
+        }
+        if (!depth_option->count()) {
+          mc.depth_bins = static_cast<std::size_t>(run.nz);
+          mc.z_max = run.dz * run.nz;
+        }
+        lengths(mc, unit);
+        cases.push_back({"run " + std::to_string(k + 1) + " (" + run.output_file + ")", run.stack, mc});
+      }
+    } else if (!o.layers.empty()) {
+      const LayersFile file = read_layers_json(o.layers);
+      unit = unit_option->count() ? parse_length_unit(o.medium.unit, "--unit") : file.unit;
+      MonteCarloOptions mc = base;
+      lengths(mc, unit);
+      cases.push_back({o.layers, file.stack, mc});
+    } else {
+      const auto resolved = o.medium.resolve();
+      unit = resolved.unit;
+      double thickness_mm = kSemiInfinite;
+      if (!o.thickness.empty()) {
+        const double t = parse_number(o.thickness, "--thickness");
+        if (!(t > 0)) throw InvalidInput("--thickness", o.thickness, "> 0 (omit for semi-infinite)");
+        thickness_mm = to_mm(t, unit);
+      }
+      MonteCarloOptions mc = base;
+      lengths(mc, unit);
+      LayerStack stack = LayerStack::slab(resolved.medium, thickness_mm);
+      if (resolved.material) stack.layers[0].name = resolved.material->name;
+      cases.push_back({resolved.material ? resolved.material->name : "medium", stack, mc});
+    }
+    for (auto& c : cases) c.options.validate();  // every case checked before any photon is traced
+
+    std::vector<MonteCarloResult> results;
+    for (auto& c : cases) {
+      c.options.progress = progress_bar(c.label);
+      results.push_back(run_monte_carlo(c.stack, c.options));
+    }
+
+    std::string content, table;
+    for (std::size_t k = 0; k < results.size(); ++k) {
+      if (results.size() > 1) table += "=== " + cases[k].label + " ===\n";
+      table += results[k].report(unit) + (k + 1 < results.size() ? "\n" : "");
+    }
+    switch (o.output.file_format()) {
+      case Format::json:
+        if (!o.mci.empty()) {
+          // An MCML file may hold several runs: always an array, so scripts need one code path.
+          nlohmann::json doc;
+          doc["source"] = o.mci;
+          doc["runs"] = nlohmann::json::array();
+          for (std::size_t k = 0; k < results.size(); ++k) {
+            auto run = nlohmann::json::parse(to_json(results[k], unit));
+            run["label"] = cases[k].label;
+            doc["runs"].push_back(std::move(run));
+          }
+          content = doc.dump(2) + "\n";
+        } else {
+          content = to_json(results[0], unit);
+        }
+        break;
+      case Format::csv:
+        for (std::size_t k = 0; k < results.size(); ++k) {
+          if (results.size() > 1) content += "# " + cases[k].label + "\n";
+          content += to_csv(results[k], unit);
+        }
+        break;
+      case Format::table: content = table; break;
+    }
+    emit(o.output, content, table);
+  };
+}
+
+}  // namespace bssrdf::cli

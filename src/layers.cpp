@@ -1,0 +1,80 @@
+#include "bssrdf/layers.hpp"
+
+#include <cmath>
+#include <set>
+
+#include "bssrdf/error.hpp"
+
+namespace bssrdf {
+
+double LayerStack::depth() const {
+  double z = 0;
+  for (const auto& layer : layers) z += layer.thickness;
+  return z;
+}
+
+void LayerStack::validate() const {
+  if (channel_names.empty()) throw InvalidInput("channels: at least one channel is needed");
+  std::set<std::string> seen;
+  for (std::size_t c = 0; c < channel_names.size(); ++c) {
+    if (channel_names[c].empty()) throw InvalidInput("channels[" + std::to_string(c) + "]", "''", "a non-empty name");
+    if (!seen.insert(channel_names[c]).second)
+      throw InvalidInput("channels[" + std::to_string(c) + "]", "'" + channel_names[c] + "'", "a unique name");
+  }
+  const auto check_index = [](double n, const std::string& field) {
+    if (!(n > 0) || !std::isfinite(n)) throw InvalidInput(field, format_number(n), "> 0 and finite");
+  };
+  check_index(ambient_above, "ambient_above");
+  check_index(ambient_below, "ambient_below");
+  if (layers.empty()) throw InvalidInput("layers: at least one layer is needed");
+  const std::size_t nc = channel_names.size();
+  for (std::size_t i = 0; i < layers.size(); ++i) {
+    const Layer& layer = layers[i];
+    const std::string prefix = "layers[" + std::to_string(i) + "]";
+    check_index(layer.n, prefix + ".n");
+    const bool last = i + 1 == layers.size();
+    if (layer.thickness == kSemiInfinite) {
+      if (!last) throw InvalidInput(prefix + ".thickness", "semi-infinite", "> 0 and finite (only the last layer may be semi-infinite)");
+    } else if (!(layer.thickness > 0) || !std::isfinite(layer.thickness)) {
+      throw InvalidInput(prefix + ".thickness", format_number(layer.thickness), "> 0 and finite, or semi-infinite for the last layer");
+    }
+    const auto check_size = [&](const std::vector<double>& v, const char* name) {
+      if (v.size() != nc)
+        throw InvalidInput(prefix + "." + name + ": " + std::to_string(v.size()) + " values given, but there are " +
+                           std::to_string(nc) + " channels");
+    };
+    check_size(layer.sigma_a, "sigma_a");
+    check_size(layer.sigma_s, "sigma_s");
+    check_size(layer.g, "g");
+    for (std::size_t c = 0; c < nc; ++c) {
+      const std::string at = "[" + channel_names[c] + "]";
+      if (!(layer.sigma_a[c] >= 0) || !std::isfinite(layer.sigma_a[c]))
+        throw InvalidInput(prefix + ".sigma_a" + at, format_number(layer.sigma_a[c]), ">= 0 and finite");
+      if (!(layer.sigma_s[c] >= 0) || !std::isfinite(layer.sigma_s[c]))
+        throw InvalidInput(prefix + ".sigma_s" + at, format_number(layer.sigma_s[c]), ">= 0 and finite");
+      if (!(layer.g[c] > -1 && layer.g[c] < 1))
+        throw InvalidInput(prefix + ".g" + at, format_number(layer.g[c]), "-1 < g < 1");
+      if (layer.thickness == kSemiInfinite && layer.clear(c))
+        throw InvalidInput(prefix + ".sigma_a + sigma_s" + at, "0",
+                           "> 0 in a semi-infinite layer (light would travel forever)");
+    }
+  }
+}
+
+LayerStack LayerStack::slab(const Medium& medium, double thickness_mm) {
+  medium.validate();
+  LayerStack stack;
+  stack.channel_names = medium.channel_names;
+  Layer layer;
+  layer.name = "medium";
+  layer.thickness = thickness_mm;
+  layer.n = medium.eta;
+  layer.sigma_a = medium.sigma_a;
+  layer.sigma_s = medium.sigma_s;
+  layer.g = medium.g;
+  stack.layers.push_back(std::move(layer));
+  stack.validate();
+  return stack;
+}
+
+}  // namespace bssrdf

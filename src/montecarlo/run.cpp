@@ -1,0 +1,255 @@
+// Runs the tracer over batches on worker threads and folds the batch tallies, in batch order,
+// into per-channel estimates with standard errors.
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <numbers>
+#include <thread>
+
+#include "bssrdf/error.hpp"
+#include "bssrdf/montecarlo.hpp"
+#include "tracer.hpp"
+
+namespace bssrdf {
+
+std::string_view to_string(BinSpacing spacing) { return spacing == BinSpacing::linear ? "linear" : "log"; }
+std::string_view to_string(AbsorptionEstimator estimator) {
+  return estimator == AbsorptionEstimator::analog ? "analog" : "implicit_capture";
+}
+
+void MonteCarloOptions::validate() const {
+  if (photons < 1) throw InvalidInput("photons", std::to_string(photons), ">= 1");
+  if (batch_size < 1) throw InvalidInput("batch_size", std::to_string(batch_size), ">= 1");
+  if (threads > 4096) throw InvalidInput("threads", std::to_string(threads), "0 (all cores) to 4096");
+  if (bins < 2 || bins > 10'000'000) throw InvalidInput("bins", std::to_string(bins), "2 to 10000000");
+  if (!std::isfinite(r_max) || r_max < 0) throw InvalidInput("r_max", format_number(r_max), "> 0 and finite (0: default)");
+  if (!std::isfinite(r_min) || r_min < 0) throw InvalidInput("r_min", format_number(r_min), "> 0 and finite (0: default)");
+  if (r_max > 0 && r_min > 0 && spacing == BinSpacing::log && !(r_min < r_max))
+    throw InvalidInput("r_min", format_number(r_min), "< r_max = " + format_number(r_max));
+  if (depth_bins > 10'000'000) throw InvalidInput("depth_bins", std::to_string(depth_bins), "0 to 10000000");
+  if (!std::isfinite(z_max) || z_max < 0) throw InvalidInput("z_max", format_number(z_max), ">= 0 and finite");
+  if (!(roulette_threshold >= 0) || !(roulette_threshold < 1))
+    throw InvalidInput("roulette_threshold", format_number(roulette_threshold), "0 <= threshold < 1");
+  if (!(roulette_survival > 0) || !(roulette_survival <= 1))
+    throw InvalidInput("roulette_survival", format_number(roulette_survival), "0 < survival <= 1");
+  if (max_interactions < 1) throw InvalidInput("max_interactions", std::to_string(max_interactions), ">= 1");
+}
+
+ChannelResult ChannelResult::per_entered_flux() const {
+  ChannelResult out = *this;
+  const double k = entered_scale();
+  for (Estimate* e : {&out.diffuse_reflectance, &out.single_scattering_reflectance, &out.unscattered_reflectance,
+                      &out.total_transmittance, &out.unscattered_transmittance, &out.absorbed}) {
+    e->value *= k;
+    e->standard_error *= k;
+  }
+  out.lost *= k;
+  out.reflectance_beyond *= k;
+  out.transmittance_beyond *= k;
+  for (auto* v : {&out.reflectance, &out.reflectance_stderr, &out.transmittance, &out.transmittance_stderr,
+                  &out.absorbed_by_depth, &out.absorbed_by_depth_stderr})
+    for (double& x : *v) x *= k;
+  return out;
+}
+
+namespace {
+
+// Transport mean free path of the first attenuating layer, largest over channels (mm).
+double top_transport_mfp(const LayerStack& stack) {
+  double ell = 0;
+  for (std::size_t c = 0; c < stack.channels(); ++c)
+    for (const Layer& layer : stack.layers) {
+      if (layer.clear(c)) continue;
+      ell = std::max(ell, 1 / (layer.sigma_a[c] + layer.sigma_s[c] * (1 - layer.g[c])));
+      break;
+    }
+  return ell > 0 ? ell : 1.0;
+}
+
+// Running sums of one channel over the folded batches.
+struct ChannelSums {
+  std::uint64_t photons = 0, interactions = 0, batches = 0;
+  double sum[mc::kTotals] = {}, sum_sq[mc::kTotals] = {};
+  double lost = 0, r_beyond = 0, t_beyond = 0;
+  std::vector<double> r_sum, r_sq, t_sum, t_sq, a_sum, a_batch_sq;
+
+  void add(const mc::BatchTally& t) {
+    photons += t.photons;
+    interactions += t.interactions;
+    ++batches;
+    for (int i = 0; i < mc::kTotals; ++i) {
+      sum[i] += t.sum[i];
+      sum_sq[i] += t.sum_sq[i];
+    }
+    lost += t.lost;
+    r_beyond += t.r_beyond;
+    t_beyond += t.t_beyond;
+    const auto accumulate = [](std::vector<double>& into, const std::vector<double>& from) {
+      if (into.empty()) into.assign(from.size(), 0.0);
+      for (std::size_t i = 0; i < from.size(); ++i) into[i] += from[i];
+    };
+    accumulate(r_sum, t.r_sum);
+    accumulate(r_sq, t.r_sq);
+    accumulate(t_sum, t.t_sum);
+    accumulate(t_sq, t.t_sq);
+    accumulate(a_sum, t.a_sum);
+    if (a_batch_sq.empty()) a_batch_sq.assign(t.a_sum.size(), 0.0);
+    const double n = static_cast<double>(t.photons);
+    for (std::size_t i = 0; i < t.a_sum.size(); ++i) a_batch_sq[i] += t.a_sum[i] * t.a_sum[i] / n;
+  }
+};
+
+// Mean of N per-photon contributions and its standard error.
+Estimate estimate(double sum, double sum_sq, double n) {
+  Estimate e;
+  e.value = sum / n;
+  const double variance = n > 1 ? std::max(0.0, (sum_sq / n - e.value * e.value) / (n - 1)) : 0.0;
+  e.standard_error = std::sqrt(variance);
+  return e;
+}
+
+}  // namespace
+
+MonteCarloResult run_monte_carlo(const LayerStack& stack, const MonteCarloOptions& options_in) {
+  stack.validate();
+  options_in.validate();
+  MonteCarloResult result;
+  result.stack = stack;
+  MonteCarloOptions& options = result.options;
+  options = options_in;
+  options.progress = nullptr;
+  if (options.r_max <= 0) options.r_max = 10 * top_transport_mfp(stack);
+  if (options.r_min <= 0) options.r_min = options.r_max / 1000;
+  if (options.spacing == BinSpacing::log && !(options.r_min < options.r_max))
+    throw InvalidInput("r_min", format_number(options.r_min), "< r_max = " + format_number(options.r_max));
+  if (options.depth_bins > 0 && options.z_max <= 0)
+    options.z_max = stack.semi_infinite() ? 10 * top_transport_mfp(stack) : stack.depth();
+
+  const mc::RadialBinning binning(options.spacing, options.bins, options.r_min, options.r_max);
+  result.bin_inner = binning.inner;
+  result.bin_outer = binning.outer;
+  result.bin_radius = binning.radius;
+  const double dz = options.depth_bins > 0 ? options.z_max / static_cast<double>(options.depth_bins) : 0;
+  for (std::size_t i = 0; i < options.depth_bins; ++i) {
+    result.depth_inner.push_back(dz * static_cast<double>(i));
+    result.depth_outer.push_back(i + 1 == options.depth_bins ? options.z_max : dz * static_cast<double>(i + 1));
+  }
+
+  mc::TraceSettings settings;
+  settings.binning = &binning;
+  settings.transmission_bins = !stack.semi_infinite();
+  settings.depth_bins = options.depth_bins;
+  settings.inv_depth_width = dz > 0 ? 1 / dz : 0;
+  settings.absorption = options.absorption;
+  settings.roulette_threshold = options.roulette_threshold;
+  settings.roulette_survival = options.roulette_survival;
+  settings.max_interactions = options.max_interactions;
+
+  const std::size_t channels = stack.channels();
+  std::vector<mc::ChannelGeometry> geometry;
+  for (std::size_t c = 0; c < channels; ++c) geometry.push_back(mc::make_geometry(stack, c));
+
+  const std::uint64_t batches_per_channel = (options.photons + options.batch_size - 1) / options.batch_size;
+  const std::uint64_t total_batches = batches_per_channel * channels;
+  const std::uint64_t total_photons = options.photons * channels;
+  unsigned threads = options.threads != 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+  threads = static_cast<unsigned>(std::min<std::uint64_t>(threads, total_batches));
+  result.threads = threads;
+
+  std::vector<ChannelSums> sums(channels);
+  std::atomic<std::uint64_t> next_batch{0};
+  std::mutex fold_mutex;
+  std::map<std::uint64_t, mc::BatchTally> pending;  // finished, waiting for earlier batches
+  std::uint64_t next_fold = 0, photons_done = 0;
+  std::exception_ptr failure;
+  std::atomic<bool> failed{false};
+
+  const auto worker = [&] {
+    try {
+      while (!failed.load(std::memory_order_relaxed)) {
+        const std::uint64_t index = next_batch.fetch_add(1);
+        if (index >= total_batches) break;
+        const std::uint64_t channel = index / batches_per_channel, batch = index % batches_per_channel;
+        const std::uint64_t count = std::min(options.batch_size, options.photons - batch * options.batch_size);
+        mc::BatchTally tally;
+        tally.reset(binning.bins, settings.transmission_bins, settings.depth_bins);
+        mc::Rng rng(options.seed, channel, batch);
+        mc::trace_batch(geometry[channel], settings, rng, count, tally);
+        std::lock_guard<std::mutex> lock(fold_mutex);
+        pending.emplace(index, std::move(tally));
+        // Fold in batch order only: floating-point sums then never depend on the thread count.
+        while (!pending.empty() && pending.begin()->first == next_fold) {
+          sums[next_fold / batches_per_channel].add(pending.begin()->second);
+          pending.erase(pending.begin());
+          ++next_fold;
+        }
+        photons_done += count;
+        if (options_in.progress) options_in.progress(photons_done, total_photons);
+      }
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(fold_mutex);
+      if (!failure) failure = std::current_exception();
+      failed = true;
+    }
+  };
+
+  const auto start = std::chrono::steady_clock::now();
+  if (threads == 1) {
+    worker();
+  } else {
+    std::vector<std::thread> pool;
+    for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
+    for (auto& thread : pool) thread.join();
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (failure) std::rethrow_exception(failure);
+  result.photons_per_second = result.seconds > 0 ? static_cast<double>(total_photons) / result.seconds : 0;
+
+  for (std::size_t c = 0; c < channels; ++c) {
+    const ChannelSums& s = sums[c];
+    const double n = static_cast<double>(s.photons);
+    ChannelResult ch;
+    ch.name = stack.channel_names[c];
+    ch.specular_reflectance = geometry[c].specular;
+    ch.diffuse_reflectance = estimate(s.sum[mc::kR], s.sum_sq[mc::kR], n);
+    ch.single_scattering_reflectance = estimate(s.sum[mc::kRSingle], s.sum_sq[mc::kRSingle], n);
+    ch.unscattered_reflectance = estimate(s.sum[mc::kRUnscattered], s.sum_sq[mc::kRUnscattered], n);
+    ch.total_transmittance = estimate(s.sum[mc::kT], s.sum_sq[mc::kT], n);
+    ch.unscattered_transmittance = estimate(s.sum[mc::kTUnscattered], s.sum_sq[mc::kTUnscattered], n);
+    ch.absorbed = estimate(s.sum[mc::kAbsorbed], s.sum_sq[mc::kAbsorbed], n);
+    ch.lost = s.lost / n;
+    ch.reflectance_beyond = s.r_beyond / n;
+    ch.transmittance_beyond = s.t_beyond / n;
+    ch.interactions = s.interactions;
+    const auto radial = [&](const std::vector<double>& sum, const std::vector<double>& sum_sq,
+                            std::vector<double>& value, std::vector<double>& error) {
+      for (std::size_t i = 0; i < sum.size(); ++i) {
+        const double area = std::numbers::pi * (binning.outer[i] * binning.outer[i] - binning.inner[i] * binning.inner[i]);
+        const Estimate e = estimate(sum[i], sum_sq[i], n);
+        value.push_back(e.value / area);
+        error.push_back(e.standard_error / area);
+      }
+    };
+    radial(s.r_sum, s.r_sq, ch.reflectance, ch.reflectance_stderr);
+    radial(s.t_sum, s.t_sq, ch.transmittance, ch.transmittance_stderr);
+    // Absorption by depth: one photon deposits in many bins, so the error comes from the spread
+    // of the per-batch means (batch-means estimator; batches are independent and identically
+    // distributed apart from the size of the last one).
+    const double batches = static_cast<double>(s.batches);
+    for (std::size_t i = 0; i < s.a_sum.size(); ++i) {
+      const double mean = s.a_sum[i] / n;
+      ch.absorbed_by_depth.push_back(mean / dz);
+      const double spread = s.batches > 1 ? std::max(0.0, (s.a_batch_sq[i] - n * mean * mean) / (batches - 1)) : NAN;
+      ch.absorbed_by_depth_stderr.push_back(std::sqrt(spread / n) / dz);
+    }
+    result.channels.push_back(std::move(ch));
+  }
+  return result;
+}
+
+}  // namespace bssrdf

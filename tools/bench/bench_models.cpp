@@ -1,0 +1,108 @@
+// Cost of one profile evaluation R(r) per model at its default tolerance (ns, medians), and photon
+// beam diffusion against pbrt-v3/v4's scheme (100 + 100 midpoint samples of the exponential, the
+// published anchor: about 6.3 us per evaluation on this machine kind) run in the same process,
+// with the accuracy of both against a converged reference (1024-point Gauss-Legendre).
+//
+//   bench_models [repetitions=15]
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <numbers>
+#include <vector>
+
+#include "bssrdf/fresnel.hpp"
+#include "bssrdf/model.hpp"
+#include "bssrdf/models/photon_beam_diffusion.hpp"
+#include "bssrdf/single_scattering.hpp"
+
+using namespace bssrdf;
+
+namespace {
+
+volatile double sink;
+
+// pbrt-v3's BeamDiffusionMS + BeamDiffusionSS, written plainly (same physics as ours: exact
+// internal Fresnel moments for the boundary, true HG phase for single scattering).
+double pbrt_style_pbd(const Reduced<double>& m, const ImprovedBoundary<double>& b, double r, int samples = 100) {
+  const double sigma_tp = m.sigma_t_prime, D = m.D_G, sigma_tr = m.sigma_tr_G, ze = -2 * D * b.A;
+  double ms = 0;
+  for (int i = 0; i < samples; ++i) {
+    const double zr = -std::log(1 - (i + 0.5) / samples) / sigma_tp;
+    const double zv = -zr + 2 * ze;
+    const double dr = std::sqrt(r * r + zr * zr), dv = std::sqrt(r * r + zv * zv);
+    const double phiD = 1 / (4 * std::numbers::pi * D) * (std::exp(-sigma_tr * dr) / dr - std::exp(-sigma_tr * dv) / dv);
+    const double EDn = 1 / (4 * std::numbers::pi) *
+                       (zr * (1 + sigma_tr * dr) * std::exp(-sigma_tr * dr) / (dr * dr * dr) -
+                        zv * (1 + sigma_tr * dv) * std::exp(-sigma_tr * dv) / (dv * dv * dv));
+    const double E = phiD * b.C_phi + EDn * b.C_E;
+    const double kappa = 1 - std::exp(-2 * sigma_tp * (dr + zr));
+    ms += kappa * m.albedo_prime * m.albedo_prime * E;
+  }
+  ms /= samples;
+  const double sigma_t = m.sigma_t(), t_crit = r * std::sqrt(std::max(0.0, m.eta * m.eta - 1));
+  double ss = 0;
+  for (int i = 0; i < samples; ++i) {
+    const double t = t_crit - std::log(1 - (i + 0.5) / samples) / sigma_t;
+    const double d = std::sqrt(r * r + t * t), cos_o = t / d;
+    ss += m.albedo() * std::exp(-sigma_t * (d + t_crit)) / (d * d) * henyey_greenstein(-cos_o, m.g) *
+          (1 - fresnel_reflectance(cos_o, m.eta)) * cos_o;
+  }
+  return ms + ss / samples;
+}
+
+template <class F>
+double median_ns_per_call(F&& f, const std::vector<double>& radii, int repetitions) {
+  std::vector<double> per_call;
+  for (int rep = 0; rep < repetitions; ++rep) {
+    const auto start = std::chrono::steady_clock::now();
+    double acc = 0;
+    int calls = 0;
+    do {
+      for (double r : radii) acc += f(r);
+      calls += static_cast<int>(radii.size());
+    } while (std::chrono::steady_clock::now() - start < std::chrono::milliseconds(20));
+    sink = acc;
+    per_call.push_back(std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count() / calls);
+  }
+  std::nth_element(per_call.begin(), per_call.begin() + repetitions / 2, per_call.end());
+  return per_call[repetitions / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int repetitions = argc > 1 ? std::max(1, std::atoi(argv[1])) : 15;
+  // Optical units: sigma_t' = 1; 64 log-spaced radii from 0.01 to 20 transport mean free paths.
+  std::vector<double> radii;
+  for (int i = 0; i < 64; ++i) radii.push_back(0.01 * std::pow(2000.0, i / 63.0));
+
+  std::printf("Cost of one R(r) evaluation, median of %d runs (alpha' = 0.9, g = 0, eta = 1.3; r in [0.01, 20] ell)\n", repetitions);
+  const auto m = reduce(0.1, 0.9, 0.0, 1.3);
+  for (const auto& name : model_names()) {
+    const auto model = make_model(name);
+    model->reflectance(m, 1.0);  // warm caches (quadrature order, mixture, surface albedo)
+    std::printf("  %-16s %9.1f ns\n", name.c_str(), median_ns_per_call([&](double r) { return model->reflectance(m, r); }, radii, repetitions));
+  }
+
+  std::printf("\nPhoton beam diffusion: ours vs pbrt's 100 + 100 midpoint samples (same process)\n");
+  std::printf("  case                     pbrt ns   pbrt worst err   ours n  ours ns   ours worst err   speed-up\n");
+  for (const auto& [alpha, g, eta] : {std::tuple{0.99, 0.0, 1.3}, std::tuple{0.9, 0.0, 1.0}, std::tuple{0.999, 0.9, 1.4}, std::tuple{0.5, 0.0, 1.4}}) {
+    const auto c = reduce(1 - alpha, alpha, g, eta);
+    const auto b = improved_boundary(eta);
+    const photon_beam_diffusion::Model model;
+    const int n = model.samples(c);
+    double pbrt_error = 0, our_error = 0;
+    for (double r : radii) {
+      const double reference = photon_beam_diffusion::reflectance(c, b, r, 1024);
+      pbrt_error = std::max(pbrt_error, std::abs(pbrt_style_pbd(c, b, r) / reference - 1));
+      our_error = std::max(our_error, std::abs(model.reflectance(c, r) / reference - 1));
+    }
+    const double pbrt_ns = median_ns_per_call([&](double r) { return pbrt_style_pbd(c, b, r); }, radii, repetitions);
+    const double our_ns = median_ns_per_call([&](double r) { return model.reflectance(c, r); }, radii, repetitions);
+    std::printf("  alpha %.3f g %.1f eta %.1f  %8.0f   %12.2e   %5d  %7.0f   %12.2e   %6.1fx\n", alpha, g, eta, pbrt_ns,
+                pbrt_error, n, our_ns, our_error, pbrt_ns / our_ns);
+  }
+  return 0;
+}
