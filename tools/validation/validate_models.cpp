@@ -1,0 +1,106 @@
+// Every profile model against the Monte Carlo reference on the grid of issue 5:
+// alpha' in {0.5, 0.8, 0.9, 0.95, 0.99, 0.999} x eta in {1.0, 1.3, 1.4} x g in {0, 0.9}
+// (semi-infinite, sigma_t = 1 /mm, true HG phase function in the Monte Carlo). For each model:
+//   total  - relative error of the total reflectance (per entered flux, single scattering included
+//            in the reference: models that omit it are measured as they would be used);
+//   L2     - area-weighted L2 error of R(r) over the bins, relative to the reference's norm;
+//   near   - the same over the bins inside one transport mean free path (r < ell);
+//   far    - the same over the bins beyond it (r >= ell), where diffusion is meant to hold.
+// (L2 is dominated by the near field, where R(r) is largest: near and far separate the two.)
+// Model values are bin averages (from cumulative_reflectance), compared with the bin tallies.
+// Also the single-scattering total against the Monte Carlo single-scattering tally.
+//
+//   validate_models [photons=200000] [out.tsv]
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "bssrdf/layers.hpp"
+#include "bssrdf/model.hpp"
+#include "bssrdf/montecarlo.hpp"
+#include "bssrdf/single_scattering.hpp"
+
+using namespace bssrdf;
+
+int main(int argc, char** argv) {
+  const std::uint64_t photons = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 200000;
+  const std::string tsv_path = argc > 2 ? argv[2] : "validation_models.tsv";
+  const std::vector<std::string> models = {"dipole", "dipole+ss", "better-dipole", "better-dipole+ss", "pbd",
+                                           "quantized", "quantized+ss", "burley", "burley-diffuse", "burley-dmfp"};
+  std::ofstream tsv(tsv_path);
+  tsv << "albedo_prime\teta\tg\tmc_total\tmc_stderr\tmc_single\tmc_single_stderr\tss_exact\tmc_l2_noise";
+  for (const auto& m : models) tsv << '\t' << m << "_total\t" << m << "_l2\t" << m << "_near\t" << m << "_far";
+  tsv << '\n';
+  std::printf("%-6s %-4s %-4s %-16s %-9s", "alpha'", "eta", "g", "MC total", "SS dev/σ");
+  for (const auto& m : models) std::printf(" %16.16s", m.c_str());
+  std::printf("\n%47s", "");
+  for (std::size_t i = 0; i < models.size(); ++i) std::printf(" %16s", "tot/near/far %");
+  std::printf("\n");
+
+  for (double g : {0.0, 0.9})
+    for (double eta : {1.0, 1.3, 1.4})
+      for (double ap : {0.5, 0.8, 0.9, 0.95, 0.99, 0.999}) {
+        const double albedo = ap / (1 - g + ap * g);  // inverts alpha' = alpha (1 - g)/(1 - alpha g)
+        Medium medium;
+        medium.channel_names = {"x"};
+        medium.sigma_a = {1 - albedo};
+        medium.sigma_s = {albedo};
+        medium.g = {g};
+        medium.eta = eta;
+        const auto m = medium.reduced(0);
+        MonteCarloOptions options;
+        options.photons = photons;
+        options.seed = 7;
+        options.spacing = BinSpacing::log;
+        options.r_min = 0.01 * m.ell;
+        options.r_max = 30 * m.ell;
+        options.bins = 70;
+        const auto start = std::chrono::steady_clock::now();
+        const auto result = run_monte_carlo(LayerStack::half_space(medium), options);
+        const auto mc = result.channels[0].per_entered_flux();
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double ss_exact = single_scattering_total(albedo, g, eta);
+        const double ss_dev = (mc.single_scattering_reflectance.value - ss_exact) /
+                              std::max(mc.single_scattering_reflectance.standard_error, 1e-300);
+        double norm = 0, near_norm = 0, far_norm = 0, noise = 0;
+        std::vector<double> area(mc.reflectance.size());
+        for (std::size_t i = 0; i < area.size(); ++i) {
+          area[i] = std::numbers::pi * (result.bin_outer[i] * result.bin_outer[i] - result.bin_inner[i] * result.bin_inner[i]);
+          norm += area[i] * mc.reflectance[i] * mc.reflectance[i];
+          noise += area[i] * mc.reflectance_stderr[i] * mc.reflectance_stderr[i];
+          (result.bin_outer[i] <= m.ell ? near_norm : far_norm) += area[i] * mc.reflectance[i] * mc.reflectance[i];
+        }
+        std::printf("%-6.3f %-4.1f %-4.1f %.4f±%.4f %+8.1f ", ap, eta, g, mc.diffuse_reflectance.value,
+                    mc.diffuse_reflectance.standard_error, ss_dev);
+        tsv << ap << '\t' << eta << '\t' << g << '\t' << mc.diffuse_reflectance.value << '\t'
+            << mc.diffuse_reflectance.standard_error << '\t' << mc.single_scattering_reflectance.value << '\t'
+            << mc.single_scattering_reflectance.standard_error << '\t' << ss_exact << '\t' << std::sqrt(noise / norm);
+        for (const auto& name : models) {
+          const auto model = make_model(name);
+          const double total_error = model->total_reflectance(m) / mc.diffuse_reflectance.value - 1;
+          double l2 = 0, near = 0, far = 0;
+          for (std::size_t i = 0; i < area.size(); ++i) {
+            const double average = (model->cumulative_reflectance(m, result.bin_outer[i]) -
+                                    model->cumulative_reflectance(m, result.bin_inner[i])) / area[i];
+            const double d2 = area[i] * (average - mc.reflectance[i]) * (average - mc.reflectance[i]);
+            l2 += d2;
+            (result.bin_outer[i] <= m.ell ? near : far) += d2;
+          }
+          l2 = std::sqrt(l2 / norm);
+          near = std::sqrt(near / near_norm);
+          far = std::sqrt(far / far_norm);
+          std::printf(" %+5.1f/%4.1f/%5.1f", 100 * total_error, 100 * near, 100 * far);
+          tsv << '\t' << total_error << '\t' << l2 << '\t' << near << '\t' << far;
+        }
+        std::printf("   (%.1f s)\n", seconds);
+        std::fflush(stdout);
+        tsv << '\n';
+        tsv.flush();
+      }
+  return 0;
+}
