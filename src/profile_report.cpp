@@ -8,6 +8,8 @@
 #include <sstream>
 
 #include "bssrdf/error.hpp"
+#include "bssrdf/models/normalized_diffusion.hpp"
+#include "bssrdf/models/quantized_diffusion.hpp"
 
 namespace bssrdf {
 
@@ -50,6 +52,15 @@ ProfileReport compute_profile_report(const Medium& medium, const Model& model,
       ch.profile.value.push_back(sampled.value[i] * mm * mm);  // per area: 1/mm^2 -> 1/unit^2
     }
     ch.validity = model.validity(m);
+    if (const auto* qd = dynamic_cast<const quantized_diffusion::Model*>(&model)) {
+      const auto mixture = qd->gaussians(m);
+      for (double v : mixture.variance) ch.gaussian_variance.push_back(v / (mm * mm));
+      ch.gaussian_weight = mixture.weight;
+    }
+    if (const auto* burley = dynamic_cast<const normalized_diffusion::Model*>(&model)) {
+      ch.burley_d = burley->shape_parameter(m) / mm;
+      ch.surface_albedo = burley->surface_albedo(m);
+    }
     report.channels.push_back(std::move(ch));
   }
   return report;
@@ -105,6 +116,12 @@ std::string to_json(const ProfileReport& report) {
     c["radius_99"] = number_or_null(ch.radius_99);
     c["radius"] = ch.profile.radius;
     c["reflectance"] = ch.profile.value;
+    if (!ch.gaussian_variance.empty())
+      c["gaussians"] = {{"variance", ch.gaussian_variance}, {"weight", ch.gaussian_weight}};
+    if (ch.burley_d > 0) {
+      c["burley_d"] = ch.burley_d;
+      c["surface_albedo"] = ch.surface_albedo;
+    }
     c["validity"] = nlohmann::json::array();
     for (const auto& note : ch.validity)
       c["validity"].push_back({{"severity", std::string(to_string(note.severity))},

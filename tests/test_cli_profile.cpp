@@ -47,7 +47,7 @@ TEST(CliProfile, JsonForABundledMaterial) {
 }
 
 TEST(CliProfile, WritesTheFileAndPrintsTheTable) {
-  const auto path = std::filesystem::temp_directory_path() / "bssrdf-cli-profile.json";
+  const auto path = std::filesystem::temp_directory_path() / ("bssrdf-cli-profile-" + std::to_string(::getpid()) + ".json");
   std::filesystem::remove(path);
   const auto r = run("profile --material Marble -o " + path.string());
   ASSERT_EQ(r.status, 0) << r.err;
@@ -68,6 +68,29 @@ TEST(CliProfile, UnitsConvertAtTheEdge) {
     EXPECT_NEAR(cm["channels"][0]["reflectance"][i].get<double>(), 100 * mm["channels"][0]["reflectance"][i].get<double>(),
                 1e-9 * cm["channels"][0]["reflectance"][i].get<double>());
   EXPECT_NEAR(cm["channels"][0]["radius_99"].get<double>() * 10, mm["channels"][0]["radius_99"].get<double>(), 1e-9);
+}
+
+TEST(CliProfile, ModelSpecificForms) {
+  // Quantized diffusion exposes its Gaussian mixture; its weights sum to the total.
+  auto doc = json::parse(run("profile --material Skin1 --model quantized --samples 8 -f json").out);
+  for (const auto& ch : doc["channels"]) {
+    double sum = 0;
+    for (const auto& w : ch["gaussians"]["weight"]) sum += w.get<double>();
+    EXPECT_NEAR(sum, ch["total_reflectance"].get<double>(), 1e-12);
+    EXPECT_EQ(ch["gaussians"]["variance"].size(), ch["gaussians"]["weight"].size());
+  }
+  // Burley with a given surface albedo: total = A, and d is reported.
+  doc = json::parse(run("profile --material Skin1 --model burley --surface-albedo 0.4 --samples 8 -f json").out);
+  for (const auto& ch : doc["channels"]) {
+    EXPECT_DOUBLE_EQ(ch["total_reflectance"].get<double>(), 0.4);
+    EXPECT_GT(ch["burley_d"].get<double>(), 0.0);
+  }
+  // --single-scattering adds the exact term: totals grow by the single-scattering total.
+  const auto ms = json::parse(run("profile --material Skin1 --samples 8 -f json").out);
+  const auto with = json::parse(run("profile --material Skin1 --samples 8 --single-scattering -f json").out);
+  EXPECT_EQ(with["model"], "better-dipole+ss");
+  EXPECT_EQ(with["includes_single_scattering"], true);
+  EXPECT_GT(with["channels"][0]["total_reflectance"].get<double>(), ms["channels"][0]["total_reflectance"].get<double>());
 }
 
 TEST(CliProfile, CsvAndGrids) {
@@ -104,7 +127,7 @@ struct BadInput {
 class CliBadInput : public ::testing::TestWithParam<BadInput> {};
 
 TEST_P(CliBadInput, ExitsTwoWithOneLineAndNoFile) {
-  const auto path = std::filesystem::temp_directory_path() / "bssrdf-bad-input.json";
+  const auto path = std::filesystem::temp_directory_path() / ("bssrdf-bad-input-" + std::to_string(::getpid()) + ".json");
   std::filesystem::remove(path);
   const auto r = run(std::string(GetParam().arguments) + " -o " + path.string());
   EXPECT_EQ(r.status, 2) << r.err;
@@ -129,13 +152,16 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"profile --material skim", "Skimmilk"},
         BadInput{"profile --material Skin1 --sigma-a 1", "excludes"},
         BadInput{"profile --sigma-a 0.1 --sigma-s 1 --frobnicate", "frobnicate"},
-        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --model tripole", "one of dipole, better-dipole"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --model tripole", "one of dipole, better-dipole, pbd"},
         BadInput{"profile --sigma-a 0.1 --sigma-s 1 --radii 0.5,0.1", "--radii: radius[1] = 0.1"},
         BadInput{"profile --sigma-a 0.1 --sigma-s 1 --radii 0.5,x", "--radii = '0.5,x'"},
         BadInput{"profile --sigma-a 0.1 --sigma-s 1 --unit inch", "--unit = 'inch'"},
         BadInput{"profile --sigma-a 0.1 --sigma-s 1 --samples 1", "--samples = 1"},
         BadInput{"profile --sigma-a 0.1 --sigma-s 1 --r-min 5 --r-max 1", "--r-max = 1"},
         BadInput{"profile --sigma-a 0.1 --sigma-s 1 --format xml", "--format"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --model burley --surface-albedo 1.5", "--surface-albedo = 1.5"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --surface-albedo 0.5", "only the burley models"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --model pbd --single-scattering", "pbd already includes it"},
         BadInput{"profile --sigma-s 1", "give --material NAME, or both --sigma-a and --sigma-s"},
         BadInput{"profile --material skin1 --db /nonexistent/db.json", "cannot open"},
         BadInput{"frobnicate", "unknown command 'frobnicate'"}));

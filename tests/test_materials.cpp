@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <unistd.h>
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/materials.hpp"
@@ -12,7 +13,8 @@ using namespace bssrdf;
 
 namespace {
 std::filesystem::path write_temp(const std::string& name, const std::string& text) {
-  const auto dir = std::filesystem::temp_directory_path() / "bssrdf-materials-test";
+  // Per process: ctest runs test cases in parallel processes.
+  const auto dir = std::filesystem::temp_directory_path() / ("bssrdf-materials-test-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const auto path = dir / name;
   std::ofstream(path) << text;

@@ -26,6 +26,11 @@ struct ChannelProfile {
   double radius_99 = 0;      // radius holding 99 % of total_reflectance
   SampledProfile profile;    // radius in unit, R(r) in 1/unit^2
   ValidityReport validity;
+  // Model-specific forms renderers use directly (empty when the model has none):
+  // quantized diffusion's mixture R(r) = sum w_i e^{-r^2/(2 v_i)}/(2 pi v_i) (v_i in unit^2),
+  std::vector<double> gaussian_variance, gaussian_weight;
+  // normalized diffusion's shape parameter d (unit) and surface albedo A.
+  double burley_d = 0, surface_albedo = 0;
 };
 
 struct ProfileReport {

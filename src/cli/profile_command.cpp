@@ -4,6 +4,7 @@
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/models/normalized_diffusion.hpp"
 #include "bssrdf/profile_report.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -17,6 +18,7 @@ Action register_profile(CLI::App& app) {
     std::string model = "better-dipole", radii, r_min, r_max, spacing = "log";
     int samples = 64;
     bool single_scattering = false;
+    std::string surface_albedo;
   };
   auto options = std::make_shared<Options>();
   auto* sub = app.add_subcommand("profile", "Radial diffusion profile R(r) per channel (per unit entered flux)");
@@ -26,6 +28,8 @@ Action register_profile(CLI::App& app) {
                   "'bssrdf models' lists them [better-dipole]");
   sub->add_flag("--single-scattering", options->single_scattering,
                 "Add exact single scattering to a model that omits it (same as --model NAME+ss)");
+  sub->add_option("--surface-albedo", options->surface_albedo,
+                  "Burley models: the surface albedo A, given directly (0 < A < 1) [from the most accurate physical model]");
   auto* radii = sub->add_option("--radii", options->radii, "Explicit radii in --unit, comma-separated, increasing");
   auto* rmin = sub->add_option("--r-min", options->r_min, "Smallest radius [1e-3 of the smallest transport mfp]");
   auto* rmax = sub->add_option("--r-max", options->r_max, "Largest radius [the largest 99.9 %-energy radius]");
@@ -37,7 +41,14 @@ Action register_profile(CLI::App& app) {
 
   return [options] {
     const auto resolved = options->medium.resolve();
-    const auto model = make_model(options->model + (options->single_scattering ? "+ss" : ""));
+    auto model = make_model(options->model + (options->single_scattering ? "+ss" : ""));
+    if (!options->surface_albedo.empty()) {
+      const double A = parse_number(options->surface_albedo, "--surface-albedo");
+      if (!(A > 0 && A < 1)) throw InvalidInput("--surface-albedo", format_number(A), "0 < A < 1");
+      const auto* burley = dynamic_cast<const normalized_diffusion::Model*>(model.get());
+      if (!burley) throw InvalidInput("--surface-albedo: only the burley models take a surface albedo, not " + model->name());
+      model = std::make_unique<normalized_diffusion::Model>(burley->scaling(), A);
+    }
     const double mm = millimetres_per(resolved.unit);
     std::vector<double> radii_mm;
     if (!options->radii.empty()) {

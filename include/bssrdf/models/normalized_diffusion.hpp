@@ -84,6 +84,7 @@ class Model final : public bssrdf::Model {
 
   double surface_albedo(const Reduced<double>& m) const;
   double shape_parameter(const Reduced<double>& m) const;  // d, in the length unit of m
+  Scaling scaling() const { return scaling_; }
 
  private:
   Scaling scaling_;
