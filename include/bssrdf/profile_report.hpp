@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bssrdf/layers.hpp"
 #include "bssrdf/materials.hpp"
 #include "bssrdf/medium.hpp"
 #include "bssrdf/model.hpp"
@@ -26,6 +27,11 @@ struct ChannelProfile {
   double radius_99 = 0;      // radius holding 99 % of total_reflectance
   SampledProfile profile;    // radius in unit, R(r) in 1/unit^2
   ValidityReport validity;
+  // Slabs and layer stacks only: T(r) at the same radii (1/unit^2), its total, and for a single
+  // multipole slab the number of dipole pairs behind the totals (0: not applicable).
+  std::optional<double> total_transmittance;
+  std::vector<double> transmittance;
+  int dipole_pairs = 0;
 };
 
 struct ProfileReport {
@@ -35,6 +41,9 @@ struct ProfileReport {
   double eta = 1;
   std::optional<Material> material;  // when the medium came from the database
   std::vector<ChannelProfile> channels;
+  std::optional<double> thickness;   // a single slab, in unit
+  std::optional<LayerStack> layers;  // a layer stack (mm inside; reported in unit); channel
+                                     // coefficients are then those of the top layer
 };
 
 // Radii for a profile when none are given: geometric from 1e-3 of the smallest transport mfp to
@@ -44,6 +53,10 @@ std::vector<double> default_radii_mm(const Medium& medium, const Model& model, s
 // radii_mm: one radius grid (mm) shared by all channels.
 ProfileReport compute_profile_report(const Medium& medium, const Model& model,
                                      const std::vector<double>& radii_mm, LengthUnit unit);
+
+// A layer stack under the multipole with the adding equations (models/layered.hpp).
+ProfileReport compute_stack_report(const LayerStack& stack, const std::vector<double>& radii_mm, LengthUnit unit);
+std::vector<double> default_stack_radii_mm(const LayerStack& stack, std::size_t samples);
 
 std::string to_json(const ProfileReport& report);   // pretty-printed, trailing newline
 std::string to_csv(const ProfileReport& report);    // radius + one column per channel
