@@ -131,8 +131,9 @@ ValidityReport diffusion_validity(const Reduced<double>& m, const DiffusionLimit
 namespace bssrdf {
 
 namespace {
-// T_total error of a d = 2 ell slab against Monte Carlo (tests/test_multipole_montecarlo.cpp).
-constexpr const char* kThinSlabTError = "30 %";
+// T_total error of a d = 2 ell slab (alpha' 0.99, eta 1.3) against Monte Carlo: +30.9 %
+// (tests/test_multipole_montecarlo.cpp).
+constexpr const char* kThinSlabTError = "31 %";
 }  // namespace
 
 ValidityReport slab_validity(const Reduced<double>& m, const SlabState& state) {
