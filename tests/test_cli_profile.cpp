@@ -131,6 +131,20 @@ TEST(CliProfile, LayerStackFromTheFileSharedWithTheReference) {
   EXPECT_EQ(mc.status, 0) << mc.err;  // the same file runs through the Monte Carlo reference
 }
 
+TEST(CliTransmission, TotalTransmittanceAgainstThickness) {
+  const auto r = run("transmission --sigma-a 0.01 --sigma-s 1 --eta 1.3 --thickness 0.5,2,8 -f json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto doc = json::parse(r.out);
+  ASSERT_EQ(doc["rows"].size(), 3u);
+  EXPECT_TRUE(doc["rows"][0]["total_transmittance"][0].is_null());  // 0.5 ell: invalid, no number
+  EXPECT_EQ(doc["rows"][0]["invalid"][0], "source_outside_slab");
+  EXPECT_NEAR(doc["rows"][1]["total_transmittance"][0].get<double>(), 0.464, 1e-3);  // MODELS.md slab check
+  EXPECT_NEAR(doc["rows"][2]["total_transmittance"][0].get<double>(), 0.142, 1e-3);
+  const auto table = run("transmission --material Skin1 --samples 5");
+  EXPECT_EQ(table.status, 0) << table.err;
+  EXPECT_NE(table.out.find("T_total G"), std::string::npos);
+}
+
 struct BadInput {
   const char* arguments;
   const char* expected;  // a fragment the one-line message must contain
@@ -185,4 +199,6 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"profile --layers " BSSRDF_TEST_DATA "/two_layer_skin.json --thickness 2", "excludes"},
         BadInput{"profile --layers " BSSRDF_TEST_DATA "/two_layer_skin.json --sigma-a 1", "--layers describes the medium"},
         BadInput{"profile --layers /nonexistent.json", "cannot open"},
+        BadInput{"transmission --sigma-a 0.01 --sigma-s 1 --thickness 0,1", "--thickness = 0"},
+        BadInput{"transmission --sigma-a 0.01 --sigma-s 1 --d-min 5 --d-max 1", "--d-max = 1"},
         BadInput{"profile --layers " BSSRDF_TEST_DATA "/thin_epidermis.json", "epidermis: d = 0.505 ell < 2 ell"}));
