@@ -10,6 +10,8 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/models/normalized_diffusion.hpp"
 #include "bssrdf/models/quantized_diffusion.hpp"
+#include "bssrdf/models/layered.hpp"
+#include "bssrdf/models/multipole.hpp"
 
 namespace bssrdf {
 
@@ -61,6 +63,61 @@ ProfileReport compute_profile_report(const Medium& medium, const Model& model,
       ch.burley_d = burley->shape_parameter(m) / mm;
       ch.surface_albedo = burley->surface_albedo(m);
     }
+    if (const auto* slab = dynamic_cast<const multipole::Model*>(&model)) {
+      ch.total_transmittance = slab->total_transmittance(m);
+      for (double r : radii_mm) ch.transmittance.push_back(slab->transmittance(m, r) * mm * mm);
+      ch.dipole_pairs = slab->dipole_pairs(m);
+      report.thickness = slab->thickness() / mm;
+    }
+    report.channels.push_back(std::move(ch));
+  }
+  return report;
+}
+
+std::vector<double> default_stack_radii_mm(const LayerStack& stack, std::size_t samples) {
+  double r_min = std::numeric_limits<double>::infinity(), r_max = 0;
+  for (std::size_t c = 0; c < stack.channels(); ++c) {
+    const layered::Stack model(stack, c);
+    r_min = std::min(r_min, 1e-3 * model.medium(0).ell);
+    r_max = std::max(r_max, model.radius_for_fraction(0.999));
+  }
+  return log_spaced(r_min, r_max, samples);
+}
+
+ProfileReport compute_stack_report(const LayerStack& stack, const std::vector<double>& radii_mm, LengthUnit unit) {
+  stack.validate();
+  ProfileReport report;
+  report.model = "multipole";
+  report.model_description =
+      "multipole layers (Donner & Jensen 2005) combined by the adding equations on their Hankel spectra, "
+      "classical D and A, multiple scattering only";
+  report.unit = unit;
+  report.eta = stack.layers[0].n / stack.ambient_above;
+  report.layers = stack;
+  const double mm = millimetres_per(unit);
+  for (std::size_t c = 0; c < stack.channels(); ++c) {
+    const layered::Stack model(stack, c);
+    const auto& m = model.medium(0);
+    ChannelProfile ch;
+    ch.name = stack.channel_names[c];
+    ch.sigma_a = m.sigma_a * mm;
+    ch.sigma_s = m.sigma_s * mm;
+    ch.g = m.g;
+    ch.sigma_s_prime = m.sigma_s_prime * mm;
+    ch.albedo_prime = m.albedo_prime;
+    ch.transport_mfp = m.ell / mm;
+    ch.diffuse_mfp = m.sigma_tr > 0 ? m.ell_d / mm : std::numeric_limits<double>::infinity();
+    ch.total_reflectance = model.total_reflectance();
+    ch.radius_99 = model.radius_for_fraction(0.99) / mm;
+    for (double r : radii_mm) {
+      ch.profile.radius.push_back(r / mm);
+      ch.profile.value.push_back(model.reflectance(r) * mm * mm);
+    }
+    if (!model.semi_infinite()) {
+      ch.total_transmittance = model.total_transmittance();
+      for (double r : radii_mm) ch.transmittance.push_back(model.transmittance(r) * mm * mm);
+    }
+    ch.validity = model.validity();
     report.channels.push_back(std::move(ch));
   }
   return report;
@@ -101,6 +158,18 @@ std::string to_json(const ProfileReport& report) {
   } else {
     doc["material"] = nullptr;
   }
+  doc["geometry"] = report.layers ? "layers" : report.thickness ? "slab" : "semi-infinite";
+  doc["thickness"] = report.thickness ? nlohmann::json(*report.thickness) : nlohmann::json(nullptr);
+  if (report.layers) {
+    const double mm = millimetres_per(report.unit);
+    doc["ambient_above"] = report.layers->ambient_above;
+    doc["ambient_below"] = report.layers->ambient_below;
+    doc["layers"] = nlohmann::json::array();
+    for (const auto& layer : report.layers->layers)
+      doc["layers"].push_back({{"name", layer.name},
+                               {"thickness", number_or_null(layer.thickness / mm)},
+                               {"n", layer.n}});
+  }
   doc["channels"] = nlohmann::json::array();
   for (const auto& ch : report.channels) {
     nlohmann::json c;
@@ -122,6 +191,11 @@ std::string to_json(const ProfileReport& report) {
       c["burley_d"] = ch.burley_d;
       c["surface_albedo"] = ch.surface_albedo;
     }
+    if (ch.total_transmittance) {
+      c["total_transmittance"] = *ch.total_transmittance;
+      c["transmittance"] = ch.transmittance;
+    }
+    if (ch.dipole_pairs > 0) c["dipole_pairs"] = ch.dipole_pairs;
     c["validity"] = nlohmann::json::array();
     for (const auto& note : ch.validity)
       c["validity"].push_back({{"severity", std::string(to_string(note.severity))},
@@ -137,12 +211,16 @@ std::string to_csv(const ProfileReport& report) {
   const std::string u(symbol(report.unit));
   out << "radius_" << u;
   for (const auto& ch : report.channels) out << ',' << ch.name << "_per_" << u << "2";
+  for (const auto& ch : report.channels)
+    if (ch.total_transmittance) out << ',' << ch.name << "_transmittance_per_" << u << "2";
   out << '\n';
   if (report.channels.empty()) return out.str();
   const auto& radii = report.channels.front().profile.radius;
   for (std::size_t i = 0; i < radii.size(); ++i) {
     out << format_number(radii[i]);
     for (const auto& ch : report.channels) out << ',' << format_number(ch.profile.value[i]);
+    for (const auto& ch : report.channels)
+      if (ch.total_transmittance) out << ',' << format_number(ch.transmittance[i]);
     out << '\n';
   }
   return out.str();
@@ -155,6 +233,17 @@ std::string to_table(const ProfileReport& report) {
   if (report.material)
     out << "material  " << report.material->name << " (" << report.material->source << ")\n";
   out << "eta       " << format_number(report.eta) << "\n";
+  if (report.thickness) out << "slab      thickness " << format_number(*report.thickness) << ' ' << u << "\n";
+  if (report.layers) {
+    const double mm = millimetres_per(report.unit);
+    out << "layers    ambient above n = " << format_number(report.layers->ambient_above) << ", below n = "
+        << format_number(report.layers->ambient_below) << "\n";
+    for (const auto& layer : report.layers->layers)
+      out << "          " << (layer.name.empty() ? "(unnamed)" : layer.name) << ": n = " << format_number(layer.n)
+          << ", thickness " << (layer.thickness == kSemiInfinite ? "semi-infinite" : format_number(layer.thickness / mm) + " " + u)
+          << "\n";
+    out << "          (the channel table shows the top layer's coefficients)\n";
+  }
   out << "units     radius in " << u << ", R(r) in 1/" << u << "^2 per unit entered flux"
       << (report.includes_single_scattering ? "" : " (multiple scattering only)") << "\n\n";
   out << "channel  sigma_a     sigma_s'    g        alpha'    ell (" << u << ")   R_total   r_99 (" << u << ")\n";
@@ -162,17 +251,23 @@ std::string to_table(const ProfileReport& report) {
     out << std::string(ch.name).append(std::max<std::size_t>(1, 8 - ch.name.size()), ' ') << fixed(ch.sigma_a, 10, 4)
         << fixed(ch.sigma_s_prime, 10, 4) << fixed(ch.g, 7, 3) << fixed(ch.albedo_prime, 10, 5)
         << fixed(ch.transport_mfp, 11, 4) << fixed(ch.total_reflectance, 10, 5) << fixed(ch.radius_99, 11, 4)
-        << '\n';
+        << (ch.total_transmittance ? "   T_total " + fixed(*ch.total_transmittance, 9, 5) : std::string())
+        << (ch.dipole_pairs > 0 ? "   pairs " + std::to_string(ch.dipole_pairs) : std::string()) << '\n';
   const std::string radius_header = "radius (" + u + ")";
   out << '\n' << std::string(13 - std::min<std::size_t>(12, radius_header.size()), ' ') << radius_header;
   for (const auto& ch : report.channels)
     out << std::string(14 - std::min<std::size_t>(13, ch.name.size()), ' ') << ch.name;
+  for (const auto& ch : report.channels)
+    if (ch.total_transmittance)
+      out << std::string(14 - std::min<std::size_t>(13, ch.name.size() + 2), ' ') << "T " << ch.name;
   out << '\n';
   if (!report.channels.empty()) {
     const auto& radii = report.channels.front().profile.radius;
     for (std::size_t i = 0; i < radii.size(); ++i) {
       out << fixed(radii[i], 13, 5);
       for (const auto& ch : report.channels) out << fixed(ch.profile.value[i], 14, 5);
+      for (const auto& ch : report.channels)
+        if (ch.total_transmittance) out << fixed(ch.transmittance[i], 14, 5);
       out << '\n';
     }
   }

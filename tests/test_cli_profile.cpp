@@ -119,6 +119,55 @@ TEST(CliProfile, VersionAndHelp) {
   EXPECT_EQ(count_lines(r.out), 12);
 }
 
+TEST(CliProfile, MultipoleSlabGivesReflectanceAndTransmittance) {
+  const auto r = run("profile --sigma-a 0.01 --sigma-s 1 --eta 1.3 --thickness 3 --samples 16 -f json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto doc = json::parse(r.out);
+  EXPECT_EQ(doc["model"], "multipole");
+  EXPECT_EQ(doc["geometry"], "slab");
+  EXPECT_EQ(doc["thickness"], 3.0);
+  const auto& ch = doc["channels"][0];
+  for (const char* key : {"reflectance", "total_reflectance", "transmittance", "total_transmittance", "dipole_pairs"})
+    EXPECT_TRUE(ch.contains(key)) << key;
+  EXPECT_EQ(ch["transmittance"].size(), 16u);
+  EXPECT_NEAR(ch["total_reflectance"].get<double>(), 0.5253, 1e-4);
+  EXPECT_NEAR(ch["total_transmittance"].get<double>(), 0.3694, 1e-4);
+  EXPECT_GE(ch["dipole_pairs"].get<int>(), 3);
+  for (const auto& v : ch["transmittance"]) EXPECT_GE(v.get<double>(), 0.0);
+  bool warned = false;  // 3 ell: near the thin-slab limit, and it says so
+  for (const auto& v : ch["validity"]) warned |= v["code"] == "thin_slab" && v["severity"] == "warning";
+  EXPECT_TRUE(warned);
+  const auto csv = run("profile --sigma-a 0.01 --sigma-s 1 --thickness 3 --samples 4 -f csv");
+  EXPECT_EQ(csv.out.substr(0, csv.out.find('\n')), "radius_mm,c0_per_mm2,c0_transmittance_per_mm2");
+}
+
+TEST(CliProfile, LayerStackFromTheFileSharedWithTheReference) {
+  const std::string file = std::string(BSSRDF_TEST_DATA) + "/two_layer_skin.json";
+  const auto r = run("profile --layers " + file + " --radii 0.1,1,3 -f json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto doc = json::parse(r.out);
+  EXPECT_EQ(doc["geometry"], "layers");
+  EXPECT_EQ(doc["layers"].size(), 2u);
+  EXPECT_FALSE(doc["channels"][0].contains("transmittance"));  // semi-infinite: no T
+  EXPECT_GT(doc["channels"][0]["total_reflectance"].get<double>(), 0.5);
+  const auto mc = run("reference --layers " + file + " --photons 200 -f json");
+  EXPECT_EQ(mc.status, 0) << mc.err;  // the same file runs through the Monte Carlo reference
+}
+
+TEST(CliTransmission, TotalTransmittanceAgainstThickness) {
+  const auto r = run("transmission --sigma-a 0.01 --sigma-s 0.99 --eta 1.3 --thickness 0.5,2,8 -f json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto doc = json::parse(r.out);
+  ASSERT_EQ(doc["rows"].size(), 3u);
+  EXPECT_TRUE(doc["rows"][0]["total_transmittance"][0].is_null());  // 0.5 ell: invalid, no number
+  EXPECT_EQ(doc["rows"][0]["invalid"][0], "source_outside_slab");
+  EXPECT_NEAR(doc["rows"][1]["total_transmittance"][0].get<double>(), 0.464, 1e-3);  // MODELS.md slab check
+  EXPECT_NEAR(doc["rows"][2]["total_transmittance"][0].get<double>(), 0.142, 1e-3);
+  const auto table = run("transmission --material Skin1 --samples 5");
+  EXPECT_EQ(table.status, 0) << table.err;
+  EXPECT_NE(table.out.find("T_total G"), std::string::npos);
+}
+
 struct BadInput {
   const char* arguments;
   const char* expected;  // a fragment the one-line message must contain
@@ -164,4 +213,18 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"profile --sigma-a 0.1 --sigma-s 1 --model pbd --single-scattering", "pbd already includes it"},
         BadInput{"profile --sigma-s 1", "give --material NAME, or both --sigma-a and --sigma-s"},
         BadInput{"profile --material skin1 --db /nonexistent/db.json", "cannot open"},
-        BadInput{"frobnicate", "unknown command 'frobnicate'"}));
+        BadInput{"frobnicate", "unknown command 'frobnicate'"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --thickness 0", "--thickness = 0: accepted range is > 0"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --thickness -2", "--thickness = -2"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --thickness x", "--thickness = 'x'"},
+        BadInput{"profile --sigma-a 0.01 --sigma-s 1 --thickness 1", "use 'bssrdf reference --thickness 1'"},
+        BadInput{"profile --sigma-a 0.01 --sigma-s 1 --thickness 0.5", "real source (depth ell) lies outside"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --model multipole", "give --thickness D"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --model dipole --thickness 5", "--model = 'dipole'"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --thickness 5 --pair-tolerance 2", "--pair-tolerance = 2"},
+        BadInput{"profile --layers " BSSRDF_TEST_DATA "/two_layer_skin.json --thickness 2", "excludes"},
+        BadInput{"profile --layers " BSSRDF_TEST_DATA "/two_layer_skin.json --sigma-a 1", "--layers describes the medium"},
+        BadInput{"profile --layers /nonexistent.json", "cannot open"},
+        BadInput{"transmission --sigma-a 0.01 --sigma-s 1 --thickness 0,1", "--thickness = 0"},
+        BadInput{"transmission --sigma-a 0.01 --sigma-s 1 --d-min 5 --d-max 1", "--d-max = 1"},
+        BadInput{"profile --layers " BSSRDF_TEST_DATA "/thin_epidermis.json", "epidermis: d = 0.505 ell < 2 ell"}));

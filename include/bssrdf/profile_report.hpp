@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bssrdf/layers.hpp"
 #include "bssrdf/materials.hpp"
 #include "bssrdf/medium.hpp"
 #include "bssrdf/model.hpp"
@@ -31,6 +32,11 @@ struct ChannelProfile {
   std::vector<double> gaussian_variance, gaussian_weight;
   // normalized diffusion's shape parameter d (unit) and surface albedo A.
   double burley_d = 0, surface_albedo = 0;
+  // Slabs and layer stacks only: T(r) at the same radii (1/unit^2), its total, and for a single
+  // multipole slab the number of dipole pairs behind the totals (0: not applicable).
+  std::optional<double> total_transmittance;
+  std::vector<double> transmittance;
+  int dipole_pairs = 0;
 };
 
 struct ProfileReport {
@@ -40,6 +46,9 @@ struct ProfileReport {
   double eta = 1;
   std::optional<Material> material;  // when the medium came from the database
   std::vector<ChannelProfile> channels;
+  std::optional<double> thickness;   // a single slab, in unit
+  std::optional<LayerStack> layers;  // a layer stack (mm inside; reported in unit); channel
+                                     // coefficients are then those of the top layer
 };
 
 // Radii for a profile when none are given: geometric from 1e-3 of the smallest transport mfp to
@@ -49,6 +58,10 @@ std::vector<double> default_radii_mm(const Medium& medium, const Model& model, s
 // radii_mm: one radius grid (mm) shared by all channels.
 ProfileReport compute_profile_report(const Medium& medium, const Model& model,
                                      const std::vector<double>& radii_mm, LengthUnit unit);
+
+// A layer stack under the multipole with the adding equations (models/layered.hpp).
+ProfileReport compute_stack_report(const LayerStack& stack, const std::vector<double>& radii_mm, LengthUnit unit);
+std::vector<double> default_stack_radii_mm(const LayerStack& stack, std::size_t samples);
 
 std::string to_json(const ProfileReport& report);   // pretty-printed, trailing newline
 std::string to_csv(const ProfileReport& report);    // radius + one column per channel

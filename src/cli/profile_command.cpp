@@ -1,21 +1,45 @@
-// bssrdf profile: R(r) of a material or of given coefficients under one model.
+// bssrdf profile: R(r) of a material or of given coefficients under one model; with --thickness
+// (or --layers FILE.json) R(r) and T(r) of a slab or a layer stack under the multipole.
+//
+// Thin slabs: where the multipole is invalid (a layer thinner than 2 transport mean free paths,
+// the real source outside the slab, negative transmittance) the command refuses, exit status 2,
+// with one line naming the channel and layer and pointing to the Monte Carlo reference
+// (`bssrdf reference --thickness D` / `--layers FILE`), which is exact there.
 #include <iostream>
 #include <memory>
 
 #include "bssrdf/error.hpp"
+#include "bssrdf/io/layers_json.hpp"
 #include "bssrdf/model.hpp"
 #include "bssrdf/models/normalized_diffusion.hpp"
+#include "bssrdf/models/layered.hpp"
+#include "bssrdf/models/multipole.hpp"
 #include "bssrdf/profile_report.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
 namespace bssrdf::cli {
+namespace {
+
+// The first note that makes the multipole unusable here (not the albedo notes every diffusion
+// model carries), or nullptr.
+const ValidityNote* breakdown(const ValidityReport& report) {
+  for (const auto& note : report)
+    if (note.severity == Severity::invalid &&
+        (note.code == "thin_slab" || note.code == "thin_layer" || note.code == "source_outside_slab" ||
+         note.code == "negative_transmittance" || note.code == "negative_reflectance"))
+      return &note;
+  return nullptr;
+}
+
+}  // namespace
 
 Action register_profile(CLI::App& app) {
   struct Options {
     MediumOptions medium;
     OutputOptions output;
-    std::string model = "better-dipole", radii, r_min, r_max, spacing = "log";
+    std::string model = "better-dipole", radii, r_min, r_max, spacing = "log", thickness, layers;
+    double pair_tolerance = 1e-5;
     int samples = 64;
     bool single_scattering = false;
     std::string surface_albedo;
@@ -24,8 +48,19 @@ Action register_profile(CLI::App& app) {
   auto* sub = app.add_subcommand("profile", "Radial diffusion profile R(r) per channel (per unit entered flux)");
   options->medium.add_to(*sub);
   sub->add_option("--model", options->model,
-                  "Model: dipole, better-dipole, pbd, quantized, burley, burley-diffuse, burley-dmfp; "
-                  "'bssrdf models' lists them [better-dipole]");
+                  "Model: dipole, better-dipole, pbd, quantized, burley, burley-diffuse, burley-dmfp, multipole "
+                  "(slabs: needs --thickness or --layers); 'bssrdf models' lists them [better-dipole; multipole "
+                  "with --thickness or --layers]");
+  auto* model_option = sub->get_option("--model");
+  auto* thickness = sub->add_option("--thickness", options->thickness,
+                                    "Slab thickness in --unit: R(r) and T(r) of a slab under the multipole "
+                                    "(ambient index 1 on both sides)");
+  auto* layers = sub->add_option("--layers", options->layers,
+                                 "Layer stack file (JSON, format bssrdf-layers, as for 'bssrdf reference --layers'): "
+                                 "multipole layers combined by the adding equations");
+  sub->add_option("--pair-tolerance", options->pair_tolerance,
+                  "Multipole: add dipole pairs until the totals are within this of the infinite series [1e-5]");
+  layers->excludes(thickness);
   sub->add_flag("--single-scattering", options->single_scattering,
                 "Add exact single scattering to a model that omits it (same as --model NAME+ss)");
   sub->add_option("--surface-albedo", options->surface_albedo,
@@ -39,17 +74,61 @@ Action register_profile(CLI::App& app) {
   radii->excludes(rmin)->excludes(rmax)->excludes(samples)->excludes(spacing);
   options->output.add_to(*sub);
 
-  return [options] {
-    const auto resolved = options->medium.resolve();
-    auto model = make_model(options->model + (options->single_scattering ? "+ss" : ""));
+  auto* unit_option = sub->get_option("--unit");
+  return [options, model_option, unit_option] {
+    const bool slab = !options->thickness.empty() || !options->layers.empty();
+    if (slab && model_option->count() && options->model != "multipole")
+      throw InvalidInput("--model", "'" + options->model + "'",
+                         "multipole with " + std::string(options->layers.empty() ? "--thickness" : "--layers"));
+    if (!slab && options->model == "multipole")
+      throw InvalidInput("--model multipole: give --thickness D (a slab) or --layers FILE.json (a layer stack)");
+    if (slab && options->single_scattering)
+      throw InvalidInput("--single-scattering: not available for slabs (the multipole omits single scattering)");
+    if (!(options->pair_tolerance > 0 && options->pair_tolerance < 1))
+      throw InvalidInput("--pair-tolerance", format_number(options->pair_tolerance), "0 < tolerance < 1");
+    std::optional<LayersFile> stack_file;
+    MediumOptions::Resolved resolved;
+    if (!options->layers.empty()) {
+      const auto& o = options->medium;
+      if (!o.material.empty() || !o.sigma_a.empty() || !o.sigma_s.empty() || !o.g.empty() || !o.eta.empty())
+        throw InvalidInput("--layers describes the medium: do not combine it with --material, --sigma-a, --sigma-s, --g or --eta");
+      stack_file = read_layers_json(options->layers);
+      resolved.unit = unit_option->count() ? parse_length_unit(o.unit, "--unit") : stack_file->unit;
+    } else {
+      resolved = options->medium.resolve();
+    }
+    const double mm = millimetres_per(resolved.unit);
+    std::unique_ptr<Model> model;
+    if (stack_file) {
+      for (std::size_t c = 0; c < stack_file->stack.channels(); ++c)
+        if (const auto report = layered::Stack(stack_file->stack, c).validity(); const auto* note = breakdown(report))
+          throw InvalidInput("--layers " + options->layers + ": channel " + stack_file->stack.channel_names[c] + ": " +
+                             note->message + "; use 'bssrdf reference --layers " + options->layers +
+                             "' (Monte Carlo) for thin layers");
+    } else if (slab) {
+      const double d = parse_number(options->thickness, "--thickness");
+      if (!(d > 0)) throw InvalidInput("--thickness", options->thickness, "> 0");
+      auto slab_model = std::make_unique<multipole::Model>(d * mm, std::nullopt, options->pair_tolerance);
+      for (std::size_t c = 0; c < resolved.medium.channels(); ++c)
+        if (const auto report = slab_model->validity(resolved.medium.reduced(c)); const auto* note = breakdown(report))
+          throw InvalidInput("--thickness", options->thickness + " " + std::string(symbol(resolved.unit)),
+                             "at least 2 transport mean free paths in every channel (channel " +
+                                 resolved.medium.channel_names[c] + ": " + note->message +
+                                 "); use 'bssrdf reference --thickness " + options->thickness +
+                                 "' (Monte Carlo) for thin slabs");
+      model = std::move(slab_model);
+    } else {
+      model = make_model(options->model + (options->single_scattering ? "+ss" : ""));
+    }
     if (!options->surface_albedo.empty()) {
       const double A = parse_number(options->surface_albedo, "--surface-albedo");
       if (!(A > 0 && A < 1)) throw InvalidInput("--surface-albedo", format_number(A), "0 < A < 1");
       const auto* burley = dynamic_cast<const normalized_diffusion::Model*>(model.get());
-      if (!burley) throw InvalidInput("--surface-albedo: only the burley models take a surface albedo, not " + model->name());
+      if (!burley)
+        throw InvalidInput("--surface-albedo: only the burley models take a surface albedo, not " +
+                           (model ? model->name() : std::string("multipole")));
       model = std::make_unique<normalized_diffusion::Model>(burley->scaling(), A);
     }
-    const double mm = millimetres_per(resolved.unit);
     std::vector<double> radii_mm;
     if (!options->radii.empty()) {
       SampledProfile check;
@@ -66,7 +145,7 @@ Action register_profile(CLI::App& app) {
       if (options->samples < 2 || options->samples > 1000000)
         throw InvalidInput("--samples", std::to_string(options->samples), "2 to 1000000");
       const auto n = static_cast<std::size_t>(options->samples);
-      const auto defaults = default_radii_mm(resolved.medium, *model, n);
+      const auto defaults = stack_file ? default_stack_radii_mm(stack_file->stack, n) : default_radii_mm(resolved.medium, *model, n);
       double lo = options->r_min.empty() ? defaults.front() : parse_number(options->r_min, "--r-min") * mm;
       double hi = options->r_max.empty() ? defaults.back() : parse_number(options->r_max, "--r-max") * mm;
       if (options->spacing == "linear" && options->r_min.empty()) lo = 0;
@@ -75,8 +154,16 @@ Action register_profile(CLI::App& app) {
       if (!(hi > lo)) throw InvalidInput("--r-max", format_number(hi / mm), "> --r-min = " + format_number(lo / mm));
       radii_mm = options->spacing == "log" ? log_spaced(lo, hi, n) : linear_spaced(lo, hi, n);
     }
-    auto report = compute_profile_report(resolved.medium, *model, radii_mm, resolved.unit);
+    auto report = stack_file ? compute_stack_report(stack_file->stack, radii_mm, resolved.unit)
+                             : compute_profile_report(resolved.medium, *model, radii_mm, resolved.unit);
     report.material = resolved.material;
+    // Never print a negative profile: the checks above exclude it; this keeps it so.
+    for (const auto& ch : report.channels) {
+      for (double v : ch.profile.value)
+        if (v < 0) throw std::logic_error("negative reflectance in channel " + ch.name);
+      for (double v : ch.transmittance)
+        if (v < 0) throw std::logic_error("negative transmittance in channel " + ch.name);
+    }
     std::string content;
     switch (options->output.file_format()) {
       case Format::json: content = to_json(report); break;

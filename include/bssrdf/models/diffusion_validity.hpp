@@ -44,4 +44,20 @@ std::string most_accurate_total_model(double albedo_prime, double g);
 
 ValidityReport diffusion_validity(const Reduced<double>& m, const DiffusionLimits& limits);
 
+// What a slab model (multipole) found for one channel; slab_validity() turns it into the report.
+struct SlabState {
+  double thickness_over_ell = 0;       // d / ell
+  double total_transmittance = 0;      // of the pairs used
+  double min_reflectance = 0, min_transmittance = 0;  // smallest R(r), T(r) over a radius grid
+  double truncation_error = 0;         // |R_rest| + |T_rest| of the pairs not used
+  double tolerance = 0;                // what the pair count was chosen for
+  bool converged = true;
+};
+
+// The thin-slab breakdown of the multipole (source outside the slab, thin slab, negative R or T,
+// unconverged pair sum) with the multipole's measured total errors against adding-doubling
+// slabs (tests/data/ad_slab.tsv, printed by tests/test_multipole.cpp), then the semi-infinite
+// dipole's albedo bands, which the multipole reduces to as d grows.
+ValidityReport slab_validity(const Reduced<double>& m, const SlabState& state);
+
 }  // namespace bssrdf
