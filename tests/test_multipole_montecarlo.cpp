@@ -87,22 +87,22 @@ void compare(const char* label, std::vector<Layer> layers, double r_max, Documen
 
 TEST(MultipoleMonteCarlo, SlabAtTwoTransportMeanFreePaths) {
   // eta 1.3, alpha' 0.99, g 0, ell = 1 mm (MODELS.md section 4's slab check).
-  compare("slab d = 2 ell", {layer(0.01, 0.99, 1.3, 2.0, "slab")}, 8.0, {0.04, 0.31, 0.20, 0.30});
+  compare("slab d = 2 ell", {layer(0.01, 0.99, 1.3, 2.0, "slab")}, 8.0, {0.04, 0.31, 0.23, 0.39});
 }
 
 TEST(MultipoleMonteCarlo, SlabAtEightTransportMeanFreePaths) {
-  compare("slab d = 8 ell", {layer(0.01, 0.99, 1.3, 8.0, "slab")}, 8.0, {0.02, 0.01, 0.20, 0.15});
+  compare("slab d = 8 ell", {layer(0.01, 0.99, 1.3, 8.0, "slab")}, 8.0, {0.02, 0.01, 0.11, 0.12});
 }
 
 TEST(MultipoleMonteCarlo, TwoLayers) {
   // An epidermis-like layer (ell = 0.2 mm, 2.5 ell thick) over a thicker dermis-like one.
   compare("2 layers (0.5 mm over 5 mm)",
-          {layer(0.05, 5.0, 1.4, 0.5, "epidermis"), layer(0.02, 2.0, 1.4, 5.0, "dermis")}, 4.0, {0.02, 0.02, 0.20, 0.20});
+          {layer(0.05, 5.0, 1.4, 0.5, "epidermis"), layer(0.02, 2.0, 1.4, 5.0, "dermis")}, 4.0, {0.02, 0.02, 0.19, 0.24});
 }
 
 TEST(MultipoleMonteCarlo, ThreeLayers) {
   compare("3 layers (0.5, 1, 4 mm)",
           {layer(0.05, 5.0, 1.4, 0.5, "epidermis"), layer(0.1, 3.0, 1.4, 1.0, "papillary dermis"),
            layer(0.02, 2.0, 1.35, 4.0, "reticular dermis")},
-          4.0, {0.02, 0.08, 0.20, 0.30});
+          4.0, {0.02, 0.08, 0.20, 0.34});
 }
