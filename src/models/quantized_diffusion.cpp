@@ -37,13 +37,21 @@ double ratio_for_tolerance(double albedo_prime, double eta, double tolerance) {
   return ratio;
 }
 
+double ratio_for_tolerance(double eta, double tolerance) {
+  // One ratio per (eta, tolerance), the finest needed over the albedos that matter: the model is
+  // then one smooth function of the coefficients (fits differentiate it).
+  double ratio = 2;
+  for (double a : {0.5, 0.9, 0.99}) ratio = std::min(ratio, ratio_for_tolerance(a, eta, tolerance));
+  return ratio;
+}
+
 double Model::ratio(const Reduced<double>& m) const {
   static std::mutex mutex;
-  static std::map<std::tuple<double, double, double>, double> cache;
-  const auto key = std::tuple{m.albedo_prime, m.eta, tolerance_};
+  static std::map<std::pair<double, double>, double> cache;
+  const auto key = std::pair{m.eta, tolerance_};
   std::lock_guard lock(mutex);
   auto it = cache.find(key);
-  if (it == cache.end()) it = cache.emplace(key, ratio_for_tolerance(m.albedo_prime, m.eta, tolerance_)).first;
+  if (it == cache.end()) it = cache.emplace(key, ratio_for_tolerance(m.eta, tolerance_)).first;
   return it->second;
 }
 

@@ -78,6 +78,9 @@ T reflectance(const Mixture<T>& mix, T r) {
 // radii 1e-2 ell ... 10 ell, and in total (further out the tail is exponential, which Gaussians
 // follow only loosely).
 double ratio_for_tolerance(double albedo_prime, double eta, double tolerance);
+// The finest of those over alpha' in {0.5, 0.9, 0.99}: what the model uses, so that it is one
+// smooth function of the coefficients at a given eta.
+double ratio_for_tolerance(double eta, double tolerance);
 
 class Model final : public bssrdf::Model {
  public:

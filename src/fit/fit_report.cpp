@@ -1,0 +1,88 @@
+#include "bssrdf/fit/fit_report.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "bssrdf/error.hpp"
+
+namespace bssrdf {
+
+const FitParameter* FitReport::find(const std::string& name, const std::string& channel) const {
+  for (const auto& p : parameters)
+    if (p.name == name && p.channel == channel) return &p;
+  return nullptr;
+}
+
+namespace {
+nlohmann::json estimate(const FitParameter& p) {
+  nlohmann::json e = {{"value", p.value}};
+  e["stderr"] = std::isfinite(p.standard_error) ? nlohmann::json(p.standard_error) : nlohmann::json(nullptr);
+  if (!p.unit.empty()) e["unit"] = p.unit;
+  return e;
+}
+}  // namespace
+
+std::string FitReport::to_json() const {
+  nlohmann::json doc;
+  doc["tool"] = std::string("bssrdf ") + BSSRDF_VERSION;
+  doc["source"] = "fit";
+  doc["kind"] = kind;
+  doc["model"] = model;
+  doc["data"] = data_source;
+  nlohmann::json shared = nlohmann::json::object();
+  std::vector<std::string> order;
+  std::map<std::string, nlohmann::json> channels;
+  for (const auto& p : parameters) {
+    if (p.channel.empty()) {
+      shared[p.name] = estimate(p);
+      continue;
+    }
+    if (!channels.count(p.channel)) {
+      order.push_back(p.channel);
+      channels[p.channel] = {{"name", p.channel}};
+    }
+    channels[p.channel][p.name] = estimate(p);
+  }
+  doc["shared"] = shared;
+  doc["channels"] = nlohmann::json::array();
+  for (const auto& name : order) doc["channels"].push_back(channels[name]);
+  doc["residual_rms"] = residual_rms;
+  doc["relative_rms"] = relative_rms;
+  doc["iterations"] = iterations;
+  doc["termination"] = termination;
+  doc["converged"] = converged;
+  doc["seconds"] = seconds;
+  doc["warnings"] = warnings;
+  doc["residuals"] = nlohmann::json::array();
+  for (const auto& r : residuals)
+    doc["residuals"].push_back(
+        {{"channel", r.channel}, {"x", r.x}, {"measured", r.measured}, {"model", r.model}, {"weighted", r.weighted}});
+  return doc.dump(2) + "\n";
+}
+
+std::string FitReport::full_report() const {
+  std::ostringstream out;
+  out << "bssrdf fit " << kind << " — model " << model << "\n";
+  out << "data      " << data_source << "\n";
+  out << "solver    " << termination << (converged ? "" : " (NOT converged)") << ", " << iterations
+      << " iterations, " << format_number(std::round(seconds * 1e6) / 1e3) << " ms\n";
+  out << "residuals " << residuals.size() << " points, weighted RMS " << format_number(std::round(residual_rms * 1e4) / 1e4)
+      << ", relative RMS " << format_number(std::round(relative_rms * 1e6) / 1e4) << " %\n\n";
+  out << "parameter          channel   value          1-sigma        unit\n";
+  for (const auto& p : parameters) {
+    char line[160];
+    std::snprintf(line, sizeof line, "%-18s %-9s %-14.6g %-14.3g %s\n", p.name.c_str(), p.channel.empty() ? "-" : p.channel.c_str(),
+                  p.value, p.standard_error, p.unit.c_str());
+    out << line;
+  }
+  if (!warnings.empty()) {
+    out << "\nwarnings\n";
+    for (const auto& w : warnings) out << "  " << w << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace bssrdf

@@ -1,0 +1,289 @@
+#include "bssrdf/fit/profile_fit.hpp"
+
+#include <ceres/ceres.h>
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "bssrdf/error.hpp"
+#include "bssrdf/model.hpp"
+#include "bssrdf/models/better_dipole.hpp"
+#include "bssrdf/models/dipole.hpp"
+#include "bssrdf/models/photon_beam_diffusion.hpp"
+#include "bssrdf/models/quantized_diffusion.hpp"
+#include "bssrdf/profile.hpp"
+#include "bssrdf/single_scattering.hpp"
+#include "fit_common.hpp"
+
+namespace bssrdf {
+namespace {
+
+// The templated forward models: R(r) at every radius for one channel's coefficients.
+enum class Forward { dipole, better_dipole, pbd, quantized, numeric };
+
+struct ForwardModel {
+  Forward kind = Forward::numeric;
+  bool single_scattering = false;
+  int pbd_samples = 16;
+  double qd_ratio = 1.1;
+  std::shared_ptr<const Model> runtime;  // for Forward::numeric
+};
+
+template <class T>
+void evaluate(const ForwardModel& f, const Reduced<T>& m, const std::vector<double>& radii, T* out) {
+  switch (f.kind) {
+    case Forward::dipole:
+      for (std::size_t i = 0; i < radii.size(); ++i) out[i] = classical_dipole::reflectance(m, T(radii[i]));
+      break;
+    case Forward::better_dipole: {
+      const auto b = improved_boundary(m.eta);
+      for (std::size_t i = 0; i < radii.size(); ++i) out[i] = better_dipole::reflectance(m, b, T(radii[i]));
+      break;
+    }
+    case Forward::pbd: {
+      const auto b = improved_boundary(m.eta);
+      for (std::size_t i = 0; i < radii.size(); ++i)
+        out[i] = photon_beam_diffusion::multiple_scattering(m, b, T(radii[i]), f.pbd_samples);
+      break;
+    }
+    case Forward::quantized: {
+      const auto mix = quantized_diffusion::mixture(m, improved_boundary(m.eta), f.qd_ratio);
+      for (std::size_t i = 0; i < radii.size(); ++i) out[i] = quantized_diffusion::reflectance(mix, T(radii[i]));
+      break;
+    }
+    case Forward::numeric:
+      break;  // handled by NumericResidual
+  }
+  if (f.single_scattering || f.kind == Forward::pbd)
+    for (std::size_t i = 0; i < radii.size(); ++i)
+      if (radii[i] > 0) out[i] += single_scattering_reflectance(m, T(radii[i]), f.kind == Forward::pbd ? f.pbd_samples : 32);
+}
+
+struct ChannelData {
+  std::vector<double> radius, value, sigma;
+  double g = 0;
+};
+
+// Parameter blocks: [ln sigma_a, ln sigma_s'] per channel, [eta], [ln scale].
+struct AutoResidual {
+  const ChannelData* data;
+  const ForwardModel* forward;
+  template <class T>
+  bool operator()(const T* channel, const T* eta, const T* log_scale, T* residual) const {
+    using std::exp;
+    const T sigma_a = exp(channel[0]), sigma_s_prime = exp(channel[1]);
+    const auto m = reduce(sigma_a, sigma_s_prime / T(1 - data->g), T(data->g), eta[0]);
+    evaluate(*forward, m, data->radius, residual);
+    const T scale = exp(log_scale[0]);
+    for (std::size_t i = 0; i < data->radius.size(); ++i)
+      residual[i] = (scale * residual[i] - T(data->value[i])) / T(data->sigma[i]);
+    return true;
+  }
+};
+
+struct NumericResidual {
+  const ChannelData* data;
+  const ForwardModel* forward;
+  bool operator()(const double* channel, const double* eta, const double* log_scale, double* residual) const {
+    const auto m = reduce(std::exp(channel[0]), std::exp(channel[1]) / (1 - data->g), data->g, eta[0]);
+    const double scale = std::exp(log_scale[0]);
+    for (std::size_t i = 0; i < data->radius.size(); ++i)
+      residual[i] = (scale * forward->runtime->reflectance(m, data->radius[i]) - data->value[i]) / data->sigma[i];
+    return true;
+  }
+};
+
+ForwardModel forward_for(const std::string& name) {
+  ForwardModel f;
+  std::string base = name;
+  if (base.size() > 3 && base.substr(base.size() - 3) == "+ss") {
+    f.single_scattering = true;
+    base = base.substr(0, base.size() - 3);
+  }
+  if (base == "dipole") f.kind = Forward::dipole;
+  else if (base == "better-dipole") f.kind = Forward::better_dipole;
+  else if (base == "pbd") f.kind = Forward::pbd;
+  else if (base == "quantized") f.kind = Forward::quantized;
+  f.runtime = make_model(name);  // validates the name
+  if (f.kind == Forward::numeric) f.single_scattering = false;  // the runtime model has it already
+  return f;
+}
+
+}  // namespace
+
+void ProfileFitOptions::validate(std::size_t channels) const {
+  make_model(model);
+  if (!(eta > 0) || !std::isfinite(eta)) throw InvalidInput("eta", format_number(eta), "> 0");
+  if (fit_eta && !(eta_min < eta_max && eta >= eta_min && eta <= eta_max))
+    throw InvalidInput("eta", format_number(eta), "[" + format_number(eta_min) + ", " + format_number(eta_max) + "] when fitting eta");
+  if (!g.empty() && g.size() != 1 && g.size() != channels)
+    throw InvalidInput("g: " + std::to_string(g.size()) + " values for " + std::to_string(channels) + " channels");
+  for (double v : g)
+    if (!(v > -1 && v < 1)) throw InvalidInput("g", format_number(v), "-1 < g < 1");
+  if (loss != "none" && loss != "huber" && loss != "cauchy") throw InvalidInput("loss", "'" + loss + "'", "none, huber or cauchy");
+  if (!(loss_scale > 0)) throw InvalidInput("loss scale", format_number(loss_scale), "> 0");
+}
+
+FitReport fit_profile(const MeasuredProfile& data, const ProfileFitOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  options.validate(data.channels.size());
+  ForwardModel forward = forward_for(options.model);
+  const double mm = millimetres_per(data.unit);
+
+  // Data per channel; relative residuals where no standard errors are given.
+  std::vector<ChannelData> channels(data.channels.size());
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    auto& ch = channels[c];
+    const auto& in = data.channels[c];
+    double peak = 0;
+    for (double v : in.value) peak = std::max(peak, v);
+    if (!(peak > 0)) throw InvalidInput("channel " + in.name + ": every value is 0; nothing to fit");
+    ch.g = options.g.empty() ? 0.0 : options.g.size() == 1 ? options.g[0] : options.g[c];
+    for (std::size_t i = 0; i < data.radius.size(); ++i) {
+      if (data.radius[i] <= 0 && (forward.single_scattering || forward.kind == Forward::pbd ||
+                                  options.model.rfind("burley", 0) == 0))
+        continue;  // these models are singular at r = 0
+      ch.radius.push_back(data.radius[i]);
+      ch.value.push_back(in.value[i]);
+      ch.sigma.push_back(in.standard_error.empty() ? std::max(in.value[i], 1e-9 * peak) : in.standard_error[i]);
+    }
+  }
+
+  // Starting point: alpha' from the measured total, sigma_t' from the half-energy radius.
+  const auto model = make_model(options.model);
+  std::vector<std::array<double, 2>> x(channels.size());
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    SampledProfile p;
+    p.radius = channels[c].radius;
+    p.value = channels[c].value;
+    const double total = std::clamp(p.integrate(), 1e-3, 0.95);
+    double a = 0.9;
+    try {
+      a = std::clamp(albedo_prime_for_total(*model, total, options.eta, channels[c].g), 0.05, 0.999);
+    } catch (const InvalidInput&) {
+    }
+    const auto unit_medium = reduce(1 - a, a / (1 - channels[c].g), channels[c].g, options.eta);
+    const double r_model = model->radius_for_fraction(unit_medium, 0.5), r_data = p.radius_for_fraction(0.5);
+    const double sigma_t_prime = std::isfinite(r_model) && r_data > 0 ? r_model / r_data : 1.0;
+    x[c] = {std::log((1 - a) * sigma_t_prime), std::log(a * sigma_t_prime)};
+  }
+  double eta = options.eta, log_scale = 0;
+  if (forward.kind == Forward::pbd)
+    forward.pbd_samples = photon_beam_diffusion::samples_for_tolerance(0.9, 0.0, options.eta, 1e-6);
+  // The same discretisation as the runtime model at this eta.
+  if (forward.kind == Forward::quantized) forward.qd_ratio = quantized_diffusion::ratio_for_tolerance(options.eta, 1e-3);
+
+  ceres::Problem problem;
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    const int n = static_cast<int>(channels[c].radius.size());
+    ceres::CostFunction* cost;
+    if (forward.kind == Forward::numeric) {
+      cost = new ceres::NumericDiffCostFunction<NumericResidual, ceres::CENTRAL, ceres::DYNAMIC, 2, 1, 1>(
+          new NumericResidual{&channels[c], &forward}, ceres::TAKE_OWNERSHIP, n);
+    } else {
+      cost = new ceres::AutoDiffCostFunction<AutoResidual, ceres::DYNAMIC, 2, 1, 1>(
+          new AutoResidual{&channels[c], &forward}, n);
+    }
+    ceres::LossFunction* loss = options.loss == "huber"    ? static_cast<ceres::LossFunction*>(new ceres::HuberLoss(options.loss_scale))
+                                : options.loss == "cauchy" ? new ceres::CauchyLoss(options.loss_scale)
+                                                           : nullptr;
+    problem.AddResidualBlock(cost, loss, x[c].data(), &eta, &log_scale);
+  }
+  if (!options.fit_eta) problem.SetParameterBlockConstant(&eta);
+  else {
+    problem.SetParameterLowerBound(&eta, 0, options.eta_min);
+    problem.SetParameterUpperBound(&eta, 0, options.eta_max);
+  }
+  if (!options.fit_scale) problem.SetParameterBlockConstant(&log_scale);
+
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = options.max_iterations;
+  solver.function_tolerance = 1e-14;
+  solver.gradient_tolerance = 1e-14;
+  solver.parameter_tolerance = 1e-12;
+  solver.num_threads = 1;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+
+  FitReport report;
+  report.kind = "profile";
+  report.model = options.model;
+  report.data_source = data.file;
+  report.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  report.termination = ceres::TerminationTypeToString(summary.termination_type);
+  report.converged = summary.termination_type == ceres::CONVERGENCE;
+  report.solver_report = summary.FullReport();
+
+  // Covariance of the free parameters; scaled by the reduced chi-square without standard errors.
+  std::vector<const double*> blocks;
+  for (auto& b : x) blocks.push_back(b.data());
+  if (options.fit_eta) blocks.push_back(&eta);
+  if (options.fit_scale) blocks.push_back(&log_scale);
+  std::size_t points = 0;
+  for (const auto& ch : channels) points += ch.radius.size();
+  const std::size_t free = 2 * channels.size() + options.fit_eta + options.fit_scale;
+  const bool have_errors = !data.channels.empty() && !data.channels[0].standard_error.empty();
+  const double chi2_dof = points > free ? 2 * summary.final_cost / static_cast<double>(points - free) : NAN;
+  const double variance_scale = have_errors ? 1.0 : chi2_dof;
+  const auto covariance = parameter_covariance(problem, blocks);
+
+  const std::string per_unit = "1/" + std::string(symbol(data.unit));
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    const std::string& name = data.channels[c].name;
+    const double sa = std::exp(x[c][0]), ssp = std::exp(x[c][1]);
+    double se_a = NAN, se_s = NAN, rho = NAN;
+    if (covariance) {
+      const auto& cov = *covariance;
+      se_a = sa * std::sqrt(cov(2 * c, 2 * c) * variance_scale);
+      se_s = ssp * std::sqrt(cov(2 * c + 1, 2 * c + 1) * variance_scale);
+      rho = cov(2 * c, 2 * c + 1) / std::sqrt(cov(2 * c, 2 * c) * cov(2 * c + 1, 2 * c + 1));
+    }
+    report.parameters.push_back({"sigma_a", name, sa * mm, se_a * mm, per_unit});
+    report.parameters.push_back({"sigma_s_prime", name, ssp * mm, se_s * mm, per_unit});
+    report.parameters.push_back({"albedo_prime", name, ssp / (sa + ssp), NAN, ""});
+    if (std::abs(rho) > 0.99)
+      report.warnings.push_back("channel " + name + ": sigma_a and sigma_s' are strongly correlated (rho = " +
+                                format_number(std::round(rho * 1000) / 1000) +
+                                "): the profile determines mainly one combination of them");
+  }
+  std::size_t k = 2 * channels.size();
+  if (options.fit_eta) {
+    report.parameters.push_back({"eta", "", eta, covariance ? std::sqrt((*covariance)(k, k) * variance_scale) : NAN, ""});
+    ++k;
+  }
+  if (options.fit_scale) {
+    const double s = std::exp(log_scale);
+    report.parameters.push_back({"scale", "", s, covariance ? s * std::sqrt((*covariance)(k, k) * variance_scale) : NAN, ""});
+  }
+  if (!covariance)
+    report.warnings.push_back("the covariance could not be computed (rank-deficient Jacobian): the parameters are not "
+                              "all identifiable from these data");
+  if (have_errors && chi2_dof > 4)
+    report.warnings.push_back("chi-square per degree of freedom " + format_number(std::round(chi2_dof * 100) / 100) +
+                              ": the model does not explain the data within their standard errors");
+  if (!report.converged) report.warnings.push_back("the solver did not converge: " + summary.message);
+
+  // Residuals per point.
+  double sum_w = 0, sum_rel = 0;
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    const auto& ch = channels[c];
+    std::vector<double> r(ch.radius.size());
+    const double lscale = log_scale;
+    if (forward.kind == Forward::numeric) NumericResidual{&ch, &forward}(x[c].data(), &eta, &lscale, r.data());
+    else AutoResidual{&ch, &forward}(x[c].data(), &eta, &lscale, r.data());
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      const double model_value = ch.value[i] + r[i] * ch.sigma[i];
+      report.residuals.push_back({data.channels[c].name, ch.radius[i] / mm, ch.value[i] * mm * mm, model_value * mm * mm, r[i]});
+      sum_w += r[i] * r[i];
+      if (ch.value[i] > 0) sum_rel += std::pow(model_value / ch.value[i] - 1, 2);
+    }
+  }
+  report.residual_rms = std::sqrt(sum_w / std::max<std::size_t>(1, points));
+  report.relative_rms = std::sqrt(sum_rel / std::max<std::size_t>(1, points));
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+}  // namespace bssrdf

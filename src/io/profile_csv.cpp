@@ -1,0 +1,137 @@
+#include "bssrdf/io/profile_csv.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "bssrdf/error.hpp"
+
+namespace bssrdf {
+namespace {
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> fields;
+  std::string field;
+  std::istringstream in(line);
+  while (std::getline(in, field, ',')) {
+    const auto b = field.find_first_not_of(" \t\r");
+    const auto e = field.find_last_not_of(" \t\r");
+    fields.push_back(b == std::string::npos ? "" : field.substr(b, e - b + 1));
+  }
+  if (!line.empty() && line.back() == ',') fields.push_back("");
+  return fields;
+}
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+}  // namespace
+
+MeasuredProfile parse_profile_csv(const std::string& text, const std::string& name, std::optional<LengthUnit> unit) {
+  MeasuredProfile out;
+  out.file = name;
+  std::istringstream in(text);
+  std::string line;
+  int line_number = 0;
+  std::vector<std::string> header;
+  std::vector<int> value_column, stderr_column;  // per channel
+  std::map<std::string, std::size_t> channel_index;
+  std::vector<double> raw_radius;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.find_first_not_of(" \t") == std::string::npos || line[line.find_first_not_of(" \t")] == '#') continue;
+    const auto fields = split(line);
+    if (header.empty()) {
+      header = fields;
+      std::string r = header[0];
+      if (r.rfind("radius", 0) != 0 && r != "r")
+        throw FileError(name, line_number, "the first column must be the radius ('radius' or 'radius_mm', ...), found '" + r + "'");
+      const auto underscore = r.find('_');
+      if (underscore != std::string::npos) {
+        try {
+          out.unit = parse_length_unit(r.substr(underscore + 1), "radius unit");
+        } catch (const InvalidInput& e) {
+          throw FileError(name, line_number, e.what());
+        }
+      } else {
+        out.unit = unit.value_or(LengthUnit::millimetre);
+      }
+      // Channels first, then their standard errors.
+      for (std::size_t i = 1; i < header.size(); ++i) {
+        std::string h = header[i];
+        if (h.empty()) throw FileError(name, line_number, "column " + std::to_string(i + 1) + " has no name");
+        if (ends_with(h, "_stderr") || ends_with(h, "_se")) continue;
+        const auto per = h.find("_per_");
+        if (per != std::string::npos) h = h.substr(0, per);
+        channel_index[h] = out.channels.size();
+        out.channels.push_back({h, {}, {}});
+        value_column.push_back(static_cast<int>(i));
+        stderr_column.push_back(-1);
+      }
+      for (std::size_t i = 1; i < header.size(); ++i) {
+        const std::string& h = header[i];
+        std::string base;
+        if (ends_with(h, "_stderr")) base = h.substr(0, h.size() - 7);
+        else if (ends_with(h, "_se")) base = h.substr(0, h.size() - 3);
+        else continue;
+        const auto it = channel_index.find(base);
+        if (it == channel_index.end())
+          throw FileError(name, line_number, "standard-error column '" + h + "' has no channel column '" + base + "'");
+        stderr_column[it->second] = static_cast<int>(i);
+      }
+      if (out.channels.empty()) throw FileError(name, line_number, "no channel columns after the radius");
+      continue;
+    }
+    if (fields.size() != header.size())
+      throw FileError(name, line_number, std::to_string(fields.size()) + " fields, the header has " + std::to_string(header.size()));
+    const auto number = [&](std::size_t column) {
+      const std::string& f = fields[column];
+      double v = 0;
+      const auto [ptr, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
+      if (f.empty() || ec != std::errc() || ptr != f.data() + f.size() || !std::isfinite(v))
+        throw FileError(name, line_number, header[column] + " = '" + f + "': accepted range is a finite number");
+      return v;
+    };
+    const double r = number(0);
+    if (r < 0) throw FileError(name, line_number, header[0] + " = " + format_number(r) + ": accepted range is >= 0");
+    if (!raw_radius.empty() && !(r > raw_radius.back()))
+      throw FileError(name, line_number, header[0] + " = " + format_number(r) + ": accepted range is > " +
+                                             format_number(raw_radius.back()) + " (radii must increase)");
+    raw_radius.push_back(r);
+    for (std::size_t c = 0; c < out.channels.size(); ++c) {
+      const double v = number(static_cast<std::size_t>(value_column[c]));
+      if (v < 0) throw FileError(name, line_number, header[value_column[c]] + " = " + format_number(v) + ": accepted range is >= 0");
+      out.channels[c].value.push_back(v);
+      if (stderr_column[c] >= 0) {
+        const double s = number(static_cast<std::size_t>(stderr_column[c]));
+        if (!(s > 0))
+          throw FileError(name, line_number, header[stderr_column[c]] + " = " + format_number(s) + ": accepted range is > 0");
+        out.channels[c].standard_error.push_back(s);
+      }
+    }
+  }
+  if (header.empty()) throw FileError(name, 0, "empty file: expected a header line and data rows");
+  if (raw_radius.size() < 4)
+    throw FileError(name, line_number, std::to_string(raw_radius.size()) + " data rows: accepted range is at least 4");
+  const double mm = millimetres_per(out.unit);
+  for (double r : raw_radius) out.radius.push_back(r * mm);
+  for (auto& c : out.channels) {
+    for (auto& v : c.value) v /= mm * mm;
+    for (auto& s : c.standard_error) s /= mm * mm;
+  }
+  return out;
+}
+
+MeasuredProfile read_profile_csv(const std::filesystem::path& path, std::optional<LengthUnit> unit) {
+  std::ifstream in(path);
+  if (!in) throw FileError(path.string(), 0, "cannot open the profile file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parse_profile_csv(buffer.str(), path.string(), unit);
+}
+
+}  // namespace bssrdf
