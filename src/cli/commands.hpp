@@ -13,6 +13,7 @@ Action register_profile(CLI::App& app);
 Action register_models(CLI::App& app);
 Action register_materials(CLI::App& app);
 Action register_reference(CLI::App& app);
+Action register_fit(CLI::App& app);
 Action register_transmission(CLI::App& app);
 
 }  // namespace bssrdf::cli

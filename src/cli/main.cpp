@@ -1,6 +1,7 @@
 // bssrdf: diffusion profiles, Monte Carlo references, fits and lookup tables for subsurface
 // scattering. A thin shell over the library: parse, validate at the edge, call, print.
 #include <CLI/CLI.hpp>
+#include <glog/logging.h>
 #include <exception>
 #include <iostream>
 #include <algorithm>
@@ -10,6 +11,10 @@
 #include "commands.hpp"
 
 int main(int argc, char** argv) {
+  // Ceres logs through glog; the tool reports solver outcomes itself, so keep glog quiet.
+  google::InitGoogleLogging(argv[0]);
+  FLAGS_minloglevel = google::GLOG_FATAL;
+  FLAGS_logtostderr = true;
   CLI::App app{"bssrdf " BSSRDF_VERSION
                ": subsurface-scattering diffusion profiles, references, fits and lookup tables.\n"
                "Run 'bssrdf COMMAND --help' for a command's options."};
@@ -19,7 +24,7 @@ int main(int argc, char** argv) {
 
   std::map<CLI::App*, bssrdf::cli::Action> actions;
   for (auto* register_command : {&bssrdf::cli::register_profile, &bssrdf::cli::register_models,
-                                 &bssrdf::cli::register_materials, &bssrdf::cli::register_reference,
+                                 &bssrdf::cli::register_materials, &bssrdf::cli::register_reference, &bssrdf::cli::register_fit,
                                  &bssrdf::cli::register_transmission}) {
     const auto before = app.get_subcommands({});
     auto action = (*register_command)(app);

@@ -189,6 +189,10 @@ FitReport fit_profile(const MeasuredProfile& data, const ProfileFitOptions& opti
                                 : options.loss == "cauchy" ? new ceres::CauchyLoss(options.loss_scale)
                                                            : nullptr;
     problem.AddResidualBlock(cost, loss, x[c].data(), &eta, &log_scale);
+    for (int i = 0; i < 2; ++i) {  // coefficients between 1e-11 and 1e11 per length unit
+      problem.SetParameterLowerBound(x[c].data(), i, -25);
+      problem.SetParameterUpperBound(x[c].data(), i, 25);
+    }
   }
   if (!options.fit_eta) problem.SetParameterBlockConstant(&eta);
   else {

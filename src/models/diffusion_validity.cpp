@@ -50,10 +50,10 @@ std::map<std::string, DiffusionLimits, std::less<>> measured() {
       bands({0.012, 0.028, 0.031, 0.031, 0.067, 0.181, 0.382, 0.736, 0.971}), omits);
   add("quantized+ss", bands({0.196, 0.233, 0.251, 0.259, 0.259, 0.259, 0.259, 0.259, 0.259}),
       bands({0.012, 0.023, 0.024, 0.024, 0.031, 0.109, 0.224, 0.295, 0.295}));
-  // Normalized diffusion's total is the surface albedo of most_accurate_total_model().
+  // Normalized diffusion's total is quantized diffusion's (its surface albedo).
   for (const char* burley : {"burley", "burley-diffuse", "burley-dmfp"})
-    add(burley, bands({0.014, 0.040, 0.084, 0.143, 0.143, 0.143, 0.143, 0.143, 0.143}),
-        bands({0.012, 0.023, 0.024, 0.024, 0.031, 0.109, 0.224, 0.295, 0.295}));
+    add(burley, bands({0.014, 0.049, 0.084, 0.173, 0.265, 0.458, 0.663, 0.884, 0.989}),
+        bands({0.012, 0.028, 0.031, 0.031, 0.067, 0.181, 0.382, 0.736, 0.971}));
   return table;
 }
 
@@ -70,19 +70,6 @@ double documented_total_error(const DiffusionLimits& limits, double albedo_prime
   for (const auto& band : g >= 0.5 ? limits.forward_bands : limits.isotropic_bands)
     if (albedo_prime >= band.min_albedo_prime) return band.worst_error;
   return std::numeric_limits<double>::infinity();
-}
-
-std::string most_accurate_total_model(double albedo_prime, double g) {
-  std::string best;
-  double best_error = std::numeric_limits<double>::infinity();
-  for (const char* name : {"dipole", "better-dipole+ss", "pbd", "quantized", "quantized+ss"}) {
-    const double error = documented_total_error(measured_limits(name), albedo_prime, g);
-    if (error < best_error) {
-      best_error = error;
-      best = name;
-    }
-  }
-  return best.empty() ? "pbd" : best;
 }
 
 namespace {

@@ -6,6 +6,7 @@
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/models/diffusion_validity.hpp"
+#include "bssrdf/model.hpp"
 
 namespace bssrdf::normalized_diffusion {
 
@@ -23,13 +24,15 @@ std::string Model::description() const {
                     : scaling_ == Scaling::diffuse_mfp   ? "diffuse-transmission mfp fit"
                                                          : "searchlight dmfp fit";
   return std::string("normalized diffusion (Christensen & Burley 2015), ") + fit +
-         "; surface albedo " + (surface_albedo_ ? "given: " + format_number(*surface_albedo_) : "from the physical model with the smallest measured total error at each albedo");
+         "; surface albedo " + (surface_albedo_ ? "given: " + format_number(*surface_albedo_) : "from quantized diffusion");
 }
 
 double Model::surface_albedo(const Reduced<double>& m) const {
   if (surface_albedo_) return *surface_albedo_;
-  // From the physical model with the smallest measured total error here; the total depends on
-  // (alpha', g, eta) only, so it is cached.
+  // From quantized diffusion: of the physical models, the smallest measured total error against
+  // adding-doubling for alpha' >= 0.8 (tests/test_adding_doubling.cpp), and one smooth function of
+  // alpha', so that albedo inversion and fitting through Burley stay well-posed. The total depends
+  // on (alpha', eta) only, so it is cached.
   static std::mutex mutex;
   static std::map<std::tuple<double, double, double>, double> cache;
   const auto key = std::tuple{m.albedo_prime, m.g, m.eta};
@@ -37,8 +40,7 @@ double Model::surface_albedo(const Reduced<double>& m) const {
   auto it = cache.find(key);
   if (it == cache.end()) {
     const auto optical = reduce(1 - m.albedo_prime, m.albedo_prime / (1 - m.g), m.g, m.eta);
-    const auto model = make_model(most_accurate_total_model(m.albedo_prime, m.g));
-    it = cache.emplace(key, model->total_reflectance(optical)).first;
+    it = cache.emplace(key, make_model("quantized")->total_reflectance(optical)).first;
   }
   return it->second;
 }

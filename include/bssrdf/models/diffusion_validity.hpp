@@ -37,11 +37,6 @@ const DiffusionLimits& measured_limits(std::string_view model_name);
 // below the last band.
 double documented_total_error(const DiffusionLimits& limits, double albedo_prime, double g);
 
-// Of the physical models whose totals include single scattering or approximate it well (dipole,
-// better-dipole+ss, pbd, quantized, quantized+ss), the one with the smallest measured total error
-// at this alpha' and g: the source of surface albedos where a model needs one.
-std::string most_accurate_total_model(double albedo_prime, double g);
-
 ValidityReport diffusion_validity(const Reduced<double>& m, const DiffusionLimits& limits);
 
 // What a slab model (multipole) found for one channel; slab_validity() turns it into the report.

@@ -11,9 +11,9 @@
 //
 // "mfp" is taken as the transport mean free path ell = 1/sigma_t' (the fits were made with
 // isotropic scattering, where it equals 1/sigma_t); dmfp is the classical ell_d = 1/sigma_tr.
-// The surface albedo A is given directly, or taken from the physical model with the smallest
-// measured total error at the medium's alpha' and g (most_accurate_total_model). The fits were
-// made for an index-matched boundary.
+// The surface albedo A is given directly, or taken from quantized diffusion's total (the physical
+// model with the smallest measured total error for alpha' >= 0.8, and smooth in alpha'). The fits
+// were made for an index-matched boundary.
 #pragma once
 
 #include <cmath>
@@ -71,7 +71,7 @@ T shape_parameter(Scaling scaling, const Reduced<T>& m, T A) {
 
 class Model final : public bssrdf::Model {
  public:
-  // surface_albedo: A given directly (all channels); otherwise from the most accurate physical model.
+  // surface_albedo: A given directly (all channels); otherwise quantized diffusion's total.
   explicit Model(Scaling scaling, std::optional<double> surface_albedo = std::nullopt)
       : scaling_(scaling), surface_albedo_(surface_albedo) {}
   std::string name() const override;

@@ -1,0 +1,66 @@
+// Fits from totals and from profiles to the few parameters renderers take:
+//  - fit_albedo: surface colour (total diffuse reflectance) + one distance per channel -> sigma_a,
+//    sigma_s', for any model, solved exactly by root finding on the model's total (no table, no
+//    clamping: unreachable inputs are errors);
+//  - fit_slab: an integrating-sphere measurement (diffuse reflectance and total transmittance of a
+//    slab of known thickness) -> sigma_a, sigma_s' through the multipole, with uncertainties
+//    propagated from the measurement's and a reason when no solution exists;
+//  - fit_gaussians: N shared-variance Gaussians with per-channel non-negative weights fitted to a
+//    profile by minimising int r (R - sum w G)^2 dr (GPU Gems 3 ch. 14);
+//  - fit_burley: Burley's d per channel fitted to a profile (least squares, total fixed).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "bssrdf/fit/fit_report.hpp"
+#include "bssrdf/profile.hpp"
+#include "bssrdf/units.hpp"
+
+namespace bssrdf {
+
+enum class DistanceConvention { mfp, transport_mfp, dmfp };
+DistanceConvention parse_distance_convention(const std::string& text);  // "mfp", "transport-mfp", "dmfp"
+std::string_view to_string(DistanceConvention convention);
+
+struct AlbedoInversion {
+  double sigma_a, sigma_s_prime, albedo_prime;  // 1/length of the distance given
+};
+
+// One channel: the exact inversion. `total`: total diffuse reflectance per entered flux.
+AlbedoInversion invert_albedo(const std::string& model, double total, double distance, DistanceConvention convention,
+                              double eta, double g = 0);
+
+struct ChannelInput {
+  std::string name;
+  double value;  // albedo (fit_albedo)
+  double distance;  // in `unit`
+  double g = 0;
+};
+
+FitReport fit_albedo(const std::vector<ChannelInput>& channels, DistanceConvention convention, LengthUnit unit,
+                     const std::string& model, double eta);
+
+struct SlabMeasurement {
+  std::string name;
+  double reflectance, transmittance;  // per incident flux: diffuse R (specular excluded), total T (ballistic included)
+  double reflectance_stderr, transmittance_stderr;
+  double g = 0;
+};
+
+// thickness in `unit`; eta = n_slab / n_outside on both faces.
+FitReport fit_slab(const std::vector<SlabMeasurement>& channels, double thickness, LengthUnit unit, double eta);
+
+// The measurable totals of a slab under the multipole plus the exact ballistic beam (both faces,
+// multiple reflections), per incident flux: what fit_slab matches.
+std::pair<double, double> slab_measurables(double sigma_a, double sigma_s_prime, double g, double eta, double thickness_mm);
+
+struct NamedProfile {
+  std::string name;
+  SampledProfile profile;  // radius in unit, R in 1/unit^2
+};
+
+FitReport fit_gaussians(const std::vector<NamedProfile>& channels, int count, LengthUnit unit, const std::string& source);
+FitReport fit_burley(const std::vector<NamedProfile>& channels, LengthUnit unit, const std::string& source);
+
+}  // namespace bssrdf

@@ -1,0 +1,212 @@
+// bssrdf fit profile|albedo|slab|gaussians|burley: from measurements (or a model's profile) to
+// parameters, with a Ceres-style report.
+#include <iostream>
+#include <memory>
+
+#include "bssrdf/error.hpp"
+#include "bssrdf/fit/inverse_fits.hpp"
+#include "bssrdf/fit/profile_fit.hpp"
+#include "bssrdf/io/profile_csv.hpp"
+#include "bssrdf/model.hpp"
+#include "bssrdf/profile_report.hpp"
+#include "cli_common.hpp"
+#include "commands.hpp"
+
+namespace bssrdf::cli {
+namespace {
+
+std::vector<std::string> split_names(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (true) {
+    const auto comma = text.find(',', start);
+    out.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+std::vector<double> per_channel(const std::string& text, const std::string& field, std::size_t n, double fallback) {
+  if (text.empty()) return std::vector<double>(n, fallback);
+  auto v = parse_number_list(text, field);
+  if (v.size() == 1) v.assign(n, v[0]);
+  if (v.size() != n)
+    throw InvalidInput(field + ": " + std::to_string(v.size()) + " values for " + std::to_string(n) + " channels");
+  return v;
+}
+
+void emit_report(const OutputOptions& output, const FitReport& report) {
+  const bool json = output.file_format() == Format::json && (!output.output.empty() || output.format == "json");
+  emit(output, json ? report.to_json() : report.full_report(), report.full_report());
+}
+
+// A profile to fit for gaussians/burley: a CSV file, or a model's R(r) for a medium.
+struct ProfileSource {
+  MediumOptions medium;
+  std::string data, model = "better-dipole";
+  int samples = 128;
+
+  void add_to(CLI::App& app) {
+    auto* d = app.add_option("--data", data, "Profile CSV (radius, one column per channel), e.g. from 'bssrdf profile -f csv'");
+    medium.add_to(app);
+    app.add_option("--model", model, "Model whose profile is fitted when no --data is given [better-dipole]");
+    app.add_option("--samples", samples, "Radii sampled from the model [128]");
+    d->excludes(app.get_option("--material"))->excludes(app.get_option("--sigma-a"));
+  }
+
+  std::pair<std::vector<NamedProfile>, std::string> resolve(LengthUnit& unit) const {
+    std::vector<NamedProfile> out;
+    if (!data.empty()) {
+      const auto measured = read_profile_csv(data);
+      unit = measured.unit;
+      const double mm = millimetres_per(unit);
+      for (const auto& c : measured.channels) {
+        NamedProfile p{c.name, {}};
+        for (std::size_t i = 0; i < measured.radius.size(); ++i) {
+          p.profile.radius.push_back(measured.radius[i] / mm);
+          p.profile.value.push_back(c.value[i] * mm * mm);
+        }
+        out.push_back(std::move(p));
+      }
+      return {out, data};
+    }
+    const auto resolved = medium.resolve();
+    unit = resolved.unit;
+    const auto m = make_model(model);
+    if (samples < 8 || samples > 100000) throw InvalidInput("--samples", std::to_string(samples), "8 to 100000");
+    const auto report = compute_profile_report(resolved.medium, *m, default_radii_mm(resolved.medium, *m, samples), unit);
+    for (const auto& ch : report.channels) out.push_back({ch.name, ch.profile});
+    return {out, model + " profile of " + (resolved.material ? resolved.material->name : std::string("the given medium"))};
+  }
+};
+
+}  // namespace
+
+Action register_fit(CLI::App& app) {
+  auto* fit = app.add_subcommand("fit", "Fit material parameters to measurements, or real-time forms to a profile");
+  fit->require_subcommand(1);
+
+  // fit profile
+  struct ProfileOptions {
+    std::string file, model = "better-dipole", eta = "1.3", g, loss = "none", unit;
+    bool fit_eta = false, fit_scale = false;
+    double loss_scale = 1;
+    OutputOptions output;
+  };
+  auto po = std::make_shared<ProfileOptions>();
+  auto* profile = fit->add_subcommand("profile", "Measured radial reflectance (CSV) -> sigma_a, sigma_s' per channel");
+  profile->add_option("file", po->file, "Profile CSV: radius, one column per channel, optional <channel>_stderr columns")->required();
+  profile->add_option("--model", po->model, "Forward model (any of 'bssrdf models', NAME+ss too) [better-dipole]");
+  profile->add_option("--eta", po->eta, "Relative index; the start value with --fit-eta [1.3]");
+  profile->add_flag("--fit-eta", po->fit_eta, "Fit one eta shared by all channels (within [1, 2])");
+  profile->add_flag("--fit-scale", po->fit_scale, "Fit an unknown overall scale (uncalibrated camera)");
+  profile->add_option("--g", po->g, "Henyey-Greenstein g per channel, held fixed [0]");
+  profile->add_option("--loss", po->loss, "Robust loss: none, huber, cauchy [none]")->check(CLI::IsMember({"none", "huber", "cauchy"}));
+  profile->add_option("--loss-scale", po->loss_scale, "Scale of the robust loss, in weighted-residual units [1]");
+  profile->add_option("--unit", po->unit, "Unit of the radius column when its header does not say [mm]");
+  po->output.add_to(*profile);
+
+  // fit albedo
+  struct AlbedoOptions {
+    std::string albedo, distance, convention = "mfp", unit = "mm", model = "better-dipole", eta = "1.3", g, channels;
+    OutputOptions output;
+  };
+  auto ao = std::make_shared<AlbedoOptions>();
+  auto* albedo = fit->add_subcommand("albedo", "Surface albedo + a distance per channel -> sigma_a, sigma_s' (exact inversion)");
+  albedo->add_option("--albedo", ao->albedo, "Total diffuse reflectance per channel, e.g. 0.8,0.5,0.3")->required();
+  albedo->add_option("--distance", ao->distance, "Distance per channel in --unit, in the --convention")->required();
+  albedo->add_option("--convention", ao->convention, "mfp (1/sigma_t), transport-mfp (1/sigma_t') or dmfp (1/sigma_tr) [mfp]")
+      ->check(CLI::IsMember({"mfp", "transport-mfp", "dmfp"}));
+  albedo->add_option("--unit", ao->unit, "Length unit: um, mm, cm, m [mm]");
+  albedo->add_option("--model", ao->model, "Model whose total is inverted [better-dipole]");
+  albedo->add_option("--eta", ao->eta, "Relative index [1.3]");
+  albedo->add_option("--g", ao->g, "Anisotropy per channel [0]");
+  albedo->add_option("--channels", ao->channels, "Channel names [R,G,B for three]");
+  ao->output.add_to(*albedo);
+
+  // fit slab
+  struct SlabOptions {
+    std::string reflectance, transmittance, r_stderr = "0.002", t_stderr = "0.002", thickness, unit = "mm", eta = "1.4", g, channels;
+    OutputOptions output;
+  };
+  auto so = std::make_shared<SlabOptions>();
+  auto* slab = fit->add_subcommand("slab", "Integrating-sphere R and T of a slab -> sigma_a, sigma_s' (multipole)");
+  slab->add_option("--reflectance", so->reflectance, "Diffuse reflectance per channel, per incident flux, specular excluded")->required();
+  slab->add_option("--transmittance", so->transmittance, "Total transmittance per channel (ballistic included)")->required();
+  slab->add_option("--reflectance-stderr", so->r_stderr, "Standard error of the reflectance [0.002]");
+  slab->add_option("--transmittance-stderr", so->t_stderr, "Standard error of the transmittance [0.002]");
+  slab->add_option("--thickness", so->thickness, "Slab thickness in --unit")->required();
+  slab->add_option("--unit", so->unit, "Length unit [mm]");
+  slab->add_option("--eta", so->eta, "Relative index of the slab [1.4]");
+  slab->add_option("--g", so->g, "Anisotropy per channel [0]");
+  slab->add_option("--channels", so->channels, "Channel names");
+  so->output.add_to(*slab);
+
+  // fit gaussians / burley
+  auto go = std::make_shared<std::pair<ProfileSource, OutputOptions>>();
+  auto gcount = std::make_shared<int>(6);
+  auto* gaussians = fit->add_subcommand("gaussians", "Sum of N Gaussians (shared variances, per-channel weights) fitted to a profile");
+  go->first.add_to(*gaussians);
+  gaussians->add_option("-n,--count", *gcount, "Number of Gaussians [6]");
+  go->second.add_to(*gaussians);
+  auto bo = std::make_shared<std::pair<ProfileSource, OutputOptions>>();
+  auto* burley = fit->add_subcommand("burley", "Burley's d per channel fitted to a profile");
+  bo->first.add_to(*burley);
+  bo->second.add_to(*burley);
+
+  return [=] {
+    if (profile->parsed()) {
+      ProfileFitOptions options;
+      options.model = po->model;
+      options.eta = parse_number(po->eta, "--eta");
+      options.fit_eta = po->fit_eta;
+      options.fit_scale = po->fit_scale;
+      if (!po->g.empty()) options.g = parse_number_list(po->g, "--g");
+      options.loss = po->loss;
+      options.loss_scale = po->loss_scale;
+      std::optional<LengthUnit> unit;
+      if (!po->unit.empty()) unit = parse_length_unit(po->unit, "--unit");
+      const auto data = read_profile_csv(po->file, unit);
+      emit_report(po->output, fit_profile(data, options));
+    } else if (albedo->parsed()) {
+      const auto A = parse_number_list(ao->albedo, "--albedo");
+      const auto n = A.size();
+      const auto distance = per_channel(ao->distance, "--distance", n, 0);
+      const auto g = per_channel(ao->g, "--g", n, 0);
+      const auto names = ao->channels.empty() ? default_channel_names(n) : split_names(ao->channels);
+      if (names.size() != n) throw InvalidInput("--channels: " + std::to_string(names.size()) + " names for " + std::to_string(n) + " channels");
+      std::vector<ChannelInput> inputs;
+      for (std::size_t c = 0; c < n; ++c) {
+        if (!(A[c] >= 0 && A[c] <= 1)) throw InvalidInput("--albedo[" + names[c] + "]", format_number(A[c]), "[0, 1]");
+        if (!(g[c] > -1 && g[c] < 1)) throw InvalidInput("--g[" + names[c] + "]", format_number(g[c]), "-1 < g < 1");
+        inputs.push_back({names[c], A[c], distance[c], g[c]});
+      }
+      emit_report(ao->output, fit_albedo(inputs, parse_distance_convention(ao->convention), parse_length_unit(ao->unit, "--unit"),
+                                         ao->model, parse_number(ao->eta, "--eta")));
+    } else if (slab->parsed()) {
+      const auto R = parse_number_list(so->reflectance, "--reflectance");
+      const auto n = R.size();
+      const auto T = per_channel(so->transmittance, "--transmittance", n, 0);
+      const auto rs = per_channel(so->r_stderr, "--reflectance-stderr", n, 0.002);
+      const auto ts = per_channel(so->t_stderr, "--transmittance-stderr", n, 0.002);
+      const auto g = per_channel(so->g, "--g", n, 0);
+      const auto names = so->channels.empty() ? default_channel_names(n) : split_names(so->channels);
+      if (names.size() != n) throw InvalidInput("--channels: " + std::to_string(names.size()) + " names for " + std::to_string(n) + " channels");
+      std::vector<SlabMeasurement> data;
+      for (std::size_t c = 0; c < n; ++c) data.push_back({names[c], R[c], T[c], rs[c], ts[c], g[c]});
+      emit_report(so->output, fit_slab(data, parse_number(so->thickness, "--thickness"), parse_length_unit(so->unit, "--unit"),
+                                       parse_number(so->eta, "--eta")));
+    } else if (gaussians->parsed()) {
+      LengthUnit unit = LengthUnit::millimetre;
+      const auto [profiles, source] = go->first.resolve(unit);
+      emit_report(go->second, fit_gaussians(profiles, *gcount, unit, source));
+    } else if (burley->parsed()) {
+      LengthUnit unit = LengthUnit::millimetre;
+      const auto [profiles, source] = bo->first.resolve(unit);
+      emit_report(bo->second, fit_burley(profiles, unit, source));
+    }
+  };
+}
+
+}  // namespace bssrdf::cli
