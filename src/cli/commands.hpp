@@ -13,5 +13,6 @@ Action register_profile(CLI::App& app);
 Action register_models(CLI::App& app);
 Action register_materials(CLI::App& app);
 Action register_reference(CLI::App& app);
+Action register_lut(CLI::App& app);
 
 }  // namespace bssrdf::cli

@@ -19,7 +19,8 @@ int main(int argc, char** argv) {
 
   std::map<CLI::App*, bssrdf::cli::Action> actions;
   for (auto* register_command : {&bssrdf::cli::register_profile, &bssrdf::cli::register_models,
-                                 &bssrdf::cli::register_materials, &bssrdf::cli::register_reference}) {
+                                 &bssrdf::cli::register_materials, &bssrdf::cli::register_reference,
+                                 &bssrdf::cli::register_lut}) {
     const auto before = app.get_subcommands({});
     auto action = (*register_command)(app);
     for (auto* sub : app.get_subcommands({}))
