@@ -6,11 +6,13 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/io/atomic_file.hpp"
 #include "bssrdf/io/exr_table.hpp"
+#include "bssrdf/lut/albedo_radius_table.hpp"
 #include "bssrdf/lut/radial_table.hpp"
 #include "bssrdf/model.hpp"
 #include "cli_common.hpp"
@@ -21,14 +23,14 @@ namespace {
 
 struct LutOptions {
   MediumOptions medium;
-  std::string kind = "radial", model = "pbd", tolerance = "1e-3", energy = "0.999", interpolation = "catmull-rom";
-  std::string output, format, output_dir;
+  std::string kind = "radial", model = "pbd", tolerance, energy = "0.999", interpolation = "catmull-rom";
+  std::string output, format, output_dir, layout = "pbrt", size;
   bool half = false, all = false, quiet = false;
   unsigned threads = 1;
 };
 
 const std::vector<std::string>& kinds() {
-  static const std::vector<std::string> k = {"radial"};
+  static const std::vector<std::string> k = {"radial", "albedo-radius"};
   return k;
 }
 
@@ -44,6 +46,50 @@ struct Built {
   std::string summary;
 };
 
+// albedo-radius tables are dimensionless: only (g, eta) come from the medium (a material's first
+// channel, or --g and --eta, default 0 and 1.3).
+Built build_albedo_radius(const LutOptions& o) {
+  double g = 0, eta = 1.3;
+  std::optional<Material> material;
+  if (!o.medium.material.empty() || !o.medium.sigma_a.empty()) {
+    const auto resolved = o.medium.resolve();
+    g = resolved.medium.g[0];
+    eta = resolved.medium.eta;
+    material = resolved.material;
+  } else {
+    if (!o.medium.g.empty()) g = parse_number(o.medium.g, "--g");
+    if (!o.medium.eta.empty()) eta = parse_number(o.medium.eta, "--eta");
+  }
+  if (o.model != "pbd") throw InvalidInput("--model", "'" + o.model + "'", "pbd for --kind albedo-radius (photon beam diffusion, as pbrt)");
+  AlbedoRadiusOptions options;
+  // 1e-2: 8-point quadrature, worst cell error ~1e-2 against the converged model (pbrt's scheme: ~0.2).
+  options.tolerance = o.tolerance.empty() ? 1e-2 : positive_fraction(o.tolerance, "--tolerance");
+  options.threads = o.threads;
+  AlbedoRadiusLayout layout;
+  if (o.layout == "pbrt") {
+    layout = AlbedoRadiusLayout::pbrt();
+  } else if (o.layout == "family") {
+    unsigned a = 0, r = 0;
+    if (std::sscanf(o.size.c_str(), "%ux%u", &a, &r) != 2)
+      throw InvalidInput("--size", "'" + o.size + "'", "ALBEDOSxRADII, e.g. 64x48 (each >= 4)");
+    layout = AlbedoRadiusLayout::family(a, r);
+  } else {
+    throw InvalidInput("--layout", "'" + o.layout + "'", "pbrt or family (with --size AxR)");
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const auto t = build_albedo_radius_table(layout, g, eta, options);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  auto model = make_model("pbd");
+  TableContext context{material, nullptr, model.get(), LengthUnit::millimetre};
+  std::ostringstream s;
+  s << "albedo-radius table (" << o.layout << " layout): " << t.rows() << " albedos x " << t.columns()
+    << " radii, g = " << format_number(g) << ", eta = " << format_number(eta) << ", photon beam diffusion with "
+    << t.quadrature_order << "-point Gauss-Legendre (tolerance " << format_number(options.tolerance) << "); table in "
+    << format_number(std::round(ms * 100) / 100) << " ms\n  effective albedo: " << format_number(t.effective_albedo.front())
+    << " (rho = 0) to " << format_number(t.effective_albedo.back()) << " (rho = 1)\n";
+  return {to_lookup_table(t, context, o.layout), s.str()};
+}
+
 Built build(const LutOptions& o, const MediumOptions::Resolved& resolved) {
   auto model = make_model(o.model);
   TableContext context{resolved.material, &resolved.medium, model.get(), resolved.unit};
@@ -52,7 +98,7 @@ Built build(const LutOptions& o, const MediumOptions::Resolved& resolved) {
   const double mm = millimetres_per(resolved.unit);
   if (o.kind == "radial") {
     RadialTableOptions options;
-    options.tolerance = positive_fraction(o.tolerance, "--tolerance");
+    options.tolerance = o.tolerance.empty() ? 1e-3 : positive_fraction(o.tolerance, "--tolerance");
     options.energy = positive_fraction(o.energy, "--energy");
     options.interpolation = parse_interpolation(o.interpolation, "--interpolation");
     options.threads = o.threads;
@@ -99,9 +145,11 @@ Action register_lut(CLI::App& app) {
   auto o = std::make_shared<LutOptions>();
   auto* sub = app.add_subcommand("lut", "Lookup tables for renderers: OpenEXR, JSON or CSV with their conventions recorded");
   o->medium.add_to(*sub);
-  sub->add_option("--kind,-k", o->kind, "Table: radial [radial]");
+  sub->add_option("--kind,-k", o->kind, "Table: radial, albedo-radius [radial]");
+  sub->add_option("--layout", o->layout, "albedo-radius: pbrt (100 x 64, pbrt's spacing) or family (--size) [pbrt]");
+  sub->add_option("--size", o->size, "albedo-radius with --layout family: ALBEDOSxRADII, e.g. 64x48");
   sub->add_option("--model", o->model, "Profile model (see 'bssrdf models') [pbd]");
-  sub->add_option("--tolerance", o->tolerance, "Relative interpolation error bound of adaptive tables [1e-3]");
+  sub->add_option("--tolerance", o->tolerance, "radial: relative interpolation error bound [1e-3]; albedo-radius: beam-integral quadrature tolerance [1e-2]");
   sub->add_option("--energy", o->energy, "Fraction of each channel's total inside the checked radius range [0.999]");
   sub->add_option("--interpolation", o->interpolation, "How the consumer interpolates: catmull-rom or linear [catmull-rom]");
   sub->add_option("-o,--output", o->output, "Output file: .exr, .json or .csv");
@@ -126,7 +174,7 @@ Action register_lut(CLI::App& app) {
       for (const auto& material : database.all()) {
         MediumOptions one = o->medium;
         one.material = material.name;
-        const auto built = build(*o, one.resolve());
+        const auto built = o->kind == "albedo-radius" ? build_albedo_radius([&] { auto c = *o; c.medium = one; return c; }()) : build(*o, one.resolve());
         const auto path = dir / file_name(material.name, o->kind, format);
         write_file_atomically(path, encode(built.table, format, o->half));
         if (progress) progress(++done, database.all().size());
@@ -140,7 +188,7 @@ Action register_lut(CLI::App& app) {
     if (o->output.empty()) throw InvalidInput("-o: give an output file (.exr, .json, .csv)");
     const std::string format = format_for(*o, o->output);
     const auto start = std::chrono::steady_clock::now();
-    const auto built = build(*o, o->medium.resolve());
+    const auto built = o->kind == "albedo-radius" ? build_albedo_radius(*o) : build(*o, o->medium.resolve());
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     write_file_atomically(o->output, encode(built.table, format, o->half));
     if (!o->quiet)
