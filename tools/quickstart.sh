@@ -5,4 +5,4 @@ cd "$(dirname "$0")/.."
 bash tools/setup.sh
 bash tools/build.sh
 mkdir -p out
-./build/bssrdf profile --material Skin1 --model better-dipole --samples 24 -o out/skin1-profile.json
+./build/bssrdf lut --material Skin1 --kind radial -o out/skin1-radial.exr

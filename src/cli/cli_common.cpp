@@ -4,7 +4,10 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <cstdio>
 #include <iostream>
+#include <memory>
+#include <unistd.h>
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/io/atomic_file.hpp"
@@ -159,6 +162,21 @@ void emit(const OutputOptions& options, const std::string& file_content, const s
     std::cout << file_content;
   }
   std::cout.flush();
+}
+
+std::function<void(std::uint64_t, std::uint64_t)> progress_bar(const std::string& label) {
+  if (!::isatty(STDERR_FILENO)) return nullptr;
+  auto last = std::make_shared<int>(-1);
+  return [last, label](std::uint64_t done, std::uint64_t total) {
+    const int percent = static_cast<int>(100 * done / std::max<std::uint64_t>(1, total));
+    if (percent == *last) return;
+    *last = percent;
+    const int width = 40, filled = percent * width / 100;
+    std::fprintf(stderr, "\r%s [%s%s] %3d%%", label.c_str(), std::string(filled, '#').c_str(),
+                 std::string(width - filled, '.').c_str(), percent);
+    if (done >= total) std::fprintf(stderr, "\r%*s\r", width + 16 + static_cast<int>(label.size()), "");
+    std::fflush(stderr);
+  };
 }
 
 }  // namespace bssrdf::cli

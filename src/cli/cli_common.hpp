@@ -3,6 +3,8 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -46,5 +48,8 @@ struct OutputOptions {
 
 // Writes `file_content` to -o atomically (if given) and prints `stdout_content` unless quiet.
 void emit(const OutputOptions& options, const std::string& file_content, const std::string& stdout_content);
+
+// A one-line progress bar on stderr, only when stderr is a terminal (nullptr otherwise).
+std::function<void(std::uint64_t done, std::uint64_t total)> progress_bar(const std::string& label);
 
 }  // namespace bssrdf::cli

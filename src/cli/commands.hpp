@@ -15,5 +15,6 @@ Action register_materials(CLI::App& app);
 Action register_reference(CLI::App& app);
 Action register_fit(CLI::App& app);
 Action register_transmission(CLI::App& app);
+Action register_lut(CLI::App& app);
 
 }  // namespace bssrdf::cli

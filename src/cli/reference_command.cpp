@@ -1,7 +1,5 @@
 // bssrdf reference: the Monte Carlo ground truth for a medium (shared options), a layer stack
 // (--layers FILE.json) or the runs of an MCML input file (--mci FILE.mci).
-#include <unistd.h>
-
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -15,25 +13,6 @@
 #include "commands.hpp"
 
 namespace bssrdf::cli {
-namespace {
-
-// A one-line progress bar on stderr, only when stderr is a terminal.
-std::function<void(std::uint64_t, std::uint64_t)> progress_bar(const std::string& label) {
-  if (!::isatty(STDERR_FILENO)) return nullptr;
-  auto last = std::make_shared<int>(-1);
-  return [last, label](std::uint64_t done, std::uint64_t total) {
-    const int percent = static_cast<int>(100 * done / std::max<std::uint64_t>(1, total));
-    if (percent == *last) return;
-    *last = percent;
-    const int width = 40, filled = percent * width / 100;
-    std::fprintf(stderr, "\r%s [%s%s] %3d%%", label.c_str(), std::string(filled, '#').c_str(),
-                 std::string(width - filled, '.').c_str(), percent);
-    if (done >= total) std::fprintf(stderr, "\r%*s\r", width + 16 + static_cast<int>(label.size()), "");
-    std::fflush(stderr);
-  };
-}
-
-}  // namespace
 
 Action register_reference(CLI::App& app) {
   struct Options {

@@ -1,0 +1,28 @@
+// What every exported table records about where it came from: tool version, material, model and
+// the conventions its numbers follow. Written as "bssrdf:*" attributes by describe().
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "bssrdf/lut/lookup_table.hpp"
+#include "bssrdf/materials.hpp"
+#include "bssrdf/medium.hpp"
+#include "bssrdf/model.hpp"
+#include "bssrdf/units.hpp"
+
+namespace bssrdf {
+
+struct TableContext {
+  std::optional<Material> material;  // when the medium came from the database
+  const Medium* medium = nullptr;    // the coefficients tabulated (1/mm); optional
+  const Model* model = nullptr;      // optional (transmission tables come from Monte Carlo)
+  LengthUnit unit = LengthUnit::millimetre;
+};
+
+// Adds bssrdf:tool, bssrdf:kind, bssrdf:material (+ source, citation), bssrdf:model (+ description,
+// single scattering), bssrdf:eta, bssrdf:channels and bssrdf:coefficients (sigma_a, sigma_s, g in
+// 1/unit), and bssrdf:normalization.
+void describe(LookupTable& table, const TableContext& context);
+
+}  // namespace bssrdf

@@ -1,0 +1,199 @@
+// bssrdf lut: lookup tables for renderers (radial, albedo-radius, transmission, pre-integrated,
+// separable kernel, Gaussian mixture) as OpenEXR, JSON, CSV or shader arrays; --all for the whole
+// materials database, one file per material.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+#include "bssrdf/error.hpp"
+#include "bssrdf/io/atomic_file.hpp"
+#include "bssrdf/io/exr_table.hpp"
+#include "bssrdf/lut/albedo_radius_table.hpp"
+#include "bssrdf/lut/radial_table.hpp"
+#include "bssrdf/model.hpp"
+#include "cli_common.hpp"
+#include "commands.hpp"
+
+namespace bssrdf::cli {
+namespace {
+
+struct LutOptions {
+  MediumOptions medium;
+  std::string kind = "radial", model = "pbd", tolerance, energy = "0.999", interpolation = "catmull-rom";
+  std::string output, format, output_dir, layout = "pbrt", size;
+  bool half = false, all = false, quiet = false;
+  unsigned threads = 1;
+};
+
+const std::vector<std::string>& kinds() {
+  static const std::vector<std::string> k = {"radial", "albedo-radius"};
+  return k;
+}
+
+double positive_fraction(const std::string& text, const std::string& field) {
+  const double v = parse_number(text, field);
+  if (!(v > 0 && v < 1)) throw InvalidInput(field, format_number(v), "0 < value < 1");
+  return v;
+}
+
+// The table and a few lines for people about it.
+struct Built {
+  LookupTable table;
+  std::string summary;
+};
+
+// albedo-radius tables are dimensionless: only (g, eta) come from the medium (a material's first
+// channel, or --g and --eta, default 0 and 1.3).
+Built build_albedo_radius(const LutOptions& o) {
+  double g = 0, eta = 1.3;
+  std::optional<Material> material;
+  if (!o.medium.material.empty() || !o.medium.sigma_a.empty()) {
+    const auto resolved = o.medium.resolve();
+    g = resolved.medium.g[0];
+    eta = resolved.medium.eta;
+    material = resolved.material;
+  } else {
+    if (!o.medium.g.empty()) g = parse_number(o.medium.g, "--g");
+    if (!o.medium.eta.empty()) eta = parse_number(o.medium.eta, "--eta");
+  }
+  if (o.model != "pbd") throw InvalidInput("--model", "'" + o.model + "'", "pbd for --kind albedo-radius (photon beam diffusion, as pbrt)");
+  AlbedoRadiusOptions options;
+  // 1e-2: 8-point quadrature, worst cell error ~1e-2 against the converged model (pbrt's scheme: ~0.2).
+  options.tolerance = o.tolerance.empty() ? 1e-2 : positive_fraction(o.tolerance, "--tolerance");
+  options.threads = o.threads;
+  AlbedoRadiusLayout layout;
+  if (o.layout == "pbrt") {
+    layout = AlbedoRadiusLayout::pbrt();
+  } else if (o.layout == "family") {
+    unsigned a = 0, r = 0;
+    if (std::sscanf(o.size.c_str(), "%ux%u", &a, &r) != 2)
+      throw InvalidInput("--size", "'" + o.size + "'", "ALBEDOSxRADII, e.g. 64x48 (each >= 4)");
+    layout = AlbedoRadiusLayout::family(a, r);
+  } else {
+    throw InvalidInput("--layout", "'" + o.layout + "'", "pbrt or family (with --size AxR)");
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const auto t = build_albedo_radius_table(layout, g, eta, options);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  auto model = make_model("pbd");
+  TableContext context{material, nullptr, model.get(), LengthUnit::millimetre};
+  std::ostringstream s;
+  s << "albedo-radius table (" << o.layout << " layout): " << t.rows() << " albedos x " << t.columns()
+    << " radii, g = " << format_number(g) << ", eta = " << format_number(eta) << ", photon beam diffusion with "
+    << t.quadrature_order << "-point Gauss-Legendre (tolerance " << format_number(options.tolerance) << "); table in "
+    << format_number(std::round(ms * 100) / 100) << " ms\n  effective albedo: " << format_number(t.effective_albedo.front())
+    << " (rho = 0) to " << format_number(t.effective_albedo.back()) << " (rho = 1)\n";
+  return {to_lookup_table(t, context, o.layout), s.str()};
+}
+
+Built build(const LutOptions& o, const MediumOptions::Resolved& resolved) {
+  auto model = make_model(o.model);
+  TableContext context{resolved.material, &resolved.medium, model.get(), resolved.unit};
+  std::ostringstream s;
+  const std::string u(symbol(resolved.unit));
+  const double mm = millimetres_per(resolved.unit);
+  if (o.kind == "radial") {
+    RadialTableOptions options;
+    options.tolerance = o.tolerance.empty() ? 1e-3 : positive_fraction(o.tolerance, "--tolerance");
+    options.energy = positive_fraction(o.energy, "--energy");
+    options.interpolation = parse_interpolation(o.interpolation, "--interpolation");
+    options.threads = o.threads;
+    const auto t = build_radial_table(resolved.medium, *model, options);
+    s << "radial table: " << t.size() << " radii from " << format_number(t.radius.front() / mm) << " to "
+      << format_number(t.radius.back() / mm) << ' ' << u << ", uniform in ln r + r/" << format_number(t.decay_length / mm)
+      << " (" << to_string(options.interpolation) << "; worst error " << format_number(t.max_error) << " <= tolerance " << format_number(options.tolerance)
+      << " over the range holding " << format_number(options.energy) << " of each channel's total; " << t.evaluations << " model evaluations)\n";
+    for (std::size_t c = 0; c < t.channel_names.size(); ++c)
+      s << "  " << t.channel_names[c] << ": total reflectance " << format_number(t.total_reflectance[c])
+        << ", range " << format_number(t.range_min[c] / mm) << " to " << format_number(t.range_max[c] / mm) << ' ' << u << '\n';
+    return {to_lookup_table(t, context), s.str()};
+  }
+  std::string known;
+  for (const auto& k : kinds()) known += (known.empty() ? "" : ", ") + k;
+  throw InvalidInput("--kind", "'" + o.kind + "'", "one of " + known);
+}
+
+std::string encode(const LookupTable& table, const std::string& format, bool half) {
+  if (format == "exr") return encode_exr(table, half ? ExrPixelType::half : ExrPixelType::float32);
+  if (format == "json") return to_json(table);
+  if (format == "csv") return to_csv(table);
+  throw InvalidInput("--format", "'" + format + "'", "exr, json or csv");
+}
+
+std::string format_for(const LutOptions& o, const std::string& path) {
+  if (!o.format.empty()) return o.format;
+  const auto ext = std::filesystem::path(path).extension().string();
+  if (ext == ".exr") return "exr";
+  if (ext == ".json") return "json";
+  if (ext == ".csv") return "csv";
+  throw InvalidInput("-o", "'" + path + "'", "a file ending in .exr, .json or .csv (or give --format)");
+}
+
+std::string file_name(const std::string& material, const std::string& kind, const std::string& format) {
+  std::string name;
+  for (char ch : material) name += std::isalnum(static_cast<unsigned char>(ch)) ? static_cast<char>(std::tolower(ch)) : '-';
+  return name + "-" + kind + "." + format;
+}
+
+}  // namespace
+
+Action register_lut(CLI::App& app) {
+  auto o = std::make_shared<LutOptions>();
+  auto* sub = app.add_subcommand("lut", "Lookup tables for renderers: OpenEXR, JSON or CSV with their conventions recorded");
+  o->medium.add_to(*sub);
+  sub->add_option("--kind,-k", o->kind, "Table: radial, albedo-radius [radial]");
+  sub->add_option("--layout", o->layout, "albedo-radius: pbrt (100 x 64, pbrt's spacing) or family (--size) [pbrt]");
+  sub->add_option("--size", o->size, "albedo-radius with --layout family: ALBEDOSxRADII, e.g. 64x48");
+  sub->add_option("--model", o->model, "Profile model (see 'bssrdf models') [pbd]");
+  sub->add_option("--tolerance", o->tolerance, "radial: relative interpolation error bound [1e-3]; albedo-radius: beam-integral quadrature tolerance [1e-2]");
+  sub->add_option("--energy", o->energy, "Fraction of each channel's total inside the checked radius range [0.999]");
+  sub->add_option("--interpolation", o->interpolation, "How the consumer interpolates: catmull-rom or linear [catmull-rom]");
+  sub->add_option("-o,--output", o->output, "Output file: .exr, .json or .csv");
+  sub->add_option("--format,-f", o->format, "exr, json or csv [from the file's extension]");
+  sub->add_flag("--half", o->half, "OpenEXR: half-float channels instead of float32");
+  sub->add_flag("--all", o->all, "Every material of the database, one file per material in --output-dir");
+  sub->add_option("--output-dir", o->output_dir, "Directory for --all [.]");
+  sub->add_option("--threads", o->threads, "Threads (0: all) [1]; results never depend on it");
+  sub->add_flag("-q,--quiet", o->quiet, "Print nothing on stdout");
+
+  return [o] {
+    if (o->all) {
+      if (!o->medium.material.empty() || !o->medium.sigma_a.empty())
+        throw InvalidInput("--all: give no --material or coefficients with --all");
+      const std::string format = o->format.empty() ? "exr" : o->format;
+      const std::filesystem::path dir = o->output_dir.empty() ? "." : o->output_dir;
+      if (!std::filesystem::is_directory(dir)) throw InvalidInput("--output-dir", "'" + dir.string() + "'", "an existing directory");
+      const auto database = MaterialDatabase::load(o->medium.db.empty() ? default_materials_dir() : std::filesystem::path(o->medium.db));
+      const auto progress = progress_bar("lut --all");
+      const auto start = std::chrono::steady_clock::now();
+      std::size_t done = 0;
+      for (const auto& material : database.all()) {
+        MediumOptions one = o->medium;
+        one.material = material.name;
+        const auto built = o->kind == "albedo-radius" ? build_albedo_radius([&] { auto c = *o; c.medium = one; return c; }()) : build(*o, one.resolve());
+        const auto path = dir / file_name(material.name, o->kind, format);
+        write_file_atomically(path, encode(built.table, format, o->half));
+        if (progress) progress(++done, database.all().size());
+        if (!o->quiet && !progress) std::cout << "written: " << path.string() << '\n';
+      }
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (!o->quiet)
+        std::cout << database.all().size() << " " << o->kind << " tables in " << format_number(std::round(seconds * 1000) / 1000) << " s\n";
+      return;
+    }
+    if (o->output.empty()) throw InvalidInput("-o: give an output file (.exr, .json, .csv)");
+    const std::string format = format_for(*o, o->output);
+    const auto start = std::chrono::steady_clock::now();
+    const auto built = o->kind == "albedo-radius" ? build_albedo_radius(*o) : build(*o, o->medium.resolve());
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    write_file_atomically(o->output, encode(built.table, format, o->half));
+    if (!o->quiet)
+      std::cout << built.summary << "built in " << format_number(std::round(ms * 100) / 100) << " ms\nwritten: " << o->output << '\n';
+  };
+}
+
+}  // namespace bssrdf::cli

@@ -1,0 +1,163 @@
+#include "bssrdf/lut/albedo_radius_table.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "bssrdf/error.hpp"
+#include "bssrdf/fresnel.hpp"
+#include "bssrdf/lut/interpolation.hpp"
+#include "bssrdf/lut/parallel.hpp"
+#include "bssrdf/models/photon_beam_diffusion.hpp"
+#include "bssrdf/single_scattering.hpp"
+
+namespace bssrdf {
+namespace {
+
+constexpr double kTwoPi = 2 * std::numbers::pi;
+
+// Integral of the Catmull-Rom spline through (x_j, f_j): per interval h (f0 + f1)/2 + h^2 (d0 - d1)/12
+// with the spline's slopes d (centred differences, one-sided at the ends). cumulative[j] at x_j.
+std::vector<double> catmull_rom_cumulative(const std::vector<double>& x, const double* f) {
+  const std::size_t n = x.size();
+  const auto slope = [&](std::size_t j) {
+    if (j == 0) return (f[1] - f[0]) / (x[1] - x[0]);
+    if (j + 1 == n) return (f[n - 1] - f[n - 2]) / (x[n - 1] - x[n - 2]);
+    return (f[j + 1] - f[j - 1]) / (x[j + 1] - x[j - 1]);
+  };
+  std::vector<double> cum(n, 0.0);
+  for (std::size_t j = 0; j + 1 < n; ++j) {
+    const double h = x[j + 1] - x[j];
+    cum[j + 1] = cum[j] + h * (f[j] + f[j + 1]) / 2 + h * h * (slope(j) - slope(j + 1)) / 12;
+  }
+  return cum;
+}
+
+}  // namespace
+
+AlbedoRadiusLayout AlbedoRadiusLayout::pbrt() {
+  AlbedoRadiusLayout l;
+  for (int i = 0; i < 100; ++i) l.albedo.push_back((1 - std::exp(-8.0 * i / 99.0)) / (1 - std::exp(-8.0)));
+  l.radius.push_back(0);
+  l.radius.push_back(0.0025);
+  for (int j = 2; j < 64; ++j) l.radius.push_back(l.radius.back() * 1.2);
+  return l;
+}
+
+AlbedoRadiusLayout AlbedoRadiusLayout::family(std::size_t albedos, std::size_t radii, double r_max) {
+  if (albedos < 4 || radii < 4) throw InvalidInput("table size", std::to_string(albedos) + " x " + std::to_string(radii), ">= 4 x 4");
+  AlbedoRadiusLayout l;
+  const double a = static_cast<double>(albedos - 1);
+  for (std::size_t i = 0; i < albedos; ++i) l.albedo.push_back((1 - std::exp(-8.0 * i / a)) / (1 - std::exp(-8.0)));
+  const double ratio = std::pow(r_max / 0.0025, 1.0 / static_cast<double>(radii - 2));
+  l.radius.push_back(0);
+  l.radius.push_back(0.0025);
+  for (std::size_t j = 2; j < radii; ++j) l.radius.push_back(l.radius.back() * ratio);
+  return l;
+}
+
+AlbedoRadiusTable build_albedo_radius_table(const AlbedoRadiusLayout& layout, double g, double eta,
+                                            const AlbedoRadiusOptions& options) {
+  if (!(options.tolerance > 0 && options.tolerance < 1))
+    throw InvalidInput("tolerance", format_number(options.tolerance), "0 < tolerance < 1");
+  if (!(g > -1 && g < 1)) throw InvalidInput("g", format_number(g), "-1 < g < 1");
+  if (!(eta > 0) || !std::isfinite(eta)) throw InvalidInput("eta", format_number(eta), "> 0 and finite");
+  AlbedoRadiusTable t;
+  t.g = g;
+  t.eta = eta;
+  t.layout = layout;
+  const std::size_t rows = t.rows(), cols = t.columns();
+  const auto b = improved_boundary(eta);
+
+  // One quadrature order for the table: the largest any of a few albedos needs (optical units).
+  for (double rho : {0.3, 0.9, 0.99, 0.999})
+    t.quadrature_order = std::max(t.quadrature_order, photon_beam_diffusion::samples_for_tolerance(rho * (1 - g) / (1 - rho * g), g, eta, options.tolerance));
+
+  // Single scattering with sigma_t = 1 is rho * S(r): one integral per column.
+  const auto unit_scattering = reduce(0.0, 1.0, g, eta);
+  std::vector<double> single(cols, 0.0);
+  for (std::size_t j = 0; j < cols; ++j)
+    if (layout.radius[j] > 0)
+      single[j] = kTwoPi * layout.radius[j] * single_scattering_reflectance(unit_scattering, layout.radius[j], t.quadrature_order);
+
+  t.profile.assign(rows * cols, 0.0);
+  t.cdf.assign(rows * cols, 0.0);
+  t.effective_albedo.assign(rows, 0.0);
+  parallel_for(rows, options.threads, [&](std::size_t i) {
+    const double rho = layout.albedo[i];
+    const auto m = reduce(1 - rho, rho, g, eta);  // sigma_t = 1
+    double* row = &t.profile[i * cols];
+    for (std::size_t j = 0; j < cols; ++j) {
+      const double r = layout.radius[j];
+      // 2 pi r R vanishes at r = 0 (R_ms is finite there; R_ss ~ 1/r is handled by the column factor).
+      row[j] = rho * single[j] + (r > 0 && rho > 0 ? kTwoPi * r * photon_beam_diffusion::multiple_scattering(m, b, r, t.quadrature_order) : 0.0);
+    }
+    const auto cum = catmull_rom_cumulative(layout.radius, row);
+    t.effective_albedo[i] = cum.back();
+    for (std::size_t j = 0; j < cols; ++j) t.cdf[i * cols + j] = cum.back() > 0 ? cum[j] / cum.back() : 0.0;
+  });
+  return t;
+}
+
+double AlbedoRadiusTable::interpolate(double albedo, double r) const {
+  const auto wa = catmull_rom_weights(layout.albedo, albedo);
+  const auto wr = catmull_rom_weights(layout.radius, r);
+  double sum = 0;
+  for (int a = 0; a < 4; ++a) {
+    const int i = wa.offset + a;
+    if (i < 0 || i >= static_cast<int>(rows()) || wa.weight[a] == 0) continue;
+    for (int k = 0; k < 4; ++k) {
+      const int j = wr.offset + k;
+      if (j < 0 || j >= static_cast<int>(columns()) || wr.weight[k] == 0) continue;
+      sum += wa.weight[a] * wr.weight[k] * profile[static_cast<std::size_t>(i) * columns() + static_cast<std::size_t>(j)];
+    }
+  }
+  return sum;
+}
+
+double AlbedoRadiusTable::albedo_from_effective_albedo(double rho_eff) const {
+  const auto at = [&](double a) { return bssrdf::interpolate(layout.albedo, effective_albedo, a); };
+  double lo = layout.albedo.front(), hi = layout.albedo.back();
+  if (rho_eff <= at(lo)) return lo;
+  if (rho_eff >= at(hi)) return hi;
+  for (int k = 0; k < 100 && hi - lo > 1e-15; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (at(mid) < rho_eff ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+LookupTable to_lookup_table(const AlbedoRadiusTable& t, const TableContext& context, const std::string& layout_name) {
+  LookupTable out;
+  out.kind = "albedo-radius";
+  out.width = t.columns();
+  out.height = t.rows();
+  describe(out, context);
+  out.set("bssrdf:g", t.g);
+  out.set("bssrdf:eta", t.eta);
+  out.set("bssrdf:unit", std::string("mean free path 1/sigma_t (optical units, sigma_t = 1)"));
+  out.set("bssrdf:distance", std::string("radius r on the surface from the point of incidence, in mean free paths 1/sigma_t (unreduced)"));
+  out.set("bssrdf:normalization", std::string("per_entered_flux; profile = 2 pi r R(r) (multiple + single scattering)"));
+  out.set("bssrdf:layout", layout_name);
+  out.set("bssrdf:grid", layout_name == "pbrt"
+                              ? std::string("rows: rho_i = (1 - exp(-8 i / 99)) / (1 - exp(-8)), i = 0..99; columns: r_0 = 0, r_1 = 0.0025, r_j = 1.2 r_{j-1}, j < 64")
+                              : std::string("rows: rho_i = (1 - exp(-8 i / (n - 1))) / (1 - exp(-8)); columns: r_0 = 0, r_1 = 0.0025, geometric to r_max; see the albedo and radius channels"));
+  out.set("bssrdf:interpolation", std::string("catmull-rom in albedo and in radius (pbrt's CatmullRomWeights)"));
+  out.set("bssrdf:quadrature_order", t.quadrature_order);
+  out.set("bssrdf:cdf", std::string("per row: Catmull-Rom integral of the profile from 0 to r_j over effective_albedo"));
+  std::vector<double> radius, albedo, rho_eff;
+  for (std::size_t i = 0; i < t.rows(); ++i)
+    for (std::size_t j = 0; j < t.columns(); ++j) {
+      radius.push_back(t.layout.radius[j]);
+      albedo.push_back(t.layout.albedo[i]);
+      rho_eff.push_back(t.effective_albedo[i]);
+    }
+  out.add_channel("profile", "2 pi r R(r) at (albedo row, radius column), per mean free path", t.profile);
+  out.add_channel("cdf", "row CDF of the profile", t.cdf);
+  out.add_channel("radius", "r, mean free paths (same in every row)", radius);
+  out.add_channel("albedo", "single-scattering albedo rho = sigma_s / sigma_t of the row", albedo);
+  out.add_channel("effective_albedo", "rho_eff = int 2 pi r R dr of the row (the albedo inversion table)", rho_eff);
+  return out;
+}
+
+}  // namespace bssrdf

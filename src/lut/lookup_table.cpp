@@ -1,0 +1,77 @@
+#include "bssrdf/lut/lookup_table.hpp"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "bssrdf/error.hpp"
+
+namespace bssrdf {
+
+void LookupTable::add_channel(std::string name, std::string description, std::vector<double> values) {
+  if (values.size() != width * height)
+    throw InvalidInput("table channel " + name, std::to_string(values.size()) + " values",
+                       std::to_string(width * height) + " (width x height)");
+  for (const auto& c : channels)
+    if (c.name == name) throw InvalidInput("table channel", "'" + name + "'", "a name not used yet");
+  channels.push_back({std::move(name), std::move(description), std::move(values)});
+}
+
+void LookupTable::set(const std::string& name, AttributeValue value) {
+  for (auto& a : attributes)
+    if (a.name == name) {
+      a.value = std::move(value);
+      return;
+    }
+  attributes.push_back({name, std::move(value)});
+}
+
+const TableChannel& LookupTable::channel(const std::string& name) const {
+  for (const auto& c : channels)
+    if (c.name == name) return c;
+  throw InvalidInput("table channel", "'" + name + "'", "one of the table's channels");
+}
+
+const AttributeValue* LookupTable::attribute(const std::string& name) const {
+  for (const auto& a : attributes)
+    if (a.name == name) return &a.value;
+  return nullptr;
+}
+
+std::string to_json(const LookupTable& table) {
+  // ordered_json keeps the attribute order as written, so the file reads top-down.
+  nlohmann::ordered_json doc;
+  doc["format"] = "bssrdf-lut";
+  doc["version"] = 1;
+  doc["kind"] = table.kind;
+  doc["width"] = table.width;
+  doc["height"] = table.height;
+  auto& attributes = doc["attributes"] = nlohmann::ordered_json::object();
+  for (const auto& a : table.attributes)
+    std::visit([&](const auto& v) { attributes[a.name] = v; }, a.value);
+  doc["channels"] = nlohmann::ordered_json::array();
+  for (const auto& c : table.channels) {
+    nlohmann::ordered_json values = nlohmann::ordered_json::array();
+    for (double v : c.values) values.push_back(std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr));
+    doc["channels"].push_back({{"name", c.name}, {"description", c.description}, {"values", std::move(values)}});
+  }
+  return doc.dump(1) + "\n";
+}
+
+std::string to_csv(const LookupTable& table) {
+  std::ostringstream out;
+  const bool two_d = table.height > 1;
+  if (two_d) out << "row,column";
+  for (std::size_t i = 0; i < table.channels.size(); ++i) out << (i || two_d ? "," : "") << table.channels[i].name;
+  out << '\n';
+  for (std::size_t y = 0; y < table.height; ++y)
+    for (std::size_t x = 0; x < table.width; ++x) {
+      if (two_d) out << y << ',' << x;
+      for (std::size_t i = 0; i < table.channels.size(); ++i)
+        out << (i || two_d ? "," : "") << format_number(table.channels[i].values[y * table.width + x]);
+      out << '\n';
+    }
+  return out.str();
+}
+
+}  // namespace bssrdf

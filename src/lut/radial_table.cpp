@@ -1,0 +1,308 @@
+#include "bssrdf/lut/radial_table.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "bssrdf/error.hpp"
+#include "bssrdf/lut/parallel.hpp"
+
+namespace bssrdf {
+namespace {
+
+constexpr double kTwoPi = 2 * std::numbers::pi;
+
+struct Probe {
+  double total = 0, r_lo = 0, r_hi = 0;
+  double decay_length = 0;                // -1 / (d ln R / dr) at r_hi
+  std::vector<double> log_r, cumulative;  // for the inner disc below the table
+};
+
+// R on a geometric grid of 16 points per decade from 1e-5 ell until the tail beyond is negligible;
+// trapezoid in ln r of f = 2 pi r^2 R.
+Probe probe(const Model& model, const Reduced<double>& m, double energy, std::size_t& evaluations) {
+  const double h = std::log(10.0) / 16;
+  Probe p;
+  double u = std::log(1e-5 * m.ell);
+  double f_prev = kTwoPi * std::exp(2 * u) * model.reflectance(m, std::exp(u));
+  double cum = f_prev;  // inner disc: exact for R ~ 1/r, negligible anyway
+  p.log_r.push_back(u);
+  p.cumulative.push_back(cum);
+  const double u_stop = std::log(1e8 * m.ell);
+  double f_max = f_prev;
+  while (u < u_stop) {
+    u += h;
+    const double f = kTwoPi * std::exp(2 * u) * model.reflectance(m, std::exp(u));
+    ++evaluations;
+    cum += 0.5 * h * (f + f_prev);
+    p.log_r.push_back(u);
+    p.cumulative.push_back(cum);
+    f_max = std::max(f_max, f);
+    // Past the peak and decaying: a geometric tail estimate bounds what is left.
+    const double q = f / f_prev;
+    f_prev = f;
+    if (std::exp(u) > m.ell && q < 1 && f * h * q / (1 - q) < 1e-7 * cum) break;
+    if (!std::isfinite(f) || f_max == 0) break;
+  }
+  p.total = cum;
+  const auto radius_at = [&](double target) {
+    const auto it = std::lower_bound(p.cumulative.begin(), p.cumulative.end(), target);
+    if (it == p.cumulative.begin()) return std::exp(p.log_r.front());
+    if (it == p.cumulative.end()) return std::exp(p.log_r.back());
+    const std::size_t j = static_cast<std::size_t>(it - p.cumulative.begin());
+    const double t = (target - p.cumulative[j - 1]) / (p.cumulative[j] - p.cumulative[j - 1]);
+    return std::exp(p.log_r[j - 1] + t * (p.log_r[j] - p.log_r[j - 1]));
+  };
+  p.r_lo = radius_at(0.5 * (1 - energy) * p.total);
+  p.r_hi = radius_at(0.5 * (1 + energy) * p.total);
+  // Local decay length of R at r_hi, from two probe points around it.
+  const double a = p.r_hi / 1.2, b = p.r_hi * 1.2;
+  const double slope = (std::log(model.reflectance(m, b)) - std::log(model.reflectance(m, a))) / (b - a);
+  evaluations += 2;
+  p.decay_length = slope < 0 && std::isfinite(slope) ? -1 / slope : p.r_hi;
+  return p;
+}
+
+double cumulative_from_probe(const Probe& p, double r) {
+  const double u = std::log(r);
+  if (u <= p.log_r.front()) return p.cumulative.front() * std::exp(u - p.log_r.front());
+  return interpolate(p.log_r, p.cumulative, u, Interpolation::linear);
+}
+
+// The grid coordinate x = ln r + r / L: logarithmic where r << L (the near field, R ~ 1/r) and
+// linear where r >> L (the exponential far field), so neither end is oversampled.
+struct GridMap {
+  double L;
+  double x(double r) const { return std::log(r) + r / L; }
+  double r(double x_value) const {  // Newton on ln r + r/L = x, from the larger of the two asymptotes
+    // Both asymptotes overestimate r; Newton on the convex f(y) = y + e^y / L then descends monotonically.
+    double y = x_value;
+    if (x_value > std::log(L)) y = std::min(y, std::log(L * (x_value - std::log(L))));
+    for (int i = 0; i < 60; ++i) {
+      const double e = std::exp(y), f = y + e / L - x_value, step = f / (1 + e / L);
+      y -= step;
+      if (std::abs(step) < 1e-15 * std::max(1.0, std::abs(y))) break;
+    }
+    return std::exp(y);
+  }
+  double dr_dx(double r) const { return r * L / (L + r); }
+};
+
+// Values at the nodes and at the two check points of every interval, for all channels.
+struct GridValues {
+  std::vector<double> log_r;  // holds x: the grid coordinate
+  std::vector<std::vector<double>> node, check;  // [channel][j], check: [channel][2 j + k]
+};
+
+GridValues evaluate(const Model& model, const std::vector<Reduced<double>>& media, const GridMap& map, double u0,
+                    double u1, std::size_t n, unsigned threads) {
+  GridValues g;
+  const double h = (u1 - u0) / static_cast<double>(n - 1);
+  for (std::size_t j = 0; j < n; ++j) g.log_r.push_back(j + 1 == n ? u1 : u0 + h * static_cast<double>(j));
+  const std::size_t channels = media.size();
+  g.node.assign(channels, std::vector<double>(n));
+  g.check.assign(channels, std::vector<double>(2 * (n - 1)));
+  // Item = (channel, node j): the node and the check points of interval j.
+  parallel_for(channels * n, threads, [&](std::size_t item) {
+    const std::size_t c = item / n, j = item % n;
+    g.node[c][j] = model.reflectance(media[c], map.r(g.log_r[j]));
+    if (j + 1 < n)
+      for (int k = 0; k < 2; ++k)
+        g.check[c][2 * j + k] = model.reflectance(media[c], map.r(g.log_r[j] + kCheckPoint[k] * (g.log_r[j + 1] - g.log_r[j])));
+  });
+  return g;
+}
+
+// Worst relative interpolation error at the check points inside each channel's own range. For
+// linear interpolation the error t(1 - t) peaks at the midpoint, 1.5x its value at the check points.
+double worst_error(const GridValues& g, const std::vector<Probe>& probes, const GridMap& map, Interpolation scheme) {
+  double worst = 0;
+  const std::size_t n = g.log_r.size();
+  const double scale = scheme == Interpolation::linear ? 1.5 : 1.0;
+  for (std::size_t c = 0; c < g.node.size(); ++c) {
+    const double lo = map.x(probes[c].r_lo), hi = map.x(probes[c].r_hi);
+    for (std::size_t j = 0; j + 1 < n; ++j)
+      for (int k = 0; k < 2; ++k) {
+        const double u = g.log_r[j] + kCheckPoint[k] * (g.log_r[j + 1] - g.log_r[j]);
+        if (u < lo || u > hi) continue;
+        const double exact = g.check[c][2 * j + k];
+        const double approx = interpolate(g.log_r, g.node[c], u, scheme);
+        const double error = std::abs(approx - exact) / std::max(std::abs(exact), 1e-300);
+        worst = std::max(worst, scale * error);
+      }
+  }
+  return worst;
+}
+
+}  // namespace
+
+void RadialTableOptions::validate() const {
+  if (!(tolerance > 0 && tolerance < 1)) throw InvalidInput("tolerance", format_number(tolerance), "0 < tolerance < 1");
+  if (!(energy > 0 && energy < 1)) throw InvalidInput("energy", format_number(energy), "0 < energy < 1");
+  if (max_size < 4) throw InvalidInput("max table size", std::to_string(max_size), ">= 4");
+}
+
+double RadialTable::grid_coordinate(double r) const { return std::log(r) + r / decay_length; }
+
+double RadialTable::interpolate(std::size_t channel, double r) const {
+  if (!(r >= radius.front() && r <= radius.back())) return 0;
+  std::vector<double> x(radius.size());
+  for (std::size_t j = 0; j < radius.size(); ++j) x[j] = grid_coordinate(radius[j]);
+  return bssrdf::interpolate(x, reflectance[channel], grid_coordinate(r), options.interpolation);
+}
+
+RadialTable build_radial_table(const Medium& medium, const Model& model, const RadialTableOptions& options) {
+  options.validate();
+  medium.validate();
+  RadialTable table;
+  table.options = options;
+  table.channel_names = medium.channel_names;
+  const std::size_t channels = medium.channels();
+  std::vector<Reduced<double>> media;
+  for (std::size_t c = 0; c < channels; ++c) media.push_back(medium.reduced(c));
+
+  std::vector<Probe> probes(channels);
+  std::vector<std::size_t> probe_evaluations(channels, 0);
+  parallel_for(channels, options.threads,
+               [&](std::size_t c) { probes[c] = probe(model, media[c], options.energy, probe_evaluations[c]); });
+  for (auto e : probe_evaluations) table.evaluations += e;
+  double r_min = probes[0].r_lo, r_max = probes[0].r_hi;
+  for (const auto& p : probes) {
+    r_min = std::min(r_min, p.r_lo);
+    r_max = std::max(r_max, p.r_hi);
+    table.total_reflectance.push_back(p.total);
+    table.range_min.push_back(p.r_lo);
+    table.range_max.push_back(p.r_hi);
+  }
+  double L = probes[0].decay_length;
+  for (const auto& p : probes) L = std::max(L, p.decay_length);
+  const GridMap map{L};
+  table.decay_length = L;
+  const double u0 = map.x(r_min), u1 = map.x(r_max);
+
+  // Smallest N meeting the tolerance: grow geometrically (guided by the error's order) until one
+  // passes, then bisect between the last failure and the first success to within 3 %.
+  const double order = options.interpolation == Interpolation::linear ? 2.0 : 3.0;
+  const auto trial = [&](std::size_t n) {
+    auto g = evaluate(model, media, map, u0, u1, n, options.threads);
+    table.evaluations += channels * (3 * n - 2);
+    const double e = worst_error(g, probes, map, options.interpolation);
+    return std::pair{std::move(g), e};
+  };
+  std::size_t fail = 1, n = 16;
+  auto [best, best_error] = trial(n);
+  while (best_error > options.tolerance) {
+    fail = n;
+    if (n >= options.max_size)
+      throw InvalidInput("tolerance", format_number(options.tolerance),
+                         "reachable with at most " + std::to_string(options.max_size) + " radii (error " +
+                             format_number(best_error) + " there)");
+    const double grow = std::pow(best_error / (0.8 * options.tolerance), 1 / order);
+    n = std::min(options.max_size, std::max(n + 1, static_cast<std::size_t>(std::ceil(static_cast<double>(n - 1) * std::min(grow, 8.0))) + 1));
+    std::tie(best, best_error) = trial(n);
+  }
+  std::size_t pass = n;
+  while (pass - fail > std::max<std::size_t>(1, pass / 32)) {
+    const std::size_t mid = (pass + fail) / 2;
+    auto [g, e] = trial(mid);
+    if (e <= options.tolerance) {
+      pass = mid;
+      best = std::move(g);
+      best_error = e;
+    } else {
+      fail = mid;
+    }
+  }
+  table.max_error = best_error;
+
+  const std::size_t N = best.log_r.size();
+  for (double x : best.log_r) table.radius.push_back(map.r(x));
+  table.radius.front() = r_min;
+  table.radius.back() = r_max;
+  for (std::size_t j = 0; j < N; ++j) table.u.push_back(static_cast<double>(j) / static_cast<double>(N - 1));
+  for (std::size_t c = 0; c < channels; ++c) {
+    const auto& R = best.node[c];
+    std::vector<double> ring(N), cum(N);
+    for (std::size_t j = 0; j < N; ++j) ring[j] = kTwoPi * table.radius[j] * R[j];
+    // 2-point Gauss-Legendre per interval in x (the check points), fourth order.
+    cum[0] = cumulative_from_probe(probes[c], table.radius[0]);
+    for (std::size_t j = 0; j + 1 < N; ++j) {
+      const double du = best.log_r[j + 1] - best.log_r[j];
+      double piece = 0;
+      for (int k = 0; k < 2; ++k) {
+        const double r = map.r(best.log_r[j] + kCheckPoint[k] * du);
+        piece += 0.5 * du * kTwoPi * r * map.dr_dx(r) * best.check[c][2 * j + k];
+      }
+      cum[j + 1] = cum[j] + piece;
+    }
+    const double in_table = cum.back();
+    std::vector<double> cdf(N), inverse(N);
+    for (std::size_t j = 0; j < N; ++j) cdf[j] = cum[j] / in_table;
+    // Inverse CDF: linear in (cdf, x) between nodes; below the first node cdf ~ r (R ~ 1/r).
+    for (std::size_t j = 0; j < N; ++j) {
+      const double target = table.u[j];
+      if (target <= cdf[0]) {
+        inverse[j] = table.radius[0] * target / cdf[0];
+        continue;
+      }
+      const std::size_t i = std::min<std::size_t>(N - 1, static_cast<std::size_t>(std::lower_bound(cdf.begin(), cdf.end(), target) - cdf.begin()));
+      const double t = cdf[i] > cdf[i - 1] ? (target - cdf[i - 1]) / (cdf[i] - cdf[i - 1]) : 1.0;
+      inverse[j] = map.r(best.log_r[i - 1] + t * (best.log_r[i] - best.log_r[i - 1]));
+    }
+    inverse[N - 1] = table.radius.back();
+    table.reflectance.push_back(R);
+    table.ring.push_back(std::move(ring));
+    table.cdf.push_back(std::move(cdf));
+    table.inverse_cdf.push_back(std::move(inverse));
+    table.table_reflectance.push_back(in_table);
+  }
+  return table;
+}
+
+LookupTable to_lookup_table(const RadialTable& t, const TableContext& context) {
+  LookupTable out;
+  out.kind = "radial";
+  out.width = t.size();
+  out.height = 1;
+  const double mm = millimetres_per(context.unit);
+  const std::string u(symbol(context.unit));
+  const auto scaled = [](const std::vector<double>& v, double s) {
+    std::vector<double> o(v);
+    for (auto& x : o) x *= s;
+    return o;
+  };
+  describe(out, context);
+  out.set("bssrdf:unit", u);
+  out.set("bssrdf:distance", "radius r on the surface from the point of incidence, in " + u);
+  out.set("bssrdf:normalization",
+          std::string("per_entered_flux: R(r) is the exitance at r from a normally incident pencil beam per unit flux that entered the medium"));
+  out.set("bssrdf:grid", "uniform in x = ln(r / " + u + ") + r / L, L = bssrdf:decay_length (logarithmic near 0, linear in the exponential tail): x_j = x(r_min) + (x(r_max) - x(r_min)) j / (N - 1), j = 0 .. N - 1; the radius channel holds r_j");
+  out.set("bssrdf:decay_length", t.decay_length / mm);
+  out.set("bssrdf:size", static_cast<int>(t.size()));
+  out.set("bssrdf:r_min", t.radius.front() / mm);
+  out.set("bssrdf:r_max", t.radius.back() / mm);
+  out.set("bssrdf:interpolation", std::string(to_string(t.options.interpolation)) + " in x");
+  out.set("bssrdf:tolerance", t.options.tolerance);
+  out.set("bssrdf:max_error", t.max_error);
+  out.set("bssrdf:energy", t.options.energy);
+  out.set("bssrdf:cdf", std::string("cdf.<c>(r_j) = int_0^{r_j} 2 pi r R dr / int_0^{r_max} 2 pi r R dr; inverse_cdf.<c> at u_j = j / (N - 1)"));
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c) {
+    const auto& name = t.channel_names[c];
+    out.set("bssrdf:total_reflectance." + name, t.total_reflectance[c]);
+    out.set("bssrdf:table_reflectance." + name, t.table_reflectance[c]);
+    out.set("bssrdf:range." + name, format_number(t.range_min[c] / mm) + " to " + format_number(t.range_max[c] / mm) + " " + u);
+  }
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
+    out.add_channel(t.channel_names[c], "R(r), 1/" + u + "^2 per unit entered flux", scaled(t.reflectance[c], mm * mm));
+  out.add_channel("radius", "r, " + u, scaled(t.radius, 1 / mm));
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
+    out.add_channel("ring." + t.channel_names[c], "2 pi r R(r), 1/" + u, scaled(t.ring[c], mm));
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
+    out.add_channel("cdf." + t.channel_names[c], "CDF of 2 pi r R(r) over [0, r_max]", t.cdf[c]);
+  out.add_channel("u", "CDF value u_j = j / (N - 1) of the inverse_cdf channels", t.u);
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
+    out.add_channel("inverse_cdf." + t.channel_names[c], "radius r with cdf(r) = u_j, " + u, scaled(t.inverse_cdf[c], 1 / mm));
+  return out;
+}
+
+}  // namespace bssrdf

@@ -1,0 +1,44 @@
+#include "bssrdf/lut/table_context.hpp"
+
+#include "bssrdf/error.hpp"
+
+namespace bssrdf {
+namespace {
+
+std::string join(const std::vector<double>& values, double scale) {
+  std::string out;
+  for (double v : values) out += (out.empty() ? "" : ",") + format_number(v * scale);
+  return out;
+}
+
+}  // namespace
+
+void describe(LookupTable& table, const TableContext& context) {
+  table.set("bssrdf:tool", std::string("bssrdf ") + BSSRDF_VERSION);
+  table.set("bssrdf:kind", table.kind);
+  if (context.material) {
+    table.set("bssrdf:material", context.material->name);
+    table.set("bssrdf:material_source", context.material->source);
+    table.set("bssrdf:material_citation", context.material->citation);
+  } else {
+    table.set("bssrdf:material", std::string("(coefficients given)"));
+  }
+  if (context.model) {
+    table.set("bssrdf:model", context.model->name());
+    table.set("bssrdf:model_description", context.model->description());
+    table.set("bssrdf:includes_single_scattering", std::string(context.model->includes_single_scattering() ? "yes" : "no"));
+  }
+  if (context.medium) {
+    const double mm = millimetres_per(context.unit);
+    std::string names;
+    for (const auto& n : context.medium->channel_names) names += (names.empty() ? "" : ",") + n;
+    table.set("bssrdf:channels", names);
+    table.set("bssrdf:eta", context.medium->eta);
+    const std::string per_unit = "1/" + std::string(symbol(context.unit));
+    table.set("bssrdf:sigma_a", join(context.medium->sigma_a, mm) + " " + per_unit);
+    table.set("bssrdf:sigma_s", join(context.medium->sigma_s, mm) + " " + per_unit);
+    table.set("bssrdf:g", join(context.medium->g, 1.0));
+  }
+}
+
+}  // namespace bssrdf

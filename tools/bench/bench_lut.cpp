@@ -1,0 +1,123 @@
+// Lookup-table construction speed. The headline: pbrt-v3's 100 x 64 photon-beam-diffusion
+// albedo-radius table built the pbrt way (100 + 100 midpoint samples per evaluation, rows in
+// parallel) against ours with the same layout, in the same process, with both tables' accuracy
+// against a converged evaluation of the same model (1024-point Gauss-Legendre); then a radial
+// table per material and the whole database.
+//
+//   bench_lut [repetitions=9]
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <numbers>
+#include <thread>
+#include <vector>
+
+#include "bssrdf/lut/albedo_radius_table.hpp"
+#include "bssrdf/lut/parallel.hpp"
+#include "bssrdf/lut/radial_table.hpp"
+#include "bssrdf/materials.hpp"
+#include "bssrdf/models/photon_beam_diffusion.hpp"
+#include "pbrt_style.hpp"
+
+using namespace bssrdf;
+
+namespace {
+
+// pbrt's ComputeBeamDiffusionBSSRDF: sigma_t = 1, rho = sigma_s; profile 2 pi r (MS + SS).
+std::vector<double> pbrt_style_table(const AlbedoRadiusLayout& layout, double g, double eta, unsigned threads) {
+  const std::size_t rows = layout.albedo.size(), cols = layout.radius.size();
+  std::vector<double> profile(rows * cols);
+  const auto b = improved_boundary(eta);
+  parallel_for(rows, threads, [&](std::size_t i) {
+    const auto m = reduce(1 - layout.albedo[i], layout.albedo[i], g, eta);
+    for (std::size_t j = 0; j < cols; ++j)
+      profile[i * cols + j] = 2 * std::numbers::pi * layout.radius[j] * bench::pbrt_style_pbd(m, b, layout.radius[j]);
+  });
+  return profile;
+}
+
+template <class F>
+double median_ms(F&& f, int repetitions) {
+  std::vector<double> t;
+  for (int k = 0; k < repetitions; ++k) {
+    const auto start = std::chrono::steady_clock::now();
+    f();
+    t.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::nth_element(t.begin(), t.begin() + repetitions / 2, t.end());
+  return t[repetitions / 2];
+}
+
+// Worst and median relative error over cells holding at least 1e-3 of their row's peak (r > 0).
+std::pair<double, double> errors(const std::vector<double>& table, const std::vector<double>& reference, std::size_t cols) {
+  std::vector<double> e;
+  for (std::size_t i = 0; i < table.size() / cols; ++i) {
+    double peak = 0;
+    for (std::size_t j = 0; j < cols; ++j) peak = std::max(peak, reference[i * cols + j]);
+    for (std::size_t j = 1; j < cols; ++j)
+      if (reference[i * cols + j] > 1e-3 * peak) e.push_back(std::abs(table[i * cols + j] / reference[i * cols + j] - 1));
+  }
+  std::sort(e.begin(), e.end());
+  return {e.back(), e[e.size() / 2]};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int repetitions = argc > 1 ? std::max(1, std::atoi(argv[1])) : 9;
+  const auto layout = AlbedoRadiusLayout::pbrt();
+  const std::size_t cols = layout.radius.size();
+  std::printf("pbrt-layout albedo-radius table (100 x 64, photon beam diffusion), median of %d builds, %u hardware threads\n",
+              repetitions, std::thread::hardware_concurrency());
+  std::printf("  case (g, eta)   builder                         threads   ms      worst err   median err   speed-up vs pbrt 1 thread\n");
+  for (const auto& [g, eta] : {std::pair{0.0, 1.3}, std::pair{0.9, 1.4}}) {
+    // Reference: the same model converged (the table's own physics, quadrature error ~1e-10).
+    std::vector<double> reference(layout.albedo.size() * cols);
+    {
+      const auto b = improved_boundary(eta);
+      parallel_for(layout.albedo.size(), 0, [&](std::size_t i) {
+        const auto m = reduce(1 - layout.albedo[i], layout.albedo[i], g, eta);
+        for (std::size_t j = 0; j < cols; ++j)
+          reference[i * cols + j] = layout.radius[j] > 0 ? 2 * std::numbers::pi * layout.radius[j] * photon_beam_diffusion::reflectance(m, b, layout.radius[j], 1024) : 0.0;
+      });
+    }
+    std::vector<double> pbrt;
+    double pbrt_1 = 0;
+    for (unsigned threads : {1u, 2u}) {
+      const double ms = median_ms([&] { pbrt = pbrt_style_table(layout, g, eta, threads); }, repetitions);
+      if (threads == 1) pbrt_1 = ms;
+      const auto [worst, median] = errors(pbrt, reference, cols);
+      std::printf("  g %.1f eta %.1f  pbrt-style (100+100 midpoint)     %u     %7.2f   %9.2e   %9.2e    %6.1fx\n", g, eta, threads, ms, worst, median, pbrt_1 / ms);
+    }
+    for (double tolerance : {1e-3, 1e-2})
+      for (unsigned threads : {1u, 2u}) {
+        AlbedoRadiusOptions options;
+        options.tolerance = tolerance;
+        options.threads = threads;
+        AlbedoRadiusTable t;
+        const double ms = median_ms([&] { t = build_albedo_radius_table(layout, g, eta, options); }, repetitions);
+        const auto [worst, median] = errors(t.profile, reference, cols);
+        std::printf("  g %.1f eta %.1f  ours, tolerance %.0e (GL %3d)      %u     %7.2f   %9.2e   %9.2e    %6.1fx\n", g, eta, tolerance,
+                    t.quadrature_order, threads, ms, worst, median, pbrt_1 / ms);
+      }
+  }
+
+  const auto db = MaterialDatabase::load(default_materials_dir());
+  std::printf("\nRadial tables (tolerance 1e-3, energy 0.999, Catmull-Rom), one thread, median of %d\n", repetitions);
+  std::printf("  material      model            radii   ms\n");
+  double all_ms = 0;
+  for (const char* model_name : {"pbd", "better-dipole", "burley"}) {
+    const auto model = make_model(model_name);
+    for (const auto& material : db.all()) {
+      RadialTable t;
+      const double ms = median_ms([&] { t = build_radial_table(material.medium, *model, {}); }, repetitions);
+      if (std::string(model_name) == "pbd") all_ms += ms;
+      if (material.name == "Skin1" || material.name == "Marble" || material.name == "Ketchup" || std::string(model_name) == "pbd")
+        std::printf("  %-12s  %-15s  %5zu  %6.2f\n", material.name.c_str(), model_name, t.size(), ms);
+    }
+  }
+  std::printf("  whole database, pbd: %.1f ms\n", all_ms);
+  return 0;
+}
