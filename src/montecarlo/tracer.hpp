@@ -100,6 +100,11 @@ struct BatchTally {
   void reset(std::size_t radial_bins, bool transmission, std::size_t depth_bins);
 };
 
+// Instruction set of the tracer's vector pass: the best available (AVX2 where the processor has
+// it, else SSE2), or SSE2 forced (tests: both give bitwise identical results).
+enum class SimdLevel { best, sse2 };
+bool avx2_available();
+
 struct TraceSettings {
   const RadialBinning* binning = nullptr;
   bool transmission_bins = false;
@@ -108,6 +113,7 @@ struct TraceSettings {
   AbsorptionEstimator absorption = AbsorptionEstimator::implicit_capture;
   double roulette_threshold = 1e-4, roulette_survival = 0.1;
   std::uint64_t max_interactions = 0;
+  SimdLevel simd = SimdLevel::best;
 };
 
 void trace_batch(const ChannelGeometry& geometry, const TraceSettings& settings, Rng& rng,
