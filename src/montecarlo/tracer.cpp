@@ -7,7 +7,9 @@
 #include "tracer.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <limits>
+#include <string_view>
 
 #include "bssrdf/fresnel.hpp"
 #include "fastmath.hpp"
@@ -428,7 +430,12 @@ __attribute__((target("avx2"))) void trace_avx2(const ChannelGeometry& geo, cons
 
 bool avx2_available() {
 #if defined(__x86_64__) || defined(__i386__)
-  static const bool available = __builtin_cpu_supports("avx2");
+  // BSSRDF_MC_SIMD=sse2 in the environment turns AVX2 off (to measure the SSE2 path; the results
+  // are the same either way).
+  static const bool available = [] {
+    const char* forced = std::getenv("BSSRDF_MC_SIMD");
+    return __builtin_cpu_supports("avx2") && !(forced && std::string_view(forced) == "sse2");
+  }();
   return available;
 #else
   return false;
