@@ -83,30 +83,47 @@ template <> struct double_of<u2> { using type = d2; };
 template <> struct double_of<u4> { using type = d4; };
 template <class U> using double_t_of = typename double_of<U>::type;
 
+// The logarithm in two halves around its one division, so a caller can share one reciprocal
+// between several divisions: log_reduce gives f = m - 1 and k; the quotient s = f / (2 + f) is the
+// caller's; log_finish completes. s enters only through s (f^2/2 + R), a correction of relative
+// size below 0.03, so a quotient a few ulp off moves the result by a small fraction of an ulp.
+template <class D>
+struct LogReduced {
+  D f, dk;
+};
+template <class D>
+inline LogReduced<D> log_reduce(D x) {
+  using U = bits_t<D>;
+  U ix = std::bit_cast<U>(x);
+  ix += 0x3ff0000000000000ull - 0x3fe6a09e00000000ull;  // m's threshold sqrt(1/2) moved to 1
+  // k as a double without an integer conversion: 2^52 + (k + 1023) has those bits as mantissa.
+  const D dk = std::bit_cast<D>((ix >> 52) | 0x4330000000000000ull) - (0x1p52 + 1023.0);
+  ix = (ix & 0x000fffffffffffffull) + 0x3fe6a09e00000000ull;
+  return {std::bit_cast<D>(ix) - 1.0, dk};
+}
+template <class D>
+inline D log_finish(LogReduced<D> p, D s) {
+  constexpr double ln2_hi = 6.93147180369123816490e-01, ln2_lo = 1.90821492927058770002e-10;
+  constexpr double Lg1 = 6.666666666666735130e-01, Lg2 = 3.999999999940941908e-01, Lg3 = 2.857142874366239149e-01,
+                   Lg4 = 2.222219843214978396e-01, Lg5 = 1.818357216161805012e-01, Lg6 = 1.531383769920937332e-01,
+                   Lg7 = 1.479819860511658591e-01;
+  const D f = p.f, dk = p.dk;
+  const D hfsq = 0.5 * f * f;
+  const D z = s * s, w = z * z;
+  const D t1 = w * (Lg2 + w * (Lg4 + w * Lg6));
+  const D t2 = z * (Lg1 + w * (Lg3 + w * (Lg5 + w * Lg7)));
+  const D r = t2 + t1;
+  return s * (hfsq + r) + dk * ln2_lo - hfsq + f + dk * ln2_hi;
+}
+
 // ln(x) for a positive normal finite x (no checks: the tracer only passes uniforms in (0, 1]).
 // fdlibm's e_log algorithm (x = 2^k m, m in [sqrt(1/2), sqrt(2)), s = (m - 1)/(m + 1),
 // log m = 2 atanh s with a minimax polynomial of error < 2^-58.45) on its more accurate branch for
 // every x: error below 1 ulp.
 template <class D>
 inline D log_normal(D x) {
-  using U = bits_t<D>;
-  constexpr double ln2_hi = 6.93147180369123816490e-01, ln2_lo = 1.90821492927058770002e-10;
-  constexpr double Lg1 = 6.666666666666735130e-01, Lg2 = 3.999999999940941908e-01, Lg3 = 2.857142874366239149e-01,
-                   Lg4 = 2.222219843214978396e-01, Lg5 = 1.818357216161805012e-01, Lg6 = 1.531383769920937332e-01,
-                   Lg7 = 1.479819860511658591e-01;
-  U ix = std::bit_cast<U>(x);
-  ix += 0x3ff0000000000000ull - 0x3fe6a09e00000000ull;  // m's threshold sqrt(1/2) moved to 1
-  // k as a double without an integer conversion: 2^52 + (k + 1023) has those bits as mantissa.
-  const D dk = std::bit_cast<D>((ix >> 52) | 0x4330000000000000ull) - (0x1p52 + 1023.0);
-  ix = (ix & 0x000fffffffffffffull) + 0x3fe6a09e00000000ull;
-  const D f = std::bit_cast<D>(ix) - 1.0;
-  const D hfsq = 0.5 * f * f;
-  const D s = f / (2.0 + f);
-  const D z = s * s, w = z * z;
-  const D t1 = w * (Lg2 + w * (Lg4 + w * Lg6));
-  const D t2 = z * (Lg1 + w * (Lg3 + w * (Lg5 + w * Lg7)));
-  const D r = t2 + t1;
-  return s * (hfsq + r) + dk * ln2_lo - hfsq + f + dk * ln2_hi;
+  const LogReduced<D> p = log_reduce(x);
+  return log_finish(p, p.f / (2.0 + p.f));
 }
 
 // Uniform in (0, 1] with the 52 top bits of r: 2 - [1, 2), exact, step 2^-52 (for -log u: free
