@@ -325,6 +325,9 @@ template <bool kAnalog, class V>
     // the product of their denominators (2 + f in [1.7, 2.5] and 1 - g + 2 g xi >= 1 - |g| > 0):
     // each quotient within ~3 ulp of the correctly rounded one; in the logarithm that moves the
     // result by a small fraction of an ulp (see log_finish), in the cosine by a few ulp.
+    // Bits: the free path takes the top 52 of one draw; the cosine the top 32 of the other and the
+    // azimuth its low 32 (xoshiro256+'s weak lowest bits, of low linear complexity, only pick among
+    // cells 2^-32 of a turn wide; the quadrant comes from bits 30-31).
     for (int g = 0; g < kLanes; g += V::width) {
       const U rp = load<U>(r_path + g), ra = load<U>(r_angles + g);
       const D xi = uniform_mid32(ra >> 32);

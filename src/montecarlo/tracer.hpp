@@ -20,7 +20,8 @@ inline std::uint64_t splitmix64(std::uint64_t& state) {
 }
 
 // xoshiro256+ (Blackman & Vigna), 53-bit doubles from the top bits. Seeded from (seed, stream,
-// batch) through splitmix64, so every batch has its own stream whatever thread runs it.
+// batch) through splitmix64, so every batch has its own stream whatever thread runs it; the
+// tracer seeds its lanes' generators (the same algorithm) from it.
 class Rng {
  public:
   Rng(std::uint64_t seed, std::uint64_t stream, std::uint64_t batch) {

@@ -5,7 +5,7 @@
 // relative to the first setting (MCML's roulette, 1e-4 / 0.1), measured in the same process,
 // medians over repetitions with different seeds. One thread, so the times are comparable.
 //
-//   bench_montecarlo_estimators [repetitions=5] [photons=200000] [case=0]
+//   bench_montecarlo_estimators [repetitions=5] [photons=200000] [case=0] [absolute=0]
 //   case 0: mua = 1/cm, mus = 100/cm, g = 0.9, n = 1, 100-mfp slab (the MCML speed case)
 //   case 1: the same with n = 1.4;  case 2: mua = 1/cm, mus = 10/cm, g = 0, n = 1 semi-infinite
 //   case 3: half-space albedo' = 0.99, eta = 1.3, g = 0 (the models' validation medium)
@@ -74,6 +74,8 @@ int main(int argc, char** argv) {
   const int repetitions = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
   const auto photons = static_cast<std::uint64_t>(argc > 2 ? std::atof(argv[2]) : 200000);
   const int which = argc > 3 ? std::atoi(argv[3]) : 0;
+  // absolute = 1: print the figures of merit themselves (1/s), to compare builds across processes.
+  const bool absolute = argc > 4 && std::atoi(argv[4]) != 0;
 
   struct Case {
     const char* name;
@@ -147,7 +149,7 @@ int main(int argc, char** argv) {
     // Ratios per repetition (same seed index), then medians.
     const auto ratio = [&](double Merits::*field) {
       std::vector<double> v;
-      for (int k = 0; k < repetitions; ++k) v.push_back(runs[k].*field / (reference[k].*field));
+      for (int k = 0; k < repetitions; ++k) v.push_back(runs[k].*field / (absolute ? 1.0 : reference[k].*field));
       const double m = median(v);
       return std::isfinite(m) ? m : 0.0;  // 0: no such output (T_t of a half-space)
     };
@@ -158,7 +160,9 @@ int main(int argc, char** argv) {
       rd.push_back(m.rd_value);
       se.push_back(m.rd_se);
     }
-    std::printf("%-26s %9.0f %8.1f %8.5f %7.2f %7.2f %7.2f %7.2f %7.2f %7.2f %7.2f %8.6f\n", s.label.c_str(), median(rate),
+    std::printf(absolute ? "%-26s %9.0f %8.1f %8.5f %7.3g %7.3g %7.3g %7.3g %7.3g %7.3g %7.3g %8.6f\n"
+                         : "%-26s %9.0f %8.1f %8.5f %7.2f %7.2f %7.2f %7.2f %7.2f %7.2f %7.2f %8.6f\n",
+                s.label.c_str(), median(rate),
                 median(inter), median(rd), ratio(&Merits::rd), ratio(&Merits::t), ratio(&Merits::absorbed),
                 ratio(&Merits::r_near), ratio(&Merits::r_far), ratio(&Merits::a_top), ratio(&Merits::a_deep), median(se));
   }
