@@ -183,8 +183,9 @@ int main(int argc, char** argv) {
   const MonteCarloOptions defaults;
   std::printf("command: %s\n", command.c_str());
   std::printf("machine: %u hardware threads; load average (1, 5, 15 min) at start: %s\n", cores, load().c_str());
-  std::printf("Medians of %d repetitions, wall-clock time. 'baseline' = MCML's algorithm in this process (1 thread).\n",
+  std::printf("Medians of %d repetitions (each runs every row once, in turn), wall-clock time. 'baseline' = MCML's\n",
               repetitions);
+  std::printf("algorithm in this process (1 thread).\n");
   std::printf("'ours' = run_monte_carlo with its defaults (implicit capture, roulette %g/%g), 'ours mcml-rr' = the same\n",
               defaults.roulette_threshold, defaults.roulette_survival);
   std::printf("with MCML's roulette (1e-4/0.1), 'analog' = analog absorption. Efficiency = ratio of 1/(variance x time)\n");
@@ -195,9 +196,34 @@ int main(int argc, char** argv) {
               "eff R_d", "eff near", "eff far", "R_d");
   for (const Case& c : cases) {
     const double ell = 1 / (c.mua + c.mus * (1 - c.g));
-    std::vector<double> base_rate;
-    std::vector<Costs> base_costs;
-    double base_rd = 0;
+    struct Run {
+      const char* label;
+      AbsorptionEstimator estimator;
+      double threshold, survival;
+      unsigned threads;
+    };
+    const Run runs[] = {
+        {"ours", AbsorptionEstimator::implicit_capture, defaults.roulette_threshold, defaults.roulette_survival, 1},
+        {"ours", AbsorptionEstimator::implicit_capture, defaults.roulette_threshold, defaults.roulette_survival, cores},
+        {"ours mcml-rr", AbsorptionEstimator::implicit_capture, 1e-4, 0.1, cores},
+        {"analog", AbsorptionEstimator::analog, 0, 1, cores},
+    };
+    constexpr int kRuns = sizeof runs / sizeof runs[0];
+    LayerStack stack;
+    stack.channel_names = {"c0"};
+    Layer layer;
+    layer.sigma_a = {c.mua};
+    layer.sigma_s = {c.mus};
+    layer.g = {c.g};
+    layer.n = c.n;
+    layer.thickness = c.thickness_mm;
+    stack.layers.push_back(layer);
+
+    // Repetition k runs the baseline and every configuration once, in turn, so a burst of load
+    // from other processes hits one repetition of each rather than all repetitions of one.
+    std::vector<double> base_rate, rate[kRuns];
+    std::vector<Costs> base_costs, costs[kRuns];
+    double base_rd = 0, rd[kRuns] = {};
     for (int k = 0; k < repetitions; ++k) {
       const auto photons = static_cast<std::uint64_t>(static_cast<double>(c.baseline_photons) * scale);
       const auto b = mcml_baseline(c, photons, 1000 + k);
@@ -207,17 +233,42 @@ int main(int argc, char** argv) {
       for (double v : b.bin_variance_per_photon) cost.bins.push_back(v * seconds_per_photon);
       base_costs.push_back(cost);
       base_rd = b.rd_mean;
+      for (int j = 0; j < kRuns; ++j) {
+        const Run& run = runs[j];
+        MonteCarloOptions o;
+        o.photons = static_cast<std::uint64_t>(static_cast<double>(c.photons) * scale * run.threads / cores);
+        o.threads = run.threads;
+        o.absorption = run.estimator;
+        o.roulette_threshold = run.threshold;
+        o.roulette_survival = run.survival;
+        o.r_max = 5 * ell;
+        o.bins = kProfileBins;
+        o.seed = 1 + k;
+        const auto r = run_monte_carlo(stack, o);
+        const auto& ch = r.channels[0];
+        const double n = static_cast<double>(o.photons), per_photon = r.seconds / n;
+        rate[j].push_back(r.photons_per_second);
+        // variance per photon = n se^2; per bin, the bin's R(r) stderr times its area.
+        Costs ours{ch.diffuse_reflectance.standard_error * ch.diffuse_reflectance.standard_error * n * per_photon, {}};
+        for (int i = 0; i < kProfileBins; ++i) {
+          const double area = std::numbers::pi * (r.bin_outer[i] * r.bin_outer[i] - r.bin_inner[i] * r.bin_inner[i]);
+          const double se = ch.reflectance_stderr[i] * area;
+          ours.bins.push_back(se * se * n * per_photon);
+        }
+        costs[j].push_back(ours);
+        rd[j] = ch.diffuse_reflectance.value;
+      }
     }
     const double base = median(base_rate);
     // Median cost per output over the repetitions.
-    const auto median_cost = [](const std::vector<Costs>& runs, int bin) {
+    const auto median_cost = [](const std::vector<Costs>& list, int bin) {
       std::vector<double> v;
-      for (const auto& r : runs) v.push_back(bin < 0 ? r.rd : r.bins[bin]);
+      for (const auto& r : list) v.push_back(bin < 0 ? r.rd : r.bins[bin]);
       return median(v);
     };
     // Efficiency ratios: R_d, and the median over near / far bins of the per-bin ratios.
-    const auto ratios = [&](const std::vector<Costs>& ours, double& rd, double& near, double& far) {
-      rd = median_cost(base_costs, -1) / median_cost(ours, -1);
+    const auto ratios = [&](const std::vector<Costs>& ours, double& eff_rd, double& near, double& far) {
+      eff_rd = median_cost(base_costs, -1) / median_cost(ours, -1);
       std::vector<double> n, f;
       for (int i = 0; i < kProfileBins; ++i) {
         const double inner = 5 * ell * i / kProfileBins, outer = 5 * ell * (i + 1) / kProfileBins;
@@ -231,63 +282,16 @@ int main(int argc, char** argv) {
     };
     std::printf("%-40s %-15s %12.0f %10.2f %8.2f %8.2f %8.2f %9.2f %9.5f\n", c.name, "baseline/1t", base, 1.0,
                 base / c.mcml_photons_per_second, 1.0, 1.0, 1.0, base_rd);
-    struct Run {
-      const char* label;
-      AbsorptionEstimator estimator;
-      double threshold, survival;
-      unsigned threads;
-    };
-    const Run runs[] = {
-        {"ours", AbsorptionEstimator::implicit_capture, defaults.roulette_threshold, defaults.roulette_survival, 1},
-        {"ours", AbsorptionEstimator::implicit_capture, defaults.roulette_threshold, defaults.roulette_survival, cores},
-        {"ours mcml-rr", AbsorptionEstimator::implicit_capture, 1e-4, 0.1, cores},
-        {"analog", AbsorptionEstimator::analog, 0, 1, cores},
-    };
-    for (const Run& run : runs) {
-      LayerStack stack;
-      stack.channel_names = {"c0"};
-      Layer layer;
-      layer.sigma_a = {c.mua};
-      layer.sigma_s = {c.mus};
-      layer.g = {c.g};
-      layer.n = c.n;
-      layer.thickness = c.thickness_mm;
-      stack.layers.push_back(layer);
-      MonteCarloOptions o;
-      o.photons = static_cast<std::uint64_t>(static_cast<double>(c.photons) * scale * run.threads / cores);
-      o.threads = run.threads;
-      o.absorption = run.estimator;
-      o.roulette_threshold = run.threshold;
-      o.roulette_survival = run.survival;
-      o.r_max = 5 * ell;
-      o.bins = kProfileBins;
-      std::vector<double> rate;
-      std::vector<Costs> costs;
-      double rd = 0;
-      for (int k = 0; k < repetitions; ++k) {
-        o.seed = 1 + k;
-        const auto r = run_monte_carlo(stack, o);
-        const auto& ch = r.channels[0];
-        const double n = static_cast<double>(o.photons), seconds_per_photon = r.seconds / n;
-        rate.push_back(r.photons_per_second);
-        // variance per photon = n se^2; per bin, the bin's R(r) stderr times its area.
-        Costs cost{ch.diffuse_reflectance.standard_error * ch.diffuse_reflectance.standard_error * n * seconds_per_photon, {}};
-        for (int i = 0; i < kProfileBins; ++i) {
-          const double area = std::numbers::pi * (r.bin_outer[i] * r.bin_outer[i] - r.bin_inner[i] * r.bin_inner[i]);
-          const double se = ch.reflectance_stderr[i] * area;
-          cost.bins.push_back(se * se * n * seconds_per_photon);
-        }
-        costs.push_back(cost);
-        rd = ch.diffuse_reflectance.value;
-      }
-      const double ours = median(rate);
+    for (int j = 0; j < kRuns; ++j) {
+      const double ours = median(rate[j]);
       double eff_rd, eff_near, eff_far;
-      ratios(costs, eff_rd, eff_near, eff_far);
+      ratios(costs[j], eff_rd, eff_near, eff_far);
       char name[40];
-      std::snprintf(name, sizeof name, "%s/%ut", run.label, run.threads);
+      std::snprintf(name, sizeof name, "%s/%ut", runs[j].label, runs[j].threads);
       std::printf("%-40s %-15s %12.0f %10.2f %8.2f %8.2f %8.2f %9.2f %9.5f\n", "", name, ours, ours / base,
-                  ours / c.mcml_photons_per_second, eff_rd, eff_near, eff_far, rd);
+                  ours / c.mcml_photons_per_second, eff_rd, eff_near, eff_far, rd[j]);
     }
+    std::fflush(stdout);
   }
   std::printf("\nload average at end: %s\n", load().c_str());
   return 0;
