@@ -8,7 +8,8 @@
 // of merit) of R_d and of R(r) out to 5 transport mean free paths, so estimators that trace
 // cheaper but noisier photons are not flattered. Ours on 1 thread and on all hardware threads.
 //
-//   bench_montecarlo [repetitions=5] [scale=1]      (scale multiplies the photon counts)
+//   bench_montecarlo [repetitions=5] [scale=1] [case=all]
+//   (scale multiplies the photon counts; case 0-3 runs only that case, 0 = the 100-mfp slab)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -160,6 +161,7 @@ struct Costs {
 int main(int argc, char** argv) {
   const int repetitions = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
   const double scale = argc > 2 ? std::atof(argv[2]) : 1.0;
+  const int only = argc > 3 ? std::atoi(argv[3]) : -1;  // one case (0-3), or all
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const double inf = kSemiInfinite;
   const Case cases[] = {
@@ -195,6 +197,7 @@ int main(int argc, char** argv) {
   std::printf("%-40s %-15s %12s %10s %8s %8s %8s %9s %9s\n", "case", "run", "photons/s", "x baseline", "x MCML",
               "eff R_d", "eff near", "eff far", "R_d");
   for (const Case& c : cases) {
+    if (only >= 0 && &c != &cases[only % 4]) continue;
     const double ell = 1 / (c.mua + c.mus * (1 - c.g));
     struct Run {
       const char* label;
