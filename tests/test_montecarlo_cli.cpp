@@ -100,10 +100,23 @@ TEST(MonteCarloCli, BadInputExitsTwoWithOneLineAndNoPartialFile) {
   EXPECT_FALSE(std::filesystem::exists(out));
 
   for (const std::string args : {"--photons 0", "--thickness -1", "--r-max 0", "--bins 1", "--g 1.5",
-                                 "--layers /nonexistent.json", "--bin-spacing cubic"}) {
+                                 "--layers /nonexistent.json", "--bin-spacing cubic", "--roulette-threshold 1",
+                                 "--roulette-survival 0", "--roulette-survival 1.5"}) {
     r = run("reference --sigma-a 0.1 --sigma-s 1 " + args + " -o " + out.string());
     EXPECT_EQ(r.status, 2) << args << ": " << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;
     EXPECT_FALSE(std::filesystem::exists(out)) << args;
   }
+}
+
+TEST(MonteCarloCli, RouletteSettingsAreOptions) {
+  // MCML's values on request; recorded in the JSON and the report.
+  const auto r = run(kMedium + "--thickness 2 --roulette-threshold 1e-4 --roulette-survival 0.1 --format json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["roulette_threshold"], 1e-4);
+  EXPECT_EQ(doc["roulette_survival"], 0.1);
+  const auto table = run(kMedium + "--thickness 2 --roulette-threshold 0.01 --roulette-survival 0.25");
+  ASSERT_EQ(table.status, 0) << table.err;
+  EXPECT_NE(table.out.find("roulette below weight 0.01 with survival 0.25"), std::string::npos) << table.out;
 }

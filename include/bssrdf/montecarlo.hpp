@@ -78,8 +78,10 @@ struct MonteCarloOptions {
   AbsorptionEstimator absorption = AbsorptionEstimator::implicit_capture;
   // Russian roulette for implicit capture: a photon whose weight drops below roulette_threshold
   // survives with probability roulette_survival and has its weight divided by it (unbiased).
-  double roulette_threshold = 1e-4;  // MCML: 1e-4
-  double roulette_survival = 0.1;    // MCML: 0.1
+  // Defaults chosen by efficiency (1/(variance x time)) of every output, tools/bench/
+  // bench_montecarlo_estimators: they raise it for R_d, R(r), A and A(z) and keep it for T_t.
+  double roulette_threshold = 0.1;   // MCML: 1e-4
+  double roulette_survival = 0.5;    // MCML: 0.1
 
   // A photon still inside after this many interactions is stopped and its weight counted as lost
   // (reported; nonzero only for nearly non-absorbing media, where it is a bias to watch).

@@ -22,6 +22,7 @@ Action register_reference(CLI::App& app) {
     std::uint64_t photons = 1'000'000, seed = 1;
     unsigned threads = 0;
     std::size_t bins = 100, depth_bins = 0;
+    double roulette_threshold = MonteCarloOptions{}.roulette_threshold, roulette_survival = MonteCarloOptions{}.roulette_survival;
   };
   auto options = std::make_shared<Options>();
   auto* sub = app.add_subcommand(
@@ -41,6 +42,12 @@ Action register_reference(CLI::App& app) {
   sub->add_option("--depth-bins", options->depth_bins, "Absorbed fraction by depth in this many bins [0: off; --mci: nz]");
   sub->add_option("--absorption", options->absorption, "Absorption estimator: implicit (weights + roulette) or analog [implicit]")
       ->check(CLI::IsMember({"implicit", "analog"}));
+  sub->add_option("--roulette-threshold", options->roulette_threshold,
+                  "Implicit capture: Russian roulette below this weight (unbiased for any value; MCML: 1e-4) [" +
+                      format_number(MonteCarloOptions{}.roulette_threshold) + "]");
+  sub->add_option("--roulette-survival", options->roulette_survival,
+                  "Implicit capture: probability of surviving the roulette (MCML: 0.1) [" +
+                      format_number(MonteCarloOptions{}.roulette_survival) + "]");
   options->output.add_to(*sub);
   layers->excludes(thickness)->excludes(mci);
   mci->excludes(thickness);
@@ -65,6 +72,8 @@ Action register_reference(CLI::App& app) {
     base.spacing = o.spacing == "log" ? BinSpacing::log : BinSpacing::linear;
     base.depth_bins = o.depth_bins;
     base.absorption = o.absorption == "analog" ? AbsorptionEstimator::analog : AbsorptionEstimator::implicit_capture;
+    base.roulette_threshold = o.roulette_threshold;
+    base.roulette_survival = o.roulette_survival;
     if (o.photons < 1) throw InvalidInput("--photons", std::to_string(o.photons), ">= 1");
 
     struct Case {

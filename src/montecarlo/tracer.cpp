@@ -1,12 +1,18 @@
-// The photon tracer: the inner loop of the Monte Carlo solver. Kept lean on purpose: no
-// trigonometry (Henyey-Greenstein cosine by its closed-form inverse, azimuth by the polar method),
-// one logarithm per free path, one generator per batch, the photon state in locals.
+// The photon tracer: the inner loop of the Monte Carlo solver. Eight photons in lanes, advanced
+// together by branch-free vector code (SSE2, or AVX2 where the processor has it: same results),
+// with their own xoshiro256+ streams; per interaction two 64-bit draws: 52 bits for the free path
+// (one logarithm, fastmath.hpp), 32 for the Henyey-Greenstein cosine (closed-form inverse) and 32
+// for the azimuth (cos and sin by polynomials, no rejection loop); interfaces, roulette and the
+// ends of photons lane by lane. See fastmath.hpp for the accuracy of each piece.
 #include "tracer.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <limits>
+#include <string_view>
 
 #include "bssrdf/fresnel.hpp"
+#include "fastmath.hpp"
 
 namespace bssrdf::mc {
 
@@ -91,60 +97,125 @@ void BatchTally::reset(std::size_t radial_bins, bool transmission, std::size_t d
 
 namespace {
 
-// One photon in flight.
-struct Photon {
-  double x, y, z, ux, uy, uz, w;
-  double tau;       // remaining optical depth of the current free path; <= 0: draw a new one
-  double absorbed;  // weight this photon deposited
-  std::uint64_t scatterings;
-  int layer;
-  bool active;
+// Photons traced side by side on one thread, in lanes (structure of arrays). Each photon's step is
+// one long dependency chain (the new direction needs a division and a square root of the old
+// one), so a lone photon leaves the processor idle; kLanes independent photons advanced together
+// fill it, and the common case (an interaction inside the layer) is straight-line code over the
+// lanes that the compiler vectorises (SSE2 suffices). Rare events (interfaces, roulette, the end
+// of a photon) are handled lane by lane afterwards. Each lane draws from its own xoshiro256+
+// stream, seeded from the batch's generator, and photons are handed to lanes in a fixed order, so
+// the result is still a function of (seed, channel, batch) only.
+constexpr int kLanes = 8;
+
+struct Xoshiro4 {  // kLanes xoshiro256+ generators, structure of arrays
+  alignas(64) std::uint64_t s0[kLanes], s1[kLanes], s2[kLanes], s3[kLanes];
+
+  explicit Xoshiro4(Rng& batch) {
+    std::uint64_t sm = batch.next();
+    for (int j = 0; j < kLanes; ++j) {
+      s0[j] = splitmix64(sm);
+      s1[j] = splitmix64(sm);
+      s2[j] = splitmix64(sm);
+      s3[j] = splitmix64(sm);
+    }
+  }
+  static std::uint64_t step(std::uint64_t& a, std::uint64_t& b, std::uint64_t& c, std::uint64_t& d) {
+    const std::uint64_t result = a + d;
+    const std::uint64_t t = b << 17;
+    c ^= a;
+    d ^= b;
+    b ^= c;
+    a ^= d;
+    c ^= t;
+    d = (d << 45) | (d >> 19);
+    return result;
+  }
+  void all(std::uint64_t* out) {
+    for (int j = 0; j < kLanes; ++j) out[j] = step(s0[j], s1[j], s2[j], s3[j]);
+  }
+  std::uint64_t one(int j) { return step(s0[j], s1[j], s2[j], s3[j]); }
+  double uniform(int j) { return static_cast<double>(one(j) >> 11) * 0x1.0p-53; }  // [0, 1), 53 bits
 };
 
-// Photons traced side by side on one thread. Each photon's step is one long dependency chain
-// (logarithm, division, square root); interleaving independent photons lets the processor overlap
-// them. The lanes are visited in a fixed order and draw from the batch's one generator, so the
-// result is still a function of (seed, batch) only.
-constexpr int kLanes = 4;
+// The lanes: one photon each, with the constants of its current layer.
+struct Lanes {
+  alignas(64) double x[kLanes], y[kLanes], z[kLanes], ux[kLanes], uy[kLanes], uz[kLanes], w[kLanes];
+  alignas(64) double tau[kLanes];       // remaining optical depth of the current free path; <= 0: draw
+  alignas(64) double absorbed[kLanes];  // weight the photon deposited
+  alignas(64) double scatterings[kLanes];
+  // Current layer's constants.
+  alignas(64) double z_top[kLanes], z_bottom[kLanes], inv_sigma_t[kLanes], absorb[kLanes];
+  alignas(64) double hg_a[kLanes], hg_b[kLanes], hg_c[kLanes], hg_2g[kLanes], hg_inv_2g[kLanes], albedo[kLanes];
+  // Per step: what happened (set by the vector pass, read by the lane-by-lane pass).
+  alignas(64) double dw[kLanes];
+  alignas(64) std::int64_t inside[kLanes], absorbed_event[kLanes];
+  int layer[kLanes];
+  bool active[kLanes];
+};
 
 }  // namespace
 
-void trace_batch(const ChannelGeometry& geo, const TraceSettings& settings, Rng& rng, std::uint64_t photons,
-                 BatchTally& tally) {
+template <bool kAnalog, class V>
+[[gnu::always_inline]] inline void trace_lanes(const ChannelGeometry& geo, const TraceSettings& settings, Rng& batch_rng, std::uint64_t photons,
+                        BatchTally& tally) {
   const LayerCoefficients* const layers = geo.layers.data();
   const int layer_count = static_cast<int>(geo.layers.size());
   const RadialBinning& binning = *settings.binning;
-  const bool analog = settings.absorption == AbsorptionEstimator::analog;
-  const double threshold = settings.roulette_threshold;
+  // Analog absorption never lowers the weight: no roulette.
+  const double threshold = kAnalog ? -1.0 : settings.roulette_threshold;
   const double survival = settings.roulette_survival, inv_survival = 1 / survival;
   const std::size_t depth_bins = settings.depth_bins;
   const double inv_dz = settings.inv_depth_width;
-  const std::uint64_t max_interactions = settings.max_interactions;
+  const auto max_interactions = static_cast<double>(settings.max_interactions);  // exact below 2^53
   const double start_weight = 1 - geo.specular;
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
+  Xoshiro4 rng(batch_rng);
+  Lanes L;
   std::uint64_t interactions = 0, launched = 0;
-  const auto launch = [&](Photon& p) {
-    p = Photon{0, 0, geo.start_z, 0, 0, 1, start_weight, 0, 0, 0, static_cast<int>(geo.start_layer), true};
+  int active = 0;
+
+  const auto enter_layer = [&](int j, int index) {
+    const LayerCoefficients& l = layers[index];
+    L.layer[j] = index;
+    L.z_top[j] = l.z_top;
+    L.z_bottom[j] = l.z_bottom;
+    L.inv_sigma_t[j] = l.inv_sigma_t;
+    L.absorb[j] = kAnalog ? 0.0 : l.one_minus_albedo;
+    L.albedo[j] = l.albedo;
+    L.hg_a[j] = l.hg_a;
+    L.hg_b[j] = l.hg_b;
+    L.hg_c[j] = l.hg_c;
+    L.hg_2g[j] = l.hg_2g;
+    L.hg_inv_2g[j] = l.hg_inv_2g;
+  };
+  const auto launch = [&](int j) {
+    L.x[j] = L.y[j] = 0;
+    L.z[j] = geo.start_z;
+    L.ux[j] = L.uy[j] = 0;
+    L.uz[j] = 1;
+    L.w[j] = start_weight;
+    L.tau[j] = 0;
+    L.absorbed[j] = 0;
+    L.scatterings[j] = 0;
+    enter_layer(j, static_cast<int>(geo.start_layer));
     ++launched;
   };
   const auto deposit = [&](double z, double dw) {
-    if (depth_bins) {
-      const auto i = static_cast<std::size_t>(z * inv_dz);
-      if (i < depth_bins) tally.a_sum[i] += dw;
-    }
+    const auto i = static_cast<std::size_t>(z * inv_dz);
+    if (i < depth_bins) tally.a_sum[i] += dw;
   };
-  const auto escape = [&](const Photon& p, bool top) {
-    const double r = std::sqrt(p.x * p.x + p.y * p.y);
+  const auto escape = [&](int j, bool top) {
+    const double r = std::sqrt(L.x[j] * L.x[j] + L.y[j] * L.y[j]);
     const std::size_t bin = binning.index(r);
-    const double w = p.w, w2 = w * w;
+    const double w = L.w[j], w2 = w * w, scatterings = L.scatterings[j];
     if (top) {
       tally.sum[kR] += w;
       tally.sum_sq[kR] += w2;
-      if (p.scatterings == 1) {
+      if (scatterings == 1) {
         tally.sum[kRSingle] += w;
         tally.sum_sq[kRSingle] += w2;
-      } else if (p.scatterings == 0) {
+      } else if (scatterings == 0) {
         tally.sum[kRUnscattered] += w;
         tally.sum_sq[kRUnscattered] += w2;
       }
@@ -157,7 +228,7 @@ void trace_batch(const ChannelGeometry& geo, const TraceSettings& settings, Rng&
     } else {
       tally.sum[kT] += w;
       tally.sum_sq[kT] += w2;
-      if (p.scatterings == 0) {
+      if (scatterings == 0) {
         tally.sum[kTUnscattered] += w;
         tally.sum_sq[kTUnscattered] += w2;
       }
@@ -169,142 +240,246 @@ void trace_batch(const ChannelGeometry& geo, const TraceSettings& settings, Rng&
       }
     }
   };
-
-  // Advances photon p by one event (an interaction, or reaching an interface). Returns false when
-  // the photon has ended (escaped, absorbed, lost to roulette or to max_interactions).
-  const auto step = [&](Photon& p) -> bool {
-    const LayerCoefficients& l = layers[p.layer];
-    if (p.tau <= 0) p.tau = -std::log(rng.uniform_open0());
-    const double s = p.tau * l.inv_sigma_t;  // infinite in a clear layer
-    const double z_end = p.z + s * p.uz;
-    if (z_end < l.z_bottom && z_end > l.z_top) {
-      // Interaction inside the layer (no division needed to know it).
-      p.x += s * p.ux;
-      p.y += s * p.uy;
-      p.z = z_end;
-      p.tau = 0;
-      ++p.scatterings;
-      if (analog) {
-        if (rng.uniform() >= l.albedo) {
-          p.absorbed += p.w;
-          deposit(p.z, p.w);
-          return false;
-        }
-      } else {
-        const double dw = p.w * l.one_minus_albedo;
-        p.w -= dw;
-        p.absorbed += dw;
-        deposit(p.z, dw);
-        if (p.w < threshold) {
-          if (rng.uniform() < survival) {
-            p.w *= inv_survival;
-          } else {
-            return false;
-          }
-        }
-      }
-      if (p.scatterings >= max_interactions) {
-        tally.lost += p.w;
-        return false;
-      }
-      // Henyey-Greenstein polar cosine by its closed-form inverse (no pow, no trigonometry).
-      const double xi = rng.uniform();
-      double ct;
-      if (l.g == 0) {
-        ct = 2 * xi - 1;
-      } else {
-        const double t = l.hg_b / (l.hg_c + l.hg_2g * xi);
-        ct = std::clamp((l.hg_a - t * t) * l.hg_inv_2g, -1.0, 1.0);
-      }
-      // Uniform azimuth by the polar method: for (a, b) uniform in the unit disc, with q = a^2 + b^2,
-      // (cos phi, sin phi) = (a^2 - b^2, 2ab) / q exactly, phi uniform.
-      double a, b, q;
-      do {
-        a = 2 * rng.uniform() - 1;
-        b = 2 * rng.uniform() - 1;
-        q = a * a + b * b;
-      } while (q > 1 || q == 0);
-      const double c2 = a * a - b * b, s2 = 2 * a * b;  // q cos phi, q sin phi
-      const double ux = p.ux, uy = p.uy, uz = p.uz;
-      const double one_minus_uz2 = 1 - uz * uz;
-      const double one_minus_ct2 = 1 - ct * ct;
-      if (one_minus_uz2 < 1e-12) {
-        // Along the z axis: the rotation frame is (x, y, z) itself.
-        const double k = std::sqrt(one_minus_ct2) / q;
-        p.ux = k * c2;
-        p.uy = k * s2;
-        p.uz = uz > 0 ? ct : -ct;
-      } else {
-        // MCML's rotation with sin(theta)/sqrt(1 - uz^2) and the 1/q of the azimuth in one
-        // square root and one division: k = sin(theta) / (sqrt(1 - uz^2) q).
-        const double k = std::sqrt(one_minus_ct2 / one_minus_uz2) / q;
-        p.ux = k * (ux * uz * c2 - uy * s2) + ux * ct;
-        p.uy = k * (uy * uz * c2 + ux * s2) + uy * ct;
-        p.uz = -k * one_minus_uz2 * c2 + uz * ct;
-      }
-      return true;
+  // The photon in lane j has ended: tally it, then launch the next one or retire the lane.
+  const auto finish = [&](int j) {
+    interactions += static_cast<std::uint64_t>(L.scatterings[j]);
+    tally.sum[kAbsorbed] += L.absorbed[j];
+    tally.sum_sq[kAbsorbed] += L.absorbed[j] * L.absorbed[j];
+    if (launched < photons) {
+      launch(j);
+    } else {
+      L.active[j] = false;
+      --active;
+      launch(j);  // a harmless state for the vector pass, never tallied; no absorption (no denormals)
+      L.absorb[j] = 0;
+      --launched;
     }
-    // The free path reaches an interface: move there, keep the rest of the optical depth.
-    const double to_boundary = p.uz > 0 ? (l.z_bottom - p.z) / p.uz : p.uz < 0 ? (l.z_top - p.z) / p.uz : kInfinity;
+  };
+  // The free path of lane j (optical depth L.tau[j]) reaches an interface of its layer: move there
+  // and reflect, refract or leave. Returns false when the photon has ended.
+  const auto cross = [&](int j) -> bool {
+    const LayerCoefficients& l = layers[L.layer[j]];
+    const double uz = L.uz[j];
+    const double to_boundary = uz > 0 ? (l.z_bottom - L.z[j]) / uz : uz < 0 ? (l.z_top - L.z[j]) / uz : kInfinity;
     if (to_boundary == kInfinity) {  // parallel to the interfaces in a clear layer: never arrives
-      tally.lost += p.w;
+      tally.lost += L.w[j];
       return false;
     }
-    p.x += to_boundary * p.ux;
-    p.y += to_boundary * p.uy;
-    if (!l.clear) p.tau -= to_boundary * l.sigma_t;
-    const bool down = p.uz > 0;
-    p.z = down ? l.z_bottom : l.z_top;
-    const int next = down ? p.layer + 1 : p.layer - 1;
+    L.x[j] += to_boundary * L.ux[j];
+    L.y[j] += to_boundary * L.uy[j];
+    if (!l.clear) L.tau[j] -= to_boundary * l.sigma_t;
+    const bool down = uz > 0;
+    L.z[j] = down ? l.z_bottom : l.z_top;
+    const int next = down ? L.layer[j] + 1 : L.layer[j] - 1;
     const double n_next = next < 0 ? geo.n_above : next >= layer_count ? geo.n_below : layers[next].n;
     if (n_next != l.n) {
       const double ratio = l.n / n_next;
-      const double ci = std::abs(p.uz);
+      const double ci = std::abs(uz);
       const double reflect = fresnel_reflectance(ci, ratio);  // 1 under total internal reflection
-      if (reflect >= 1 || rng.uniform() < reflect) {
-        p.uz = -p.uz;
+      if (reflect >= 1 || rng.uniform(j) < reflect) {
+        L.uz[j] = -uz;
         return true;
       }
       const double cos_t = std::sqrt(1 - ratio * ratio * (1 - ci * ci));
-      p.ux *= ratio;
-      p.uy *= ratio;
-      p.uz = down ? cos_t : -cos_t;
+      L.ux[j] *= ratio;
+      L.uy[j] *= ratio;
+      L.uz[j] = down ? cos_t : -cos_t;
     }
     if (next < 0 || next >= layer_count) {
-      escape(p, next < 0);  // leaves the stack: tallied once, the photon ends here
+      escape(j, next < 0);  // leaves the stack: tallied once, the photon ends here
       return false;
     }
-    p.layer = next;
+    enter_layer(j, next);
     return true;
   };
 
-  Photon lanes[kLanes];
-  int active = 0;
-  for (Photon& p : lanes) {
-    if (launched < photons) {
-      launch(p);
+  for (int j = 0; j < kLanes; ++j) {
+    launch(j);
+    L.active[j] = launched <= photons;
+    if (L.active[j]) {
       ++active;
     } else {
-      p.active = false;
+      L.absorb[j] = 0;
+      --launched;
     }
   }
+
+  alignas(64) std::uint64_t r_path[kLanes], r_angles[kLanes], r_absorb[kLanes];
+  alignas(64) double drawn_tau[kLanes], cos_theta[kLanes], cos_phi[kLanes], sin_phi[kLanes];
   while (active > 0) {
-    for (Photon& p : lanes) {
-      if (!p.active) continue;
-      if (step(p)) continue;
-      interactions += p.scatterings;
-      tally.sum[kAbsorbed] += p.absorbed;
-      tally.sum_sq[kAbsorbed] += p.absorbed * p.absorbed;
-      if (launched < photons) {
-        launch(p);
-      } else {
-        p.active = false;
-        --active;
+    // Vector pass: every lane takes one free path; where it ends inside the layer, the photon
+    // interacts (absorption, then a new direction). Lanes whose path leaves the layer only keep
+    // the optical depth drawn; the lane-by-lane pass moves them to the interface.
+    rng.all(r_path);
+    rng.all(r_angles);
+    if constexpr (kAnalog) rng.all(r_absorb);
+    // V::width lanes at a time as vectors (SSE2 or AVX2), both sides of every choice computed,
+    // then selected.
+    using D = typename V::D;
+    using U = typename V::U;
+    using I = typename V::I;
+    I any_slow = {};
+    // Part 1, independent of the photons' state (so the processor can run it ahead): the free
+    // path's optical depth, the polar cosine and the azimuth of every lane, from the random bits.
+    // The divisions of the logarithm and of the Henyey-Greenstein inverse share one reciprocal of
+    // the product of their denominators (2 + f in [1.7, 2.5] and 1 - g + 2 g xi >= 1 - |g| > 0):
+    // each quotient within ~3 ulp of the correctly rounded one; in the logarithm that moves the
+    // result by a small fraction of an ulp (see log_finish), in the cosine by a few ulp.
+    // Bits: the free path takes the top 52 of one draw; the cosine the top 32 of the other and the
+    // azimuth its low 32 (xoshiro256+'s weak lowest bits, of low linear complexity, only pick among
+    // cells 2^-32 of a turn wide; the quadrant comes from bits 30-31).
+    for (int g = 0; g < kLanes; g += V::width) {
+      const U rp = load<U>(r_path + g), ra = load<U>(r_angles + g);
+      const D xi = uniform_mid32(ra >> 32);
+      const D hg_2g = load<D>(L.hg_2g + g);
+      const LogReduced<D> reduced = log_reduce(uniform_open0_52(rp));
+      const D den_log = 2.0 + reduced.f;
+      const D den_hg = load<D>(L.hg_c + g) + hg_2g * xi;
+      const D reciprocal = 1.0 / (den_log * den_hg);
+      store(drawn_tau + g, -log_finish(reduced, reduced.f * (den_hg * reciprocal)));
+      const D t = load<D>(L.hg_b + g) * (den_log * reciprocal);
+      D ct = (load<D>(L.hg_a + g) - t * t) * load<D>(L.hg_inv_2g + g);
+      ct = ct < -1.0 ? -1.0 : ct;
+      ct = ct > 1.0 ? 1.0 : ct;
+      ct = hg_2g == 0 ? 2 * xi - 1 : ct;
+      store(cos_theta + g, ct);
+      D cp, sp;
+      azimuth_cos_sin(ra, cp, sp);
+      store(cos_phi + g, cp);
+      store(sin_phi + g, sp);
+    }
+    // Part 2: move, absorb, turn.
+    for (int g = 0; g < kLanes; g += V::width) {
+      const D tau_in = load<D>(L.tau + g);
+      const D ux = load<D>(L.ux + g), uy = load<D>(L.uy + g), uz = load<D>(L.uz + g);
+      const D z = load<D>(L.z + g);
+      const D tau = tau_in > 0 ? tau_in : load<D>(drawn_tau + g);
+      const D s = tau * load<D>(L.inv_sigma_t + g);  // infinite in a clear layer
+      const D z_end = z + s * uz;
+      const I inside = (z_end < load<D>(L.z_bottom + g)) & (z_end > load<D>(L.z_top + g));
+      const D ct = load<D>(cos_theta + g), cp = load<D>(cos_phi + g), sp = load<D>(sin_phi + g);
+      // MCML's rotation; along the z axis the frame is (x, y, z) itself. k = sin(theta)/sqrt(1-uz^2).
+      const D one_minus_uz2 = 1 - uz * uz;
+      const I pole = one_minus_uz2 < 1e-12;
+      const D k = sqrt_of((1 - ct * ct) / (pole ? 1.0 : one_minus_uz2));
+      const D nux = pole ? k * cp : k * (ux * uz * cp - uy * sp) + ux * ct;
+      const D nuy = pole ? k * sp : k * (uy * uz * cp + ux * sp) + uy * ct;
+      const D nuz = pole ? (uz > 0 ? ct : -ct) : -k * one_minus_uz2 * cp + uz * ct;
+      const D w = load<D>(L.w + g);
+      const D dw = inside ? w * load<D>(L.absorb + g) : 0.0;
+      store(L.x + g, inside ? load<D>(L.x + g) + s * ux : load<D>(L.x + g));
+      store(L.y + g, inside ? load<D>(L.y + g) + s * uy : load<D>(L.y + g));
+      store(L.z + g, inside ? z_end : z);
+      store(L.tau + g, inside ? 0.0 : tau);
+      store(L.ux + g, inside ? nux : ux);
+      store(L.uy + g, inside ? nuy : uy);
+      store(L.uz + g, inside ? nuz : uz);
+      const D w_new = w - dw;
+      store(L.w + g, w_new);
+      store(L.absorbed + g, load<D>(L.absorbed + g) + dw);
+      store(L.dw + g, dw);
+      const D scatterings = load<D>(L.scatterings + g) + (inside ? 1.0 : 0.0);
+      store(L.scatterings + g, scatterings);
+      store(L.inside + g, inside);
+      I slow = ~inside | (w_new < threshold) | (scatterings >= max_interactions);
+      if constexpr (kAnalog) {
+        const I absorbed_event = inside & (uniform_open0_52(load<U>(r_absorb + g)) > load<D>(L.albedo + g));
+        store(L.absorbed_event + g, absorbed_event);
+        slow |= absorbed_event;
+      }
+      any_slow |= slow;
+    }
+    if (depth_bins && !kAnalog)
+      for (int j = 0; j < kLanes; ++j)
+        if (L.inside[j] && L.active[j]) deposit(L.z[j], L.dw[j]);
+    std::int64_t any = 0;
+    for (int i = 0; i < V::width; ++i) any |= any_slow[i];
+    if (!any) continue;
+    // Lane-by-lane pass: interfaces, absorption (analog), roulette, the end of photons.
+    for (int j = 0; j < kLanes; ++j) {
+      if (!L.active[j]) continue;
+      if (!L.inside[j]) {
+        if (!cross(j)) finish(j);
+        continue;
+      }
+      if constexpr (kAnalog) {
+        if (L.absorbed_event[j]) {
+          L.absorbed[j] += L.w[j];
+          if (depth_bins) deposit(L.z[j], L.w[j]);
+          finish(j);
+          continue;
+        }
+      }
+      if (L.w[j] < threshold) {  // Russian roulette
+        if (rng.uniform(j) < survival) {
+          L.w[j] *= inv_survival;
+        } else {
+          finish(j);
+          continue;
+        }
+      }
+      if (L.scatterings[j] >= max_interactions) {
+        tally.lost += L.w[j];
+        finish(j);
       }
     }
   }
   tally.photons += photons;
   tally.interactions += interactions;
+}
+
+namespace {
+
+// The same kernel compiled twice: for SSE2 (every x86-64) and for AVX2, chosen at run time. Both
+// do the same IEEE operations on every lane (the vector width changes nothing but the speed), so
+// the results are bitwise identical on every machine.
+template <bool kAnalog>
+void trace_sse2(const ChannelGeometry& geo, const TraceSettings& settings, Rng& rng, std::uint64_t photons,
+                BatchTally& tally) {
+  trace_lanes<kAnalog, Sse2>(geo, settings, rng, photons, tally);
+}
+#if defined(__x86_64__) || defined(__i386__)
+template <bool kAnalog>
+__attribute__((target("avx2"))) void trace_avx2(const ChannelGeometry& geo, const TraceSettings& settings, Rng& rng,
+                                                std::uint64_t photons, BatchTally& tally) {
+  trace_lanes<kAnalog, Avx2>(geo, settings, rng, photons, tally);
+}
+#endif
+
+}  // namespace
+
+bool avx2_available() {
+#if defined(__x86_64__) || defined(__i386__)
+  // BSSRDF_MC_SIMD=sse2 in the environment turns AVX2 off (to measure the SSE2 path; the results
+  // are the same either way).
+  static const bool available = [] {
+    const char* forced = std::getenv("BSSRDF_MC_SIMD");
+    return __builtin_cpu_supports("avx2") && !(forced && std::string_view(forced) == "sse2");
+  }();
+  return available;
+#else
+  return false;
+#endif
+}
+
+void trace_batch(const ChannelGeometry& geo, const TraceSettings& settings, Rng& rng, std::uint64_t photons,
+                 BatchTally& tally) {
+  const bool analog = settings.absorption == AbsorptionEstimator::analog;
+#if defined(__x86_64__) || defined(__i386__)
+  if (settings.simd != SimdLevel::sse2 && avx2_available()) {
+    if (analog) {
+      trace_avx2<true>(geo, settings, rng, photons, tally);
+    } else {
+      trace_avx2<false>(geo, settings, rng, photons, tally);
+    }
+    return;
+  }
+#endif
+  if (analog) {
+    trace_sse2<true>(geo, settings, rng, photons, tally);
+  } else {
+    trace_sse2<false>(geo, settings, rng, photons, tally);
+  }
 }
 
 }  // namespace bssrdf::mc

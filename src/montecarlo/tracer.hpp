@@ -20,7 +20,8 @@ inline std::uint64_t splitmix64(std::uint64_t& state) {
 }
 
 // xoshiro256+ (Blackman & Vigna), 53-bit doubles from the top bits. Seeded from (seed, stream,
-// batch) through splitmix64, so every batch has its own stream whatever thread runs it.
+// batch) through splitmix64, so every batch has its own stream whatever thread runs it; the
+// tracer seeds its lanes' generators (the same algorithm) from it.
 class Rng {
  public:
   Rng(std::uint64_t seed, std::uint64_t stream, std::uint64_t batch) {
@@ -100,6 +101,11 @@ struct BatchTally {
   void reset(std::size_t radial_bins, bool transmission, std::size_t depth_bins);
 };
 
+// Instruction set of the tracer's vector pass: the best available (AVX2 where the processor has
+// it, else SSE2), or SSE2 forced (tests: both give bitwise identical results).
+enum class SimdLevel { best, sse2 };
+bool avx2_available();
+
 struct TraceSettings {
   const RadialBinning* binning = nullptr;
   bool transmission_bins = false;
@@ -108,6 +114,7 @@ struct TraceSettings {
   AbsorptionEstimator absorption = AbsorptionEstimator::implicit_capture;
   double roulette_threshold = 1e-4, roulette_survival = 0.1;
   std::uint64_t max_interactions = 0;
+  SimdLevel simd = SimdLevel::best;
 };
 
 void trace_batch(const ChannelGeometry& geometry, const TraceSettings& settings, Rng& rng,

@@ -1,0 +1,175 @@
+// Internal to the Monte Carlo solver: branch-free logarithm and sine/cosine kernels and the
+// conversions of random bits to uniform doubles, written so the compiler can vectorise the photon
+// lanes of the tracer (SSE2 is enough: no calls, no table look-ups, no 64-bit integer to double
+// conversion). Accuracy is that of the C library (about 1 ulp): they change rounding, not physics.
+#pragma once
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
+// Passing d2 by value to inline functions: the ABI note is irrelevant (nothing crosses a library).
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+namespace bssrdf::mc {
+
+// Two or four doubles (or 64-bit integers) as one value, one SSE2 or AVX register: GCC/Clang
+// vector extensions. Every operation is the IEEE operation of each element (no contraction into
+// FMA: ISO C++ mode), so the results do not depend on the instruction set or the vector width.
+using d2 = double __attribute__((vector_size(16)));
+using u2 = std::uint64_t __attribute__((vector_size(16)));
+using i2 = std::int64_t __attribute__((vector_size(16)));
+using d4 = double __attribute__((vector_size(32)));
+using u4 = std::uint64_t __attribute__((vector_size(32)));
+using i4 = std::int64_t __attribute__((vector_size(32)));
+
+struct Sse2 {  // 2 lanes per register
+  using D = d2;
+  using U = u2;
+  using I = i2;
+  static constexpr int width = 2;
+};
+struct Avx2 {  // 4 lanes per register; only in functions compiled with target("avx2")
+  using D = d4;
+  using U = u4;
+  using I = i4;
+  static constexpr int width = 4;
+};
+
+inline d2 load2(const double* p) {
+  d2 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+inline u2 load2(const std::uint64_t* p) {
+  u2 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+inline void store2(double* p, d2 v) { std::memcpy(p, &v, sizeof v); }
+inline void store2(std::uint64_t* p, u2 v) { std::memcpy(p, &v, sizeof v); }
+inline void store2(std::int64_t* p, i2 v) { std::memcpy(p, &v, sizeof v); }
+template <class V> inline V load(const void* p) {
+  V v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+template <class V> inline void store(void* p, V v) { std::memcpy(p, &v, sizeof v); }
+
+inline double sqrt_of(double x) { return std::sqrt(x); }
+inline d2 sqrt_of(d2 x) {
+#if defined(__SSE2__)
+  return reinterpret_cast<d2>(_mm_sqrt_pd(reinterpret_cast<__m128d>(x)));
+#else
+  return d2{std::sqrt(x[0]), std::sqrt(x[1])};
+#endif
+}
+
+// Element by element (the compiler packs it into one vsqrtpd where AVX is enabled).
+inline d4 sqrt_of(d4 x) { return d4{std::sqrt(x[0]), std::sqrt(x[1]), std::sqrt(x[2]), std::sqrt(x[3])}; }
+
+// Integer type of the same shape as D and back: std::uint64_t for double, u2 for d2, u4 for d4.
+template <class D> struct bits_of { using type = std::uint64_t; };
+template <> struct bits_of<d2> { using type = u2; };
+template <> struct bits_of<d4> { using type = u4; };
+template <class D> using bits_t = typename bits_of<D>::type;
+template <class U> struct double_of { using type = double; };
+template <> struct double_of<u2> { using type = d2; };
+template <> struct double_of<u4> { using type = d4; };
+template <class U> using double_t_of = typename double_of<U>::type;
+
+// The logarithm in two halves around its one division, so a caller can share one reciprocal
+// between several divisions: log_reduce gives f = m - 1 and k; the quotient s = f / (2 + f) is the
+// caller's; log_finish completes. s enters only through s (f^2/2 + R), a correction of relative
+// size below 0.03, so a quotient a few ulp off moves the result by a small fraction of an ulp.
+template <class D>
+struct LogReduced {
+  D f, dk;
+};
+template <class D>
+inline LogReduced<D> log_reduce(D x) {
+  using U = bits_t<D>;
+  U ix = std::bit_cast<U>(x);
+  ix += 0x3ff0000000000000ull - 0x3fe6a09e00000000ull;  // m's threshold sqrt(1/2) moved to 1
+  // k as a double without an integer conversion: 2^52 + (k + 1023) has those bits as mantissa.
+  const D dk = std::bit_cast<D>((ix >> 52) | 0x4330000000000000ull) - (0x1p52 + 1023.0);
+  ix = (ix & 0x000fffffffffffffull) + 0x3fe6a09e00000000ull;
+  return {std::bit_cast<D>(ix) - 1.0, dk};
+}
+template <class D>
+inline D log_finish(LogReduced<D> p, D s) {
+  constexpr double ln2_hi = 6.93147180369123816490e-01, ln2_lo = 1.90821492927058770002e-10;
+  constexpr double Lg1 = 6.666666666666735130e-01, Lg2 = 3.999999999940941908e-01, Lg3 = 2.857142874366239149e-01,
+                   Lg4 = 2.222219843214978396e-01, Lg5 = 1.818357216161805012e-01, Lg6 = 1.531383769920937332e-01,
+                   Lg7 = 1.479819860511658591e-01;
+  const D f = p.f, dk = p.dk;
+  const D hfsq = 0.5 * f * f;
+  const D z = s * s, w = z * z;
+  const D t1 = w * (Lg2 + w * (Lg4 + w * Lg6));
+  const D t2 = z * (Lg1 + w * (Lg3 + w * (Lg5 + w * Lg7)));
+  const D r = t2 + t1;
+  return s * (hfsq + r) + dk * ln2_lo - hfsq + f + dk * ln2_hi;
+}
+
+// ln(x) for a positive normal finite x (no checks: the tracer only passes uniforms in (0, 1]).
+// fdlibm's e_log algorithm (x = 2^k m, m in [sqrt(1/2), sqrt(2)), s = (m - 1)/(m + 1),
+// log m = 2 atanh s with a minimax polynomial of error < 2^-58.45) on its more accurate branch for
+// every x: error below 1 ulp.
+template <class D>
+inline D log_normal(D x) {
+  const LogReduced<D> p = log_reduce(x);
+  return log_finish(p, p.f / (2.0 + p.f));
+}
+
+// Uniform in (0, 1] with the 52 top bits of r: 2 - [1, 2), exact, step 2^-52 (for -log u: free
+// paths up to 36 optical depths; the tail beyond, e^-36 = 2e-16, is below double rounding).
+template <class U>
+inline auto uniform_open0_52(U r) {
+  using D = double_t_of<U>;
+  return 2.0 - std::bit_cast<D>((r >> 12) | 0x3ff0000000000000ull);
+}
+
+// Uniform in (0, 1) from 32 random bits v: the midpoint (v + 1/2) 2^-32 of one of 2^32 equal
+// cells. Any smooth function of it has the mean of the continuous uniform to O(2^-64 f'') (the
+// midpoint rule), far below double rounding of the results: no bias at any photon count.
+template <class U>
+inline auto uniform_mid32(U v) {
+  using D = double_t_of<U>;
+  return (std::bit_cast<D>((v & 0xffffffffull) | 0x4330000000000000ull) - 0x1p52 + 0.5) * 0x1p-32;
+}
+
+// cos and sin of a uniform azimuth phi from 32 random bits v: the top two bits pick the quadrant
+// q, the other 30 the angle inside it, at the cell midpoint (as uniform_mid32):
+// phi = q pi/2 + pi/4 + x, x in (-pi/4, pi/4). cos x and sin x by fdlibm's kernels
+// (k_cos, k_sin: minimax, error < 2^-58 on [-pi/4, pi/4]), then the rotations by pi/4 and q pi/2,
+// branch-free (a swap and sign flips on the bits). Error ~2e-16.
+template <class U, class D>
+inline void azimuth_cos_sin(U v, D& cos_phi, D& sin_phi) {
+  constexpr double S1 = -1.66666666666666324348e-01, S2 = 8.33333333332248946124e-03, S3 = -1.98412698298579493134e-04,
+                   S4 = 2.75573137070700676789e-06, S5 = -2.50507602534068634195e-08, S6 = 1.58969099521155010221e-10;
+  constexpr double C1 = 4.16666666666666019037e-02, C2 = -1.38888888888741095749e-03, C3 = 2.48015872894767294178e-05,
+                   C4 = -2.75573143513906633035e-07, C5 = 2.08757232129817482790e-09, C6 = -1.13596475577881948265e-11;
+  constexpr double kHalfPi = 1.57079632679489661923, kSqrtHalf = 0.70710678118654752440;
+  const U cell = v & 0x3fffffffull;  // 30 bits
+  const D f = (std::bit_cast<D>(cell | 0x4330000000000000ull) - 0x1p52 + 0.5) * 0x1p-30;  // (0, 1)
+  const D x = (f - 0.5) * kHalfPi;
+  const D z = x * x;
+  const D sin_x = x + x * z * (S1 + z * (S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)))));
+  const D cos_x = 1.0 - 0.5 * z + z * z * (C1 + z * (C2 + z * (C3 + z * (C4 + z * (C5 + z * C6)))));
+  const D c = (cos_x - sin_x) * kSqrtHalf;  // cos(pi/4 + x), > 0
+  const D s = (cos_x + sin_x) * kSqrtHalf;  // sin(pi/4 + x), > 0
+  // Quadrant q: (c, s), (-s, c), (-c, -s), (s, -c).
+  const U b0 = (v >> 30) & 1, b1 = (v >> 31) & 1;
+  const U swap = 0 - b0;  // all ones when q is odd
+  const U cb = std::bit_cast<U>(c), sb = std::bit_cast<U>(s);
+  const U first = (cb & ~swap) | (sb & swap), second = (sb & ~swap) | (cb & swap);
+  cos_phi = std::bit_cast<D>(first ^ ((b0 ^ b1) << 63));
+  sin_phi = std::bit_cast<D>(second ^ (b1 << 63));
+}
+
+}  // namespace bssrdf::mc
