@@ -39,18 +39,21 @@ double Model::albedo_prime_from_total(double total, double eta) const {
 double Model::radius_for_fraction(const Reduced<double>& m, double fraction) const {
   if (!(fraction > 0 && fraction < 1))
     throw InvalidInput("energy fraction", format_number(fraction), "0 < fraction < 1");
-  const double target = fraction * total_reflectance(m);
-  double lo = 0, hi = m.ell;
-  while (cumulative_reflectance(m, hi) < target) {
+  return radius_where([&](double r) { return cumulative_reflectance(m, r); }, fraction * total_reflectance(m), m.ell);
+}
+
+double radius_where(const std::function<double(double)>& cumulative, double target, double start, double precision) {
+  double lo = 0, hi = start;
+  for (int doubling = 0; cumulative(hi) < target; ++doubling) {
+    if (doubling == 60) return std::numeric_limits<double>::infinity();
     lo = hi;
     hi *= 2;
-    if (!std::isfinite(hi)) return std::numeric_limits<double>::infinity();
   }
-  // Bisect in log r (radii span decades); relative precision 1e-12.
-  if (lo == 0) lo = hi * 1e-12;
-  while (hi / lo - 1 > 1e-12) {
+  // Bisect in log r: radii span decades.
+  if (lo == 0) lo = hi * precision;
+  while (hi / lo - 1 > precision) {
     const double mid = std::sqrt(lo * hi);
-    (cumulative_reflectance(m, mid) < target ? lo : hi) = mid;
+    (cumulative(mid) < target ? lo : hi) = mid;
   }
   return std::sqrt(lo * hi);
 }

@@ -15,6 +15,24 @@
 
 namespace bssrdf {
 
+namespace {
+
+// The coefficients and distances of one channel in the output unit (mm per unit given).
+ChannelProfile channel_coefficients(const std::string& name, const Reduced<double>& m, double mm) {
+  ChannelProfile ch;
+  ch.name = name;
+  ch.sigma_a = m.sigma_a * mm;
+  ch.sigma_s = m.sigma_s * mm;
+  ch.g = m.g;
+  ch.sigma_s_prime = m.sigma_s_prime * mm;
+  ch.albedo_prime = m.albedo_prime;
+  ch.transport_mfp = m.ell / mm;
+  ch.diffuse_mfp = m.sigma_tr > 0 ? m.ell_d / mm : std::numeric_limits<double>::infinity();
+  return ch;
+}
+
+}  // namespace
+
 std::vector<double> default_radii_mm(const Medium& medium, const Model& model, std::size_t samples) {
   double r_min = std::numeric_limits<double>::infinity(), r_max = 0;
   for (std::size_t c = 0; c < medium.channels(); ++c) {
@@ -37,15 +55,7 @@ ProfileReport compute_profile_report(const Medium& medium, const Model& model,
   const double mm = millimetres_per(unit);  // lengths: x_unit = x_mm / mm
   for (std::size_t c = 0; c < medium.channels(); ++c) {
     const auto m = medium.reduced(c);
-    ChannelProfile ch;
-    ch.name = medium.channel_names[c];
-    ch.sigma_a = m.sigma_a * mm;
-    ch.sigma_s = m.sigma_s * mm;
-    ch.g = m.g;
-    ch.sigma_s_prime = m.sigma_s_prime * mm;
-    ch.albedo_prime = m.albedo_prime;
-    ch.transport_mfp = m.ell / mm;
-    ch.diffuse_mfp = m.sigma_tr > 0 ? m.ell_d / mm : std::numeric_limits<double>::infinity();
+    ChannelProfile ch = channel_coefficients(medium.channel_names[c], m, mm);
     ch.total_reflectance = model.total_reflectance(m);
     ch.radius_99 = model.radius_for_fraction(m, 0.99) / mm;
     const auto sampled = model.sample(m, radii_mm);
@@ -98,15 +108,7 @@ ProfileReport compute_stack_report(const LayerStack& stack, const std::vector<do
   for (std::size_t c = 0; c < stack.channels(); ++c) {
     const layered::Stack model(stack, c);
     const auto& m = model.medium(0);
-    ChannelProfile ch;
-    ch.name = stack.channel_names[c];
-    ch.sigma_a = m.sigma_a * mm;
-    ch.sigma_s = m.sigma_s * mm;
-    ch.g = m.g;
-    ch.sigma_s_prime = m.sigma_s_prime * mm;
-    ch.albedo_prime = m.albedo_prime;
-    ch.transport_mfp = m.ell / mm;
-    ch.diffuse_mfp = m.sigma_tr > 0 ? m.ell_d / mm : std::numeric_limits<double>::infinity();
+    ChannelProfile ch = channel_coefficients(stack.channel_names[c], m, mm);
     ch.total_reflectance = model.total_reflectance();
     ch.radius_99 = model.radius_for_fraction(0.99) / mm;
     for (double r : radii_mm) {

@@ -102,4 +102,8 @@ ImprovedBoundary<T> improved_boundary(T eta) {
   return b;
 }
 
+// improved_boundary(eta) for the last eta seen on this thread: the two moment quadratures are the
+// dominant cost when a profile evaluates many radii of one medium.
+const ImprovedBoundary<double>& cached_improved_boundary(double eta);
+
 }  // namespace bssrdf

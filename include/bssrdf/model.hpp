@@ -12,6 +12,7 @@
 // differentiate it; this class is the runtime face used by the command line and the tabulators.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -57,6 +58,12 @@ class Model {
   // The model-specific part of validity().
   virtual ValidityReport check_validity(const Reduced<double>& m) const = 0;
 };
+
+// The radius where a non-decreasing cumulative energy reaches `target`: doubling from `start`,
+// then bisection in log r to relative precision `precision`; infinite if it is not reached before
+// `start` * 2^60.
+double radius_where(const std::function<double(double)>& cumulative, double target, double start,
+                    double precision = 1e-12);
 
 // The models by command-line name. Throws InvalidInput listing the known names.
 std::unique_ptr<Model> make_model(std::string_view name);

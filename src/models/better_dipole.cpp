@@ -3,36 +3,21 @@
 #include "bssrdf/models/diffusion_validity.hpp"
 
 namespace bssrdf::better_dipole {
-namespace {
-
-// The boundary terms need two Fresnel-moment quadratures; profiles evaluate many radii at one eta.
-const ImprovedBoundary<double>& boundary(double eta) {
-  thread_local double cached_eta = -1;
-  thread_local ImprovedBoundary<double> cached{};
-  if (eta != cached_eta) {
-    cached = improved_boundary(eta);
-    cached_eta = eta;
-  }
-  return cached;
-}
-
-}  // namespace
-
 std::string Model::description() const {
   return "better dipole (d'Eon 2012): Grosjean D, exact Fresnel moments, fluence + flux exitance, "
          "multiple scattering only";
 }
 
 double Model::reflectance(const Reduced<double>& m, double r) const {
-  return better_dipole::reflectance(m, boundary(m.eta), r);
+  return better_dipole::reflectance(m, cached_improved_boundary(m.eta), r);
 }
 
 double Model::total_reflectance(const Reduced<double>& m) const {
-  return better_dipole::total_reflectance(m.albedo_prime, boundary(m.eta));
+  return better_dipole::total_reflectance(m.albedo_prime, cached_improved_boundary(m.eta));
 }
 
 double Model::cumulative_reflectance(const Reduced<double>& m, double r) const {
-  return better_dipole::cumulative_reflectance(m, boundary(m.eta), r);
+  return better_dipole::cumulative_reflectance(m, cached_improved_boundary(m.eta), r);
 }
 
 ValidityReport Model::check_validity(const Reduced<double>& m) const {

@@ -86,19 +86,8 @@ double Stack::radius_for_fraction(double fraction, bool transmitted) const {
     }
     return sum;
   };
-  const double target = fraction * total;
-  double lo = 0, hi = media_[0].ell;
-  while (cumulative(hi) < target) {
-    lo = hi;
-    hi *= 2;
-    if (hi > 1e6 * media_[0].ell) return std::numeric_limits<double>::infinity();
-  }
-  if (lo == 0) lo = hi * 1e-6;
-  while (hi / lo - 1 > 1e-6) {
-    const double mid = std::sqrt(lo * hi);
-    (cumulative(mid) < target ? lo : hi) = mid;
-  }
-  return std::sqrt(lo * hi);
+  // Each cumulative value is a Hankel-type integral: 1e-6 relative precision is plenty.
+  return radius_where(cumulative, fraction * total, media_[0].ell, 1e-6);
 }
 
 ValidityReport Stack::validity() const {

@@ -109,18 +109,7 @@ double Model::transmittance_radius_for_fraction(const Reduced<double>& m, double
   if (!(fraction > 0 && fraction < 1)) throw InvalidInput("energy fraction", format_number(fraction), "0 < fraction < 1");
   const double target = fraction * total_transmittance(m);
   if (!(target > 0)) return std::numeric_limits<double>::infinity();
-  double lo = 0, hi = m.ell;
-  while (cumulative_transmittance(m, hi) < target) {
-    lo = hi;
-    hi *= 2;
-    if (!std::isfinite(hi)) return std::numeric_limits<double>::infinity();
-  }
-  if (lo == 0) lo = hi * 1e-12;
-  while (hi / lo - 1 > 1e-12) {
-    const double mid = std::sqrt(lo * hi);
-    (cumulative_transmittance(m, mid) < target ? lo : hi) = mid;
-  }
-  return std::sqrt(lo * hi);
+  return radius_where([&](double r) { return cumulative_transmittance(m, r); }, target, m.ell);
 }
 
 ValidityReport Model::check_validity(const Reduced<double>& m) const {

@@ -12,15 +12,6 @@ namespace {
 
 constexpr int kOrders[] = {8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256};
 
-const ImprovedBoundary<double>& boundary(double eta) {
-  thread_local double cached_eta = -1;
-  thread_local ImprovedBoundary<double> cached{};
-  if (eta != cached_eta) {
-    cached = improved_boundary(eta);
-    cached_eta = eta;
-  }
-  return cached;
-}
 
 }  // namespace
 
@@ -63,12 +54,12 @@ std::string Model::description() const {
 }
 
 double Model::reflectance(const Reduced<double>& m, double r) const {
-  return photon_beam_diffusion::reflectance(m, boundary(m.eta), r, samples(m));
+  return photon_beam_diffusion::reflectance(m, cached_improved_boundary(m.eta), r, samples(m));
 }
 
 double Model::total_reflectance(const Reduced<double>& m) const {
   const int n = samples(m);
-  const auto& b = boundary(m.eta);
+  const auto& b = cached_improved_boundary(m.eta);
   const double ms = integrate_radial([&](double r) { return multiple_scattering(m, b, r, n); }, 0.0,
                                      std::numeric_limits<double>::infinity(), m.ell, 1e-8)
                         .value;
