@@ -12,7 +12,6 @@ namespace {
 
 constexpr int kOrders[] = {8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256};
 
-
 }  // namespace
 
 int samples_for_tolerance(double albedo_prime, double g, double eta, double tolerance) {
