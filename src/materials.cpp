@@ -77,6 +77,26 @@ class FileReader {
     return out;
   }
 
+  // A non-empty string (names, keys, citations).
+  std::string text(const json& value, const std::string& path) const {
+    std::string out = string(value, path);
+    if (out.empty()) fail(path, "expected a non-empty string");
+    return out;
+  }
+
+  // Fields outside the format are errors, not silently ignored: a typo ("sigma_s_prim") would
+  // otherwise drop a coefficient. Derived quantities are computed, never read.
+  void only_known_fields(const json& object, const std::string& path, std::initializer_list<const char*> known) const {
+    for (const auto& [key, value] : object.items()) {
+      bool ok = false;
+      for (const char* k : known) ok |= key == k;
+      if (ok) continue;
+      std::string list;
+      for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
+      fail(path + "." + key, "unknown field (the format has: " + list + ")");
+    }
+  }
+
   std::vector<std::string> notes(const json& object, const std::string& path) const {
     std::vector<std::string> out;
     auto it = object.find("notes");
@@ -118,6 +138,18 @@ std::vector<std::string> close_matches(std::string_view name, const std::vector<
 
 MaterialDatabase MaterialDatabase::load(const std::filesystem::path& path) {
   MaterialDatabase db;
+  db.add_path(path);
+  return db;
+}
+
+MaterialDatabase MaterialDatabase::load_with_user(const std::filesystem::path& user) {
+  auto db = load(default_materials_dir());
+  if (!user.empty()) db.add_path(user);
+  return db;
+}
+
+void MaterialDatabase::add_path(const std::filesystem::path& path) {
+  auto& db = *this;
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
     std::vector<std::filesystem::path> files;
@@ -130,7 +162,6 @@ MaterialDatabase MaterialDatabase::load(const std::filesystem::path& path) {
   } else {
     db.add_file(path);
   }
-  return db;
 }
 
 void MaterialDatabase::add_file(const std::filesystem::path& path) {
@@ -155,19 +186,23 @@ void MaterialDatabase::add_file(const std::filesystem::path& path) {
     reader.fail("$.format", "expected \"bssrdf-materials\"");
   if (reader.number(reader.member(root, "version", "$"), "$.version") != 1)
     reader.fail("$.version", "only version 1 is understood");
-  const std::string source = reader.string(reader.member(root, "source", "$"), "$.source");
-  const std::string citation = reader.string(reader.member(root, "citation", "$"), "$.citation");
-  LengthUnit unit;
-  try {
-    unit = parse_length_unit(reader.string(reader.member(root, "unit", "$"), "$.unit"), "unit");
-  } catch (const InvalidInput& e) {
-    reader.fail("$.unit", e.what());
-  }
+  reader.only_known_fields(root, "$", {"format", "version", "source", "citation", "unit", "channels", "notes", "materials"});
+  const std::string source = reader.text(reader.member(root, "source", "$"), "$.source");
+  const std::string citation = reader.text(reader.member(root, "citation", "$"), "$.citation");
+  // Files spell units exactly (the schema's enum); the command line is more lenient.
+  const std::string unit_text = reader.string(reader.member(root, "unit", "$"), "$.unit");
+  if (unit_text != "um" && unit_text != "\u00b5m" && unit_text != "mm" && unit_text != "cm" && unit_text != "m")
+    reader.fail("$.unit", "'" + unit_text + "' is not one of um, \u00b5m, mm, cm, m");
+  const LengthUnit unit = parse_length_unit(unit_text, "unit");
   std::vector<std::string> channels;
   const json& channel_list = reader.member(root, "channels", "$");
   if (!channel_list.is_array() || channel_list.empty()) reader.fail("$.channels", "expected a non-empty array of names");
-  for (std::size_t i = 0; i < channel_list.size(); ++i)
-    channels.push_back(reader.string(channel_list[i], "$.channels[" + std::to_string(i) + "]"));
+  for (std::size_t i = 0; i < channel_list.size(); ++i) {
+    const std::string where = "$.channels[" + std::to_string(i) + "]";
+    channels.push_back(reader.text(channel_list[i], where));
+    for (std::size_t j = 0; j + 1 < channels.size(); ++j)
+      if (channels[j] == channels.back()) reader.fail(where, "'" + channels.back() + "' is repeated");
+  }
   const auto file_notes = reader.notes(root, "$");
 
   const json& list = reader.member(root, "materials", "$");
@@ -176,8 +211,9 @@ void MaterialDatabase::add_file(const std::filesystem::path& path) {
     std::string where = "$.materials[" + std::to_string(i) + "]";
     const json& entry = list[i];
     Material m;
-    m.name = reader.string(reader.member(entry, "name", where), where + ".name");
+    m.name = reader.text(reader.member(entry, "name", where), where + ".name");
     where += " (" + m.name + ")";
+    reader.only_known_fields(entry, where, {"name", "eta", "sigma_a", "sigma_s", "g", "sigma_s_prime", "notes"});
     m.source = source;
     m.citation = citation;
     m.file = path.string();

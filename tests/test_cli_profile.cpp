@@ -116,6 +116,8 @@ TEST(CliProfile, VersionAndHelp) {
   EXPECT_NE(r.out.find("better-dipole"), std::string::npos);
   r = run("materials list");
   EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(count_lines(r.out), 47);  // Jensen 2001 (12) + Narasimhan 2006 (35)
+  r = run("materials list --source jensen2001");
   EXPECT_EQ(count_lines(r.out), 12);
 }
 

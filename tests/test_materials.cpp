@@ -5,8 +5,11 @@
 #include <fstream>
 #include <unistd.h>
 
+#include "bssrdf/derived_quantities.hpp"
 #include "bssrdf/error.hpp"
+#include "bssrdf/io/renderer_export.hpp"
 #include "bssrdf/materials.hpp"
+#include "json_schema_subset.hpp"
 #include "reference_data.hpp"
 
 using namespace bssrdf;
@@ -118,4 +121,207 @@ TEST(Materials, UnitsAreConvertedToPerMillimetre) {
   EXPECT_DOUBLE_EQ(db.find("a").medium.sigma_a[0], 0.1);
   EXPECT_DOUBLE_EQ(db.find("a").medium.sigma_s[0], 10.0);
   EXPECT_DOUBLE_EQ(db.find("a").medium.g[0], 0.9);
+}
+
+TEST(Materials, BundledNarasimhanTableMatchesTheReference) {
+  const auto db = MaterialDatabase::load(default_materials_dir());
+  EXPECT_EQ(db.all().size(), 47u);  // 12 + 35: every row loads
+  std::ifstream in(std::string(BSSRDF_TEST_DATA) + "/measured_media.tsv");
+  std::string line;
+  int compared = 0;
+  while (std::getline(in, line)) {
+    if (line.rfind("narasimhan2006\t", 0) != 0) continue;
+    std::istringstream f(line);
+    std::string source, name;
+    std::getline(f, source, '\t');
+    std::getline(f, name, '\t');
+    double eta, s[3], a[3], g[3];
+    f >> eta >> s[0] >> s[1] >> s[2] >> a[0] >> a[1] >> a[2] >> g[0] >> g[1] >> g[2];
+    const auto& m = db.find(name);
+    EXPECT_EQ(m.source, "narasimhan2006");
+    EXPECT_DOUBLE_EQ(m.medium.eta, eta) << name;
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_DOUBLE_EQ(m.medium.sigma_s[c], s[c]) << name;
+      EXPECT_DOUBLE_EQ(m.medium.sigma_a[c], a[c]) << name;
+      EXPECT_DOUBLE_EQ(m.medium.g[c], g[c]) << name;
+      if (s[c] == 0) EXPECT_EQ(g[c], 0.0) << name;  // the TSV's convention
+    }
+    EXPECT_FALSE(m.reduced_scattering_only);
+    ++compared;
+  }
+  EXPECT_EQ(compared, 35);
+}
+
+namespace {
+test_schema::json read_json(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  return test_schema::json::parse(in);
+}
+}  // namespace
+
+TEST(MaterialsSchema, IsValidJsonAndDescribesEveryBundledFile) {
+  const auto dir = default_materials_dir();
+  const auto schema = read_json(dir / "schema.json");  // throws if not JSON
+  EXPECT_EQ(schema["$schema"], "https://json-schema.org/draft/2020-12/schema");
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() != ".json" || entry.path().filename() == "schema.json") continue;
+    EXPECT_EQ(test_schema::validate(schema, read_json(entry.path())), "") << entry.path();
+    ++files;
+  }
+  EXPECT_EQ(files, 2);
+}
+
+// Every constraint the schema states, broken once: the schema rejects it and so does the loader,
+// with a message naming the field. (Channel counts and sigma_a + sigma_s > 0, which JSON Schema
+// cannot state, are covered by InvalidValuesNameTheField.)
+TEST(MaterialsSchema, LoaderRejectsWhatTheSchemaRejects) {
+  const auto schema = read_json(default_materials_dir() / "schema.json");
+  const std::string good_entry = R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1], "g": [0, 0, 0]})";
+  const auto file = [&](const std::string& top, const std::string& entry) {
+    return "{" + top + R"("format": "bssrdf-materials", "version": 1, "source": "test", "citation": "c", "unit": "mm",
+      "channels": ["R", "G", "B"], "materials": [)" + entry + "]}";
+  };
+  ASSERT_EQ(test_schema::validate(schema, test_schema::json::parse(file("", good_entry))), "");
+  ASSERT_EQ(load_error(file("", good_entry)), "");
+  struct Case {
+    std::string text, message;
+  };
+  const std::vector<Case> cases = {
+      {file(R"("extra": 1, )", good_entry), "$.extra: unknown field"},
+      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s_prim": [1, 1, 1]})"), "sigma_s_prim: unknown field"},
+      {file("", R"({"name": "", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1]})"), "$.materials[0].name: expected a non-empty string"},
+      {file("", R"({"name": "A", "eta": 0, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1]})"), "(A): eta = 0"},
+      {file("", R"({"name": "A", "eta": "1.3", "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1]})"), "(A).eta: expected a number"},
+      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, -1, 1]})"), "(A): sigma_s[G] = -1"},
+      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s_prime": [1, 1, -1]})"), "(A): sigma_s[B] = -1"},
+      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1], "g": [-1, 0, 0]})"), "g[R] = -1"},
+      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1], "g": [0, 0, 1]})"), "g[B] = 1"},
+      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1]})"), "exactly one of"},
+      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s_prime": [1, 1, 1], "g": [0, 0, 0]})"), "(A).g: 'g' cannot be given"},
+      {file("", R"({"eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1]})"), "missing required field 'name'"},
+      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, "x", 0.1], "sigma_s": [1, 1, 1]})"), "sigma_a[1]: expected a number"},
+      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1], "notes": 3})"), "(A).notes: expected a string"},
+      {file("", "")+"", "$.materials: expected a non-empty array"},
+      {R"({"format": "bssrdf-materials", "version": 2, "source": "t", "citation": "c", "unit": "mm", "channels": ["R"], "materials": []})", "$.version: only version 1"},
+      {R"({"format": "other", "version": 1, "source": "t", "citation": "c", "unit": "mm", "channels": ["R"], "materials": []})", "$.format"},
+      {R"({"format": "bssrdf-materials", "version": 1, "source": "", "citation": "c", "unit": "mm", "channels": ["R"], "materials": []})", "$.source: expected a non-empty string"},
+      {R"({"format": "bssrdf-materials", "version": 1, "source": "t", "unit": "mm", "channels": ["R"], "materials": []})", "missing required field 'citation'"},
+      {R"({"format": "bssrdf-materials", "version": 1, "source": "t", "citation": "c", "unit": "MM", "channels": ["R"], "materials": []})", "$.unit: 'MM' is not one of"},
+      {R"({"format": "bssrdf-materials", "version": 1, "source": "t", "citation": "c", "unit": "mm", "channels": [], "materials": []})", "$.channels: expected a non-empty array"},
+      {R"({"format": "bssrdf-materials", "version": 1, "source": "t", "citation": "c", "unit": "mm", "channels": ["R", "R"], "materials": []})", "$.channels[1]: 'R' is repeated"},
+      {R"({"format": "bssrdf-materials", "version": 1, "source": "t", "citation": "c", "unit": "mm", "channels": ["R", ""], "materials": []})", "$.channels[1]: expected a non-empty string"},
+  };
+  for (const auto& c : cases) {
+    const auto doc = test_schema::json::parse(c.text);
+    EXPECT_NE(test_schema::validate(schema, doc), "") << "the schema accepts: " << c.text;
+    const std::string e = load_error(c.text);
+    EXPECT_NE(e.find(c.message), std::string::npos) << "expected '" << c.message << "', got: " << e;
+    EXPECT_NE(e.find("m.json"), std::string::npos) << e;
+  }
+}
+
+TEST(Materials, UserDatabaseAddsToTheBundledOneAndClashesAreErrors) {
+  const auto user = write_temp("user.json", std::string(kHeader) +
+                                                R"({"name": "My Wax", "eta": 1.45, "sigma_a": [0.01, 0.02, 0.03], "sigma_s": [2, 2, 2]}]})");
+  const auto db = MaterialDatabase::load_with_user(user);
+  EXPECT_EQ(db.all().size(), 48u);
+  EXPECT_EQ(db.find("my wax").medium.eta, 1.45);
+  EXPECT_EQ(db.find("Skin1").source, "jensen2001");
+  const auto clash = write_temp("clash.json", std::string(kHeader) +
+                                                  R"({"name": "skin1", "eta": 1.3, "sigma_a": [0.01, 0.02, 0.03], "sigma_s": [2, 2, 2]}]})");
+  try {
+    MaterialDatabase::load_with_user(clash);
+    FAIL();
+  } catch (const FileError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("clash.json"), std::string::npos) << what;
+    EXPECT_NE(what.find("'skin1' is already defined in"), std::string::npos) << what;
+    EXPECT_NE(what.find("jensen2001.json"), std::string::npos) << what;
+  }
+}
+
+TEST(DerivedQuantities, MatchHandComputedValues) {
+  const auto db = MaterialDatabase::load(default_materials_dir());
+  // Skin1 R (Jensen 2001): sigma_a 0.032, sigma_s' 0.74 1/mm, g = 0.
+  auto q = derive_quantities(db.find("Skin1").medium);
+  const auto& r = q.channels[0];
+  EXPECT_DOUBLE_EQ(r.albedo_prime, 0.74 / 0.772);
+  EXPECT_DOUBLE_EQ(r.mfp, 1 / 0.772);
+  EXPECT_DOUBLE_EQ(r.transport_mfp, 1 / 0.772);
+  EXPECT_NEAR(r.diffuse_mfp, 1 / std::sqrt(3 * 0.032 * 0.772), 1e-12);
+  EXPECT_EQ(q.physical_model, "pbd");
+  for (const auto& c : q.channels) EXPECT_TRUE(c.diffusion_valid) << c.name << ": " << c.reason;
+  // Lowfat Milk B (Narasimhan 2006): sigma_s 17.9572, sigma_a 0.0115, g 0.859.
+  q = derive_quantities(db.find("Lowfat Milk").medium);
+  const auto& b = q.channels[2];
+  const double sp = 17.9572 * (1 - 0.859), tp = 0.0115 + sp;
+  EXPECT_NEAR(b.mfp, 1 / (0.0115 + 17.9572), 1e-15);
+  EXPECT_NEAR(b.sigma_s_prime, sp, 1e-12);
+  EXPECT_NEAR(b.albedo_prime, sp / tp, 1e-12);
+  EXPECT_NEAR(b.transport_mfp, 1 / tp, 1e-12);
+  EXPECT_NEAR(b.diffuse_mfp, 1 / std::sqrt(3 * 0.0115 * tp), 1e-9);
+  EXPECT_NEAR(b.albedo, 17.9572 / (17.9572 + 0.0115), 1e-15);
+  // Burley's d sits near the physical profile's scale and the fit reports its quality.
+  for (const auto& c : q.channels) {
+    EXPECT_GT(c.burley_d, 0);
+    EXPECT_GT(c.burley_error, 0);
+    EXPECT_GT(c.surface_albedo, 0);
+    EXPECT_LT(c.surface_albedo, 1);
+  }
+}
+
+TEST(DerivedQuantities, MarkWhereDiffusionDoesNotApply) {
+  const auto db = MaterialDatabase::load(default_materials_dir());
+  // Sprite: alpha' ~ 0.003 and a transport mfp of ~500 mm.
+  auto q = derive_quantities(db.find("Sprite").medium);
+  for (const auto& c : q.channels) {
+    EXPECT_FALSE(c.diffusion_valid);
+    EXPECT_NE(c.reason.find("alpha'"), std::string::npos) << c.reason;
+    EXPECT_NE(c.reason.find("exceeds the object size 10 mm"), std::string::npos) << c.reason;
+  }
+  // Merlot G and B do not scatter at all: no Burley fit, and the reason says so.
+  q = derive_quantities(db.find("Merlot").medium);
+  EXPECT_TRUE(std::isnan(q.channels[1].burley_d));
+  EXPECT_NE(q.channels[1].reason.find("no scattering"), std::string::npos);
+  // The object size is the user's: Skin1 R (ell = 1.3 mm) is not diffuse in a 1 mm object.
+  DerivationOptions small;
+  small.object_size_mm = 1;
+  q = derive_quantities(db.find("Skin1").medium, small);
+  EXPECT_FALSE(q.channels[0].diffusion_valid);
+  EXPECT_TRUE(q.channels[2].diffusion_valid);  // ell = 0.67 mm
+  // How many of the database's channels diffusion covers at 10 mm (printed for the README).
+  int valid = 0, total = 0;
+  for (const auto& m : db.all())
+    for (const auto& c : derive_quantities(m.medium).channels) valid += c.diffusion_valid, ++total;
+  std::printf("diffusion valid in %d of %d channels (object size 10 mm)\n", valid, total);
+  EXPECT_LT(valid, total);
+}
+
+TEST(Materials, JsonExportRoundTripsThroughEveryUnit) {
+  const auto db = MaterialDatabase::load(default_materials_dir());
+  std::vector<ExportEntry> entries;
+  for (const auto& m : db.all()) entries.push_back({m, {}});
+  for (const auto unit : {LengthUnit::micrometre, LengthUnit::millimetre, LengthUnit::centimetre, LengthUnit::metre}) {
+    EXPECT_DOUBLE_EQ(from_mm(to_mm(1.2345, unit), unit), 1.2345);
+    EXPECT_DOUBLE_EQ(coefficient_from_per_mm(coefficient_to_per_mm(0.37, unit), unit), 0.37);
+    // Mixed sources and channel-compatible: one file with every material.
+    const auto path = write_temp("export-" + std::string(symbol(unit)) + ".json",
+                                 export_materials(RendererTarget::json, entries, unit));
+    const auto back = MaterialDatabase::load(path);
+    ASSERT_EQ(back.all().size(), db.all().size());
+    for (std::size_t i = 0; i < db.all().size(); ++i) {
+      const auto& a = db.all()[i];
+      const auto& b = back.all()[i];
+      EXPECT_EQ(a.name, b.name);
+      EXPECT_EQ(b.unit, unit);
+      EXPECT_EQ(a.reduced_scattering_only, b.reduced_scattering_only);
+      EXPECT_EQ(a.medium.eta, b.medium.eta);
+      for (std::size_t c = 0; c < 3; ++c) {
+        EXPECT_NEAR(b.medium.sigma_a[c], a.medium.sigma_a[c], 1e-15 * a.medium.sigma_a[c]) << a.name;
+        EXPECT_NEAR(b.medium.sigma_s[c], a.medium.sigma_s[c], 1e-15 * a.medium.sigma_s[c]) << a.name;
+        EXPECT_EQ(b.medium.g[c], a.medium.g[c]);
+      }
+    }
+  }
 }

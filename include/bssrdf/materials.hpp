@@ -42,6 +42,10 @@ class MaterialDatabase {
   // file, and the line or JSON path, for malformed files or invalid values; duplicate names across
   // files are errors too.
   static MaterialDatabase load(const std::filesystem::path& path);
+  // The bundled database plus the user's own directory or file (`--db`); empty: bundled only.
+  // A user name that clashes with a bundled one is an error naming both files.
+  static MaterialDatabase load_with_user(const std::filesystem::path& user);
+  void add_path(const std::filesystem::path& path);  // a directory of *.json, or one file
   void add_file(const std::filesystem::path& file);
 
   // Case-insensitive lookup; throws InvalidInput listing the closest names when unknown.

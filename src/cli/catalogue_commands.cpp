@@ -1,4 +1,4 @@
-// bssrdf models / bssrdf materials list: what the tool knows.
+// bssrdf models: the profile models the tool knows (materials: materials_command.cpp).
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -44,34 +44,6 @@ Action register_models(CLI::App& app) {
       }
     }
     if (*json) std::cout << list.dump(2) << '\n';
-  };
-}
-
-Action register_materials(CLI::App& app) {
-  struct Options {
-    std::string db, source, format = "table";
-  };
-  auto options = std::make_shared<Options>();
-  auto* sub = app.add_subcommand("materials", "The measured-media database");
-  sub->require_subcommand(1);
-  auto* list = sub->add_subcommand("list", "List materials: name, source, eta");
-  list->add_option("--db", options->db, "Materials database directory or file [the bundled materials/]");
-  list->add_option("--source", options->source, "Only materials from this source (e.g. jensen2001)");
-  list->add_option("--format,-f", options->format, "table or json [table]")->check(CLI::IsMember({"table", "json"}));
-  return [options, list] {
-    if (!list->parsed()) return;
-    const auto db = MaterialDatabase::load(options->db.empty() ? default_materials_dir() : std::filesystem::path(options->db));
-    nlohmann::json out = nlohmann::json::array();
-    for (const auto& m : db.all()) {
-      if (!options->source.empty() && m.source != options->source) continue;
-      if (options->format == "json") {
-        out.push_back({{"name", m.name}, {"source", m.source}, {"eta", m.medium.eta}, {"channels", m.medium.channel_names}});
-      } else {
-        std::cout << m.name << std::string(m.name.size() < 24 ? 24 - m.name.size() : 1, ' ') << m.source
-                  << "  eta " << m.medium.eta << '\n';
-      }
-    }
-    if (options->format == "json") std::cout << out.dump(2) << '\n';
   };
 }
 

@@ -67,7 +67,7 @@ void MediumOptions::add_to(CLI::App& app) {
   auto* ch = app.add_option("--channels", channels, "Channel names, comma-separated [R,G,B for three]");
   app.add_option("--eta", eta, "Relative index of refraction n_medium/n_outside [1.3, or the material's]");
   app.add_option("--unit", unit, "Length unit of coefficients, radii and outputs: um, mm, cm, m [mm]");
-  app.add_option("--db", db, "Materials database directory or file [the bundled materials/]");
+  app.add_option("--db", db, "Your own materials directory or file, added to the bundled database");
   mat->excludes(sa)->excludes(ss)->excludes(gg)->excludes(ch);
 }
 
@@ -75,7 +75,7 @@ MediumOptions::Resolved MediumOptions::resolve() const {
   Resolved out;
   out.unit = parse_length_unit(unit, "--unit");
   if (!material.empty()) {
-    const auto database = MaterialDatabase::load(db.empty() ? default_materials_dir() : std::filesystem::path(db));
+    const auto database = MaterialDatabase::load_with_user(db);
     out.material = database.find(material);
     out.medium = out.material->medium;
   } else {

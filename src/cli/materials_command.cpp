@@ -1,0 +1,282 @@
+// bssrdf materials list | show | export | import: the measured-media database, what each entry
+// implies (derived quantities, diffusion validity), renderer exports, and fitted materials saved
+// in the database's own format.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <unistd.h>
+
+#include "bssrdf/derived_quantities.hpp"
+#include "bssrdf/error.hpp"
+#include "bssrdf/io/atomic_file.hpp"
+#include "bssrdf/io/renderer_export.hpp"
+#include "cli_common.hpp"
+#include "commands.hpp"
+
+namespace bssrdf::cli {
+namespace {
+
+using json = nlohmann::ordered_json;
+
+// A length in the output unit; infinite and NaN become null in JSON.
+json length(double mm, LengthUnit unit) {
+  const double v = from_mm(mm, unit);
+  return std::isfinite(v) ? json(v) : json(nullptr);
+}
+json value(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json show_json(const Material& m, const DerivedQuantities& q, LengthUnit unit) {
+  const std::string u(symbol(unit)), per = "1/" + u;
+  json doc = {{"name", m.name},       {"source", m.source}, {"citation", m.citation}, {"file", m.file},
+              {"eta", m.medium.eta},  {"unit", u},
+              {"reduced_scattering_only", m.reduced_scattering_only},
+              {"physical_model", q.physical_model},
+              {"object_size", from_mm(q.object_size_mm, unit)},
+              {"conventions",
+               {{"mfp", "1/sigma_t (unreduced), " + u},
+                {"transport_mfp", "ell = 1/sigma_t', " + u},
+                {"diffuse_mfp", "ell_d = 1/sigma_tr, sigma_tr = sqrt(3 sigma_a sigma_t'), " + u + "; null without absorption"},
+                {"burley_d", "d of R(r) = A (e^{-r/d} + e^{-r/3d})/(8 pi d r) least-squares fitted to the " + q.physical_model +
+                                 " profile, " + u + "; burley_fit_error = sqrt(int r (fit - R)^2 dr / int r R^2 dr)"},
+                {"surface_albedo", "total diffuse reflectance of the " + q.physical_model + " profile per entered flux"},
+                {"coefficients", per}}},
+              {"notes", m.notes}};
+  doc["channels"] = json::array();
+  for (const auto& c : q.channels) {
+    doc["channels"].push_back({{"name", c.name},
+                               {"sigma_a", coefficient_from_per_mm(c.sigma_a, unit)},
+                               {"sigma_s", coefficient_from_per_mm(c.sigma_s, unit)},
+                               {"g", c.g},
+                               {"sigma_t", coefficient_from_per_mm(c.sigma_t, unit)},
+                               {"sigma_s_prime", coefficient_from_per_mm(c.sigma_s_prime, unit)},
+                               {"sigma_t_prime", coefficient_from_per_mm(c.sigma_t_prime, unit)},
+                               {"albedo", c.albedo},
+                               {"albedo_prime", c.albedo_prime},
+                               {"mfp", length(c.mfp, unit)},
+                               {"transport_mfp", length(c.transport_mfp, unit)},
+                               {"diffuse_mfp", length(c.diffuse_mfp, unit)},
+                               {"burley_d", length(c.burley_d, unit)},
+                               {"burley_albedo", value(c.burley_albedo)},
+                               {"burley_fit_error", value(c.burley_error)},
+                               {"surface_albedo", c.surface_albedo},
+                               {"diffusion_valid", c.diffusion_valid},
+                               {"reason", c.reason}});
+  }
+  return doc;
+}
+
+std::string show_table(const Material& m, const DerivedQuantities& q, LengthUnit unit) {
+  const std::string u(symbol(unit));
+  std::ostringstream out;
+  out << m.name << " (" << m.source << ")  eta " << m.medium.eta << "\n" << m.citation << "\n";
+  for (const auto& n : m.notes) out << "  note: " << n << "\n";
+  char line[256];
+  std::snprintf(line, sizeof line, "%-24s", "");
+  out << line;
+  for (const auto& c : q.channels) {
+    std::snprintf(line, sizeof line, "%14s", c.name.c_str());
+    out << line;
+  }
+  out << "\n";
+  auto row = [&](const std::string& label, auto get) {
+    std::snprintf(line, sizeof line, "%-24s", label.c_str());
+    out << line;
+    for (const auto& c : q.channels) {
+      std::snprintf(line, sizeof line, "%14.6g", get(c));
+      out << line;
+    }
+    out << "\n";
+  };
+  const double mm = millimetres_per(unit);
+  row("sigma_a [1/" + u + "]", [&](const DerivedChannel& c) { return c.sigma_a * mm; });
+  row("sigma_s [1/" + u + "]", [&](const DerivedChannel& c) { return c.sigma_s * mm; });
+  row("g", [](const DerivedChannel& c) { return c.g; });
+  row("sigma_s' [1/" + u + "]", [&](const DerivedChannel& c) { return c.sigma_s_prime * mm; });
+  row("albedo", [](const DerivedChannel& c) { return c.albedo; });
+  row("albedo'", [](const DerivedChannel& c) { return c.albedo_prime; });
+  row("mfp 1/sigma_t [" + u + "]", [&](const DerivedChannel& c) { return c.mfp / mm; });
+  row("ell 1/sigma_t' [" + u + "]", [&](const DerivedChannel& c) { return c.transport_mfp / mm; });
+  row("ell_d 1/sigma_tr [" + u + "]", [&](const DerivedChannel& c) { return c.diffuse_mfp / mm; });
+  row("Burley d [" + u + "]", [&](const DerivedChannel& c) { return c.burley_d / mm; });
+  row("Burley fit error", [](const DerivedChannel& c) { return c.burley_error; });
+  row("surface albedo", [](const DerivedChannel& c) { return c.surface_albedo; });
+  out << "physical profile: " << q.physical_model << "; object size " << from_mm(q.object_size_mm, unit) << " " << u << "\n";
+  for (const auto& c : q.channels)
+    out << "  " << c.name << ": " << (c.diffusion_valid ? "diffusion valid" : "diffusion NOT valid: " + c.reason) << "\n";
+  return out.str();
+}
+
+double object_size_mm(const std::string& text) {
+  // --object-size is in mm: a physical size, independent of the output unit.
+  const double v = parse_number(text, "--object-size");
+  if (!(v > 0)) throw InvalidInput("--object-size", text, "> 0 (mm)");
+  return v;
+}
+
+// `bssrdf fit ... -f json` output -> a materials file with one entry (sigma_a, sigma_s' per channel).
+std::string import_fit(const std::string& fit_file, const std::string& name, const std::string& eta_text,
+                       const std::string& source) {
+  std::ifstream in(fit_file);
+  if (!in) throw FileError(fit_file, 0, "cannot open the fit result");
+  nlohmann::json fit;
+  try {
+    fit = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw FileError(fit_file, 0, "malformed JSON (expected 'bssrdf fit ... -f json' output)");
+  }
+  if (!fit.is_object() || fit.value("source", "") != "fit")
+    throw FileError(fit_file, 0, "$.source: expected \"fit\" (the output of 'bssrdf fit ... -f json')");
+  if (!fit.contains("channels") || !fit["channels"].is_array() || fit["channels"].empty())
+    throw FileError(fit_file, 0, "$.channels: expected a non-empty array");
+  double eta = 0;
+  if (!eta_text.empty()) eta = parse_number(eta_text, "--eta");
+  else if (fit.contains("shared") && fit["shared"].contains("eta")) eta = fit["shared"]["eta"]["value"].get<double>();
+  else throw InvalidInput("--eta: the fit result has no eta; give the one the fit assumed");
+  std::vector<std::string> channels;
+  std::vector<double> sigma_a, sigma_s_prime;
+  std::string unit;
+  for (std::size_t i = 0; i < fit["channels"].size(); ++i) {
+    const auto& c = fit["channels"][i];
+    const std::string where = "$.channels[" + std::to_string(i) + "]";
+    for (const char* key : {"sigma_a", "sigma_s_prime"})
+      if (!c.contains(key) || !c[key].contains("value") || !c[key]["value"].is_number())
+        throw FileError(fit_file, 0, where + "." + key + ": missing (only fits of sigma_a and sigma_s' - profile, albedo, "
+                                                          "slab - give a material)");
+    channels.push_back(c.value("name", "c" + std::to_string(i)));
+    sigma_a.push_back(c["sigma_a"]["value"].get<double>());
+    sigma_s_prime.push_back(c["sigma_s_prime"]["value"].get<double>());
+    const std::string u = c["sigma_a"].value("unit", "1/mm");
+    if (u.rfind("1/", 0) != 0) throw FileError(fit_file, 0, where + ".sigma_a.unit: '" + u + "' is not 1/LENGTH");
+    unit = u.substr(2);
+  }
+  json doc = {{"format", "bssrdf-materials"},
+              {"version", 1},
+              {"source", source},
+              {"citation", "bssrdf fit " + fit.value("kind", std::string("?")) + " (" + fit.value("model", std::string("?")) +
+                               ") of " + fit.value("data", std::string("?")) + ", " + fit.value("tool", std::string(""))},
+              {"unit", unit},
+              {"channels", channels},
+              {"notes", {"Imported from " + fit_file + " by 'bssrdf materials import'; g was not fitted, so the entry "
+                         "gives sigma_s_prime (used with g = 0)."}},
+              {"materials", {{{"name", name}, {"eta", eta}, {"sigma_a", sigma_a}, {"sigma_s_prime", sigma_s_prime}}}}};
+  return doc.dump(2) + "\n";
+}
+
+}  // namespace
+
+Action register_materials(CLI::App& app) {
+  struct Options {
+    std::string db, source, format = "table", name, to, unit, output, object_size = "10", fit_file, eta, import_source = "fit";
+    bool all = false;
+  };
+  auto o = std::make_shared<Options>();
+  auto* sub = app.add_subcommand("materials", "The measured-media database: list, show, export to renderers, import fits");
+  sub->require_subcommand(1);
+  const auto add_db = [o](CLI::App* c) {
+    c->add_option("--db", o->db, "Your own materials directory or file, added to the bundled database");
+  };
+  const auto add_object_size = [o](CLI::App* c) {
+    c->add_option("--object-size", o->object_size,
+                  "Size of the object, mm: diffusion is marked invalid where the transport mfp exceeds it [10]");
+  };
+
+  auto* list = sub->add_subcommand("list", "List materials: name, source, eta");
+  add_db(list);
+  list->add_option("--source", o->source, "Only materials from this source (e.g. jensen2001)");
+  list->add_option("--format,-f", o->format, "table or json [table]")->check(CLI::IsMember({"table", "json"}));
+
+  auto* show = sub->add_subcommand("show", "All coefficients, derived quantities and diffusion validity of a material");
+  show->add_option("name", o->name, "Material name (case-insensitive)")->required();
+  add_db(show);
+  add_object_size(show);
+  show->add_option("--format,-f", o->format, "table or json [table]")->check(CLI::IsMember({"table", "json"}));
+  show->add_option("--unit", o->unit, "Unit of distances and coefficients: um, mm, cm, m [mm]");
+
+  auto* exp = sub->add_subcommand("export", "Write materials in a renderer's form (units and conventions stated in the file)");
+  auto* exp_name = exp->add_option("name", o->name, "Material name (case-insensitive)");
+  auto* exp_all = exp->add_flag("--all", o->all, "Every material (with --source: every one from that source)");
+  exp_name->excludes(exp_all);
+  exp->add_option("--to", o->to, "json, pbrt-v4, mitsuba3, blender, unity-hdrp, unreal")->required();
+  exp->add_option("--unit", o->unit,
+                  "Scene unit lengths and coefficients are written in: um, mm, cm, m [m; json: mm; unreal: always cm]");
+  exp->add_option("--source", o->source, "With --all: only materials from this source");
+  exp->add_option("-o,--output", o->output, "Write to FILE (atomically) instead of stdout");
+  add_db(exp);
+  add_object_size(exp);
+
+  auto* imp = sub->add_subcommand("import", "Turn a 'bssrdf fit ... -f json' result into a materials file for --db");
+  imp->add_option("fit", o->fit_file, "The fit result (JSON)")->required();
+  imp->add_option("--name", o->name, "Name of the new material")->required();
+  imp->add_option("--eta", o->eta, "Relative index [the fit's, if it fitted or recorded one]");
+  imp->add_option("--source", o->import_source, "Source key of the new file [fit]");
+  imp->add_option("-o,--output", o->output, "The materials file to write")->required();
+
+  return [o, list, show, exp, imp] {
+    if (list->parsed()) {
+      const auto db = MaterialDatabase::load_with_user(o->db);
+      json out = json::array();
+      for (const auto& m : db.all()) {
+        if (!o->source.empty() && m.source != o->source) continue;
+        if (o->format == "json") {
+          out.push_back({{"name", m.name}, {"source", m.source}, {"eta", m.medium.eta}, {"channels", m.medium.channel_names},
+                         {"file", m.file}});
+        } else {
+          std::cout << m.name << std::string(m.name.size() < 24 ? 24 - m.name.size() : 1, ' ') << m.source
+                    << "  eta " << m.medium.eta << '\n';
+        }
+      }
+      if (o->format == "json") std::cout << out.dump(2) << '\n';
+    } else if (show->parsed()) {
+      const auto unit = parse_length_unit(o->unit.empty() ? "mm" : o->unit, "--unit");
+      DerivationOptions options;
+      options.object_size_mm = object_size_mm(o->object_size);
+      const auto db = MaterialDatabase::load_with_user(o->db);
+      const auto& m = db.find(o->name);
+      const auto q = derive_quantities(m.medium, options);
+      std::cout << (o->format == "json" ? show_json(m, q, unit).dump(2) + "\n" : show_table(m, q, unit));
+    } else if (exp->parsed()) {
+      const auto target = parse_renderer_target(o->to);
+      if (o->name.empty() && !o->all) throw InvalidInput("materials export: give a material NAME or --all");
+      const auto unit = parse_length_unit(
+          o->unit.empty() ? (target == RendererTarget::json ? "mm" : "m") : o->unit, "--unit");
+      DerivationOptions options;
+      options.object_size_mm = object_size_mm(o->object_size);
+      const auto db = MaterialDatabase::load_with_user(o->db);
+      std::vector<ExportEntry> entries;
+      const auto add = [&](const Material& m) {
+        entries.push_back({m, target == RendererTarget::json ? DerivedQuantities{} : derive_quantities(m.medium, options)});
+      };
+      if (o->all) {
+        for (const auto& m : db.all())
+          if (o->source.empty() || m.source == o->source) add(m);
+        if (entries.empty()) throw InvalidInput("--source", "'" + o->source + "'", "a source of a loaded file");
+      } else {
+        add(db.find(o->name));
+      }
+      const std::string text = export_materials(target, entries, unit);
+      if (o->output.empty()) std::cout << text;
+      else write_file_atomically(o->output, text);
+    } else if (imp->parsed()) {
+      const std::string text = import_fit(o->fit_file, o->name, o->eta, o->import_source);
+      // Validate by loading it, before it replaces anything.
+      const auto check = std::filesystem::path(o->output).parent_path() /
+                         (".bssrdf-import-check-" + std::to_string(::getpid()) + ".json");
+      write_file_atomically(check, text);
+      try {
+        MaterialDatabase::load(check);
+      } catch (...) {
+        std::filesystem::remove(check);
+        throw;
+      }
+      std::filesystem::remove(check);
+      write_file_atomically(o->output, text);
+      std::cout << "written: " << o->output << " (load it with --db " << o->output << ")\n";
+    }
+  };
+}
+
+}  // namespace bssrdf::cli

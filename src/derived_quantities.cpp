@@ -1,0 +1,72 @@
+#include "bssrdf/derived_quantities.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "bssrdf/error.hpp"
+#include "bssrdf/fit/inverse_fits.hpp"
+#include "bssrdf/model.hpp"
+#include "bssrdf/profile.hpp"
+
+namespace bssrdf {
+
+std::vector<double> burley_fit_radii_mm(const Reduced<double>& m, std::size_t count) {
+  const double r_max = m.sigma_tr > 0 ? 16 * m.ell_d : 1000 * m.ell;
+  const double r_min = 1e-3 * std::min(m.ell, r_max / 16);
+  return log_spaced(r_min, r_max, count);
+}
+
+DerivedQuantities derive_quantities(const Medium& medium, const DerivationOptions& options) {
+  medium.validate();
+  if (!(options.object_size_mm > 0) || !std::isfinite(options.object_size_mm))
+    throw InvalidInput("object size", format_number(options.object_size_mm), "> 0 and finite");
+  if (options.radii < 8) throw InvalidInput("radii", std::to_string(options.radii), ">= 8");
+  const auto model = make_model(options.physical_model);
+  DerivedQuantities out;
+  out.physical_model = model->name();
+  out.object_size_mm = options.object_size_mm;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t c = 0; c < medium.channels(); ++c) {
+    const auto m = medium.reduced(c);
+    DerivedChannel ch;
+    ch.name = medium.channel_names[c];
+    ch.sigma_a = m.sigma_a;
+    ch.sigma_s = m.sigma_s;
+    ch.g = m.g;
+    ch.sigma_t = m.sigma_t();
+    ch.albedo = m.albedo();
+    ch.sigma_s_prime = m.sigma_s_prime;
+    ch.sigma_t_prime = m.sigma_t_prime;
+    ch.albedo_prime = m.albedo_prime;
+    ch.mfp = 1 / ch.sigma_t;
+    ch.transport_mfp = m.ell;
+    ch.diffuse_mfp = m.sigma_tr > 0 ? m.ell_d : std::numeric_limits<double>::infinity();
+
+    std::vector<std::string> reasons;
+    if (m.sigma_s_prime > 0) {
+      ch.surface_albedo = model->total_reflectance(m);
+      NamedProfile profile{ch.name, model->sample(m, burley_fit_radii_mm(m, options.radii))};
+      const auto fit = fit_burley({profile}, LengthUnit::millimetre, out.physical_model);
+      ch.burley_d = fit.find("burley_d", ch.name)->value;
+      ch.burley_albedo = fit.find("surface_albedo", ch.name)->value;
+      ch.burley_error = fit.find("relative_l2_error", ch.name)->value;
+      for (const auto& note : model->validity(m))
+        if (note.severity == Severity::invalid) reasons.push_back(note.message);
+    } else {
+      // Nothing scatters back: no profile to fit.
+      ch.burley_d = ch.burley_albedo = ch.burley_error = nan;
+      reasons.push_back("no scattering (sigma_s' = 0): light is only absorbed");
+    }
+    if (m.ell > options.object_size_mm)
+      reasons.push_back("transport mean free path " + format_number(std::round(m.ell * 1e3) / 1e3) +
+                        " mm exceeds the object size " + format_number(options.object_size_mm) +
+                        " mm: light leaves before it becomes diffuse");
+    ch.diffusion_valid = reasons.empty();
+    for (const auto& r : reasons) ch.reason += (ch.reason.empty() ? "" : "; ") + r;
+    out.channels.push_back(std::move(ch));
+  }
+  return out;
+}
+
+}  // namespace bssrdf
