@@ -14,7 +14,10 @@
 #include "bssrdf/io/exr_table.hpp"
 #include "bssrdf/lut/albedo_radius_table.hpp"
 #include "bssrdf/lut/radial_table.hpp"
+#include "bssrdf/lut/transmission_table.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/models/multipole.hpp"
+#include "bssrdf/profile.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -27,10 +30,16 @@ struct LutOptions {
   std::string output, format, output_dir, layout = "pbrt", size;
   bool half = false, all = false, quiet = false;
   unsigned threads = 1;
+  bool model_given = false;  // --model appeared on the command line
+  // transmission
+  std::string thickness, d_min, d_max;
+  int samples = 32;
+  bool reference = false, reference_everywhere = false;
+  std::uint64_t photons = 100'000, seed = 1;
 };
 
 const std::vector<std::string>& kinds() {
-  static const std::vector<std::string> k = {"radial", "albedo-radius"};
+  static const std::vector<std::string> k = {"radial", "albedo-radius", "transmission"};
   return k;
 }
 
@@ -38,6 +47,13 @@ double positive_fraction(const std::string& text, const std::string& field) {
   const double v = parse_number(text, field);
   if (!(v > 0 && v < 1)) throw InvalidInput(field, format_number(v), "0 < value < 1");
   return v;
+}
+
+// Four significant digits, for the lines people read (the files keep full precision).
+std::string short_number(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", v);
+  return buffer;
 }
 
 // The table and a few lines for people about it.
@@ -90,7 +106,71 @@ Built build_albedo_radius(const LutOptions& o) {
   return {to_lookup_table(t, context, o.layout), s.str()};
 }
 
+// Thicknesses in mm: --thickness, or --samples log-spaced from --d-min to --d-max (defaults: half
+// the smallest transport mfp to 40 of the largest, so thin slabs are covered too).
+std::vector<double> thicknesses_mm(const LutOptions& o, const MediumOptions::Resolved& resolved) {
+  const double mm = millimetres_per(resolved.unit);
+  std::vector<double> out;
+  if (!o.thickness.empty()) {
+    if (!o.d_min.empty() || !o.d_max.empty()) throw InvalidInput("--thickness: give either --thickness or --d-min/--d-max");
+    for (double d : parse_number_list(o.thickness, "--thickness")) {
+      if (!(d > 0)) throw InvalidInput("--thickness", format_number(d), "> 0");
+      out.push_back(d * mm);
+    }
+    return out;
+  }
+  double ell_min = 1e300, ell_max = 0;
+  for (std::size_t c = 0; c < resolved.medium.channels(); ++c) {
+    ell_min = std::min(ell_min, resolved.medium.reduced(c).ell);
+    ell_max = std::max(ell_max, resolved.medium.reduced(c).ell);
+  }
+  const double a = o.d_min.empty() ? 0.5 * ell_min : parse_number(o.d_min, "--d-min") * mm;
+  const double b = o.d_max.empty() ? 40 * ell_max : parse_number(o.d_max, "--d-max") * mm;
+  if (!(a > 0)) throw InvalidInput("--d-min", format_number(a / mm), "> 0");
+  if (!(b > a)) throw InvalidInput("--d-max", format_number(b / mm), "> --d-min = " + format_number(a / mm));
+  if (o.samples < 2 || o.samples > 4096) throw InvalidInput("--samples", std::to_string(o.samples), "2 to 4096");
+  return log_spaced(a, b, static_cast<std::size_t>(o.samples));
+}
+
+Built build_transmission(const LutOptions& o, const MediumOptions::Resolved& resolved) {
+  if (o.model_given && o.model != "multipole")
+    throw InvalidInput("--model", "'" + o.model + "'", "multipole for --kind transmission (or --reference for Monte Carlo)");
+  TransmissionTableOptions options;
+  options.reference = o.reference;
+  options.reference_everywhere = o.reference_everywhere;
+  options.photons = o.photons;
+  options.seed = o.seed;
+  options.threads = o.threads;
+  const auto t = build_transmission_table(resolved.medium, thicknesses_mm(o, resolved), options);
+  const multipole::Model model(1.0);
+  TableContext context{resolved.material, &resolved.medium, &model, resolved.unit};
+  auto table = to_lookup_table(t, context);  // throws when nothing is left
+  table.set("bssrdf:model_description", std::string("total transmittance of slabs: multipole (Donner & Jensen 2005) where valid") +
+                                            (o.reference || o.reference_everywhere ? ", Monte Carlo reference elsewhere" : ""));
+  const double mm = millimetres_per(resolved.unit);
+  const std::string u(symbol(resolved.unit));
+  std::ostringstream s;
+  std::size_t mc = 0;
+  for (auto x : t.source) mc += x == TransmissionSource::monte_carlo;
+  s << "transmission table: " << t.size() << " thicknesses from " << short_number(t.thickness.front() / mm) << " to "
+    << short_number(t.thickness.back() / mm) << ' ' << u << " (" << t.size() - mc << " multipole, " << mc
+    << " Monte Carlo with " << o.photons << " photons per channel";
+  if (mc) s << ", " << format_number(std::round(t.monte_carlo_seconds * 100) / 100) << " s";
+  s << "); diffuse T per entered flux, ballistic excluded\n";
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
+    s << "  " << t.channel_names[c] << ": T = " << short_number(t.transmittance[c].front()) << " at "
+      << short_number(t.thickness.front() / mm) << ' ' << u << ", " << short_number(t.transmittance[c].back()) << " at "
+      << short_number(t.thickness.back() / mm) << ' ' << u << '\n';
+  if (!t.omitted_thickness.empty()) {
+    s << "  omitted " << t.omitted_thickness.size() << " thicknesses where the multipole is invalid (recorded in bssrdf:omitted; --reference fills them):";
+    for (std::size_t i = 0; i < t.omitted_thickness.size(); ++i) s << ' ' << short_number(t.omitted_thickness[i] / mm);
+    s << ' ' << u << '\n';
+  }
+  return {std::move(table), s.str()};
+}
+
 Built build(const LutOptions& o, const MediumOptions::Resolved& resolved) {
+  if (o.kind == "transmission") return build_transmission(o, resolved);
   auto model = make_model(o.model);
   TableContext context{resolved.material, &resolved.medium, model.get(), resolved.unit};
   std::ostringstream s;
@@ -145,10 +225,10 @@ Action register_lut(CLI::App& app) {
   auto o = std::make_shared<LutOptions>();
   auto* sub = app.add_subcommand("lut", "Lookup tables for renderers: OpenEXR, JSON or CSV with their conventions recorded");
   o->medium.add_to(*sub);
-  sub->add_option("--kind,-k", o->kind, "Table: radial, albedo-radius [radial]");
+  sub->add_option("--kind,-k", o->kind, "Table: radial, albedo-radius, transmission [radial]");
   sub->add_option("--layout", o->layout, "albedo-radius: pbrt (100 x 64, pbrt's spacing) or family (--size) [pbrt]");
   sub->add_option("--size", o->size, "albedo-radius with --layout family: ALBEDOSxRADII, e.g. 64x48");
-  sub->add_option("--model", o->model, "Profile model (see 'bssrdf models') [pbd]");
+  auto* model_option = sub->add_option("--model", o->model, "Profile model (see 'bssrdf models') [pbd]");
   sub->add_option("--tolerance", o->tolerance, "radial: relative interpolation error bound [1e-3]; albedo-radius: beam-integral quadrature tolerance [1e-2]");
   sub->add_option("--energy", o->energy, "Fraction of each channel's total inside the checked radius range [0.999]");
   sub->add_option("--interpolation", o->interpolation, "How the consumer interpolates: catmull-rom or linear [catmull-rom]");
@@ -159,8 +239,17 @@ Action register_lut(CLI::App& app) {
   sub->add_option("--output-dir", o->output_dir, "Directory for --all [.]");
   sub->add_option("--threads", o->threads, "Threads (0: all) [1]; results never depend on it");
   sub->add_flag("-q,--quiet", o->quiet, "Print nothing on stdout");
+  sub->add_option("--thickness", o->thickness, "transmission: slab thicknesses in --unit, comma-separated");
+  sub->add_option("--d-min", o->d_min, "transmission: smallest thickness [half the smallest transport mfp]");
+  sub->add_option("--d-max", o->d_max, "transmission: largest thickness [40 of the largest transport mfp]");
+  sub->add_option("--samples", o->samples, "transmission: thicknesses, log-spaced from --d-min to --d-max [32]");
+  sub->add_flag("--reference", o->reference, "transmission: Monte Carlo reference where the multipole is invalid (else omitted)");
+  sub->add_flag("--reference-everywhere", o->reference_everywhere, "transmission: Monte Carlo reference at every thickness");
+  sub->add_option("--photons", o->photons, "transmission: Monte Carlo photons per channel and thickness [100000]");
+  sub->add_option("--seed", o->seed, "transmission: Monte Carlo seed [1]");
 
-  return [o] {
+  return [o, model_option] {
+    o->model_given = model_option->count() > 0;
     if (o->all) {
       if (!o->medium.material.empty() || !o->medium.sigma_a.empty())
         throw InvalidInput("--all: give no --material or coefficients with --all");
