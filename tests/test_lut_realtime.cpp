@@ -222,3 +222,20 @@ TEST(CliLutRealtime, BadInputIsOneLineExitTwoAndNoFile) {
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(test_cli::count_lines(r.err), 1);
 }
+
+TEST(CliLutRealtime, PreviewIsAPngAndBadPathsWriteNothing) {
+  const auto png = temp("skin.png");
+  auto r = test_cli::run("lut --material Skin1 --preview " + png.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto bytes = test_cli::slurp(png);
+  ASSERT_GT(bytes.size(), 100u);
+  EXPECT_EQ(bytes.substr(1, 3), "PNG");
+  for (const std::string args : std::vector<std::string>{"--preview " + temp("x.jpg").string(), "--preview /nonexistent-dir/x.png",
+                                 "--sigma-a 0.1,0.2 --sigma-s 1,1 --preview " + temp("two.png").string()}) {
+    r = test_cli::run("lut " + std::string(args.find("sigma") == std::string::npos ? "--material Skin1 " : "") + args);
+    EXPECT_EQ(r.status, 2) << args << ": " << r.err;
+    EXPECT_EQ(test_cli::count_lines(r.err), 1) << args;
+  }
+  EXPECT_FALSE(std::filesystem::exists(temp("x.jpg")));
+  EXPECT_FALSE(std::filesystem::exists(temp("two.png")));
+}

@@ -15,6 +15,7 @@
 #include "bssrdf/io/exr_table.hpp"
 #include "bssrdf/lut/albedo_radius_table.hpp"
 #include "bssrdf/lut/gaussian_mixture_table.hpp"
+#include "bssrdf/lut/material_preview.hpp"
 #include "bssrdf/lut/preintegrated_table.hpp"
 #include "bssrdf/lut/radial_table.hpp"
 #include "bssrdf/lut/separable_kernel.hpp"
@@ -47,6 +48,7 @@ struct LutOptions {
   std::string range;
   // gaussians
   int count = 0;  // 0: quantized diffusion's own mixture with --model quantized, else 6
+  std::string preview;  // PNG file
 };
 
 const std::vector<std::string>& kinds() {
@@ -358,6 +360,7 @@ Action register_lut(CLI::App& app) {
   sub->add_flag("--reference-everywhere", o->reference_everywhere, "transmission: Monte Carlo reference at every thickness");
   sub->add_option("--photons", o->photons, "transmission: Monte Carlo photons per channel and thickness [100000]");
   sub->add_option("--seed", o->seed, "transmission: Monte Carlo seed [1]");
+  sub->add_option("--preview", o->preview, "Also (or, without -o, only) write a PNG preview of the material: shadow-edge swatch + colour falloff");
   sub->add_option("--taps", o->taps, "separable: number of taps, odd, >= 3 (Jimenez: 11, 17, 25) [17]");
   sub->add_option("--range", o->range, "separable: kernel half-width in --unit [3 mm if taps > 20 else 2 mm]");
   sub->add_option("--count,-n", o->count, "gaussians: number of shared-variance Gaussians fitted [6; with --model quantized and no --count: its own mixture]");
@@ -389,7 +392,22 @@ Action register_lut(CLI::App& app) {
         std::cout << database.all().size() << " " << o->kind << " tables in " << format_number(std::round(seconds * 1000) / 1000) << " s\n";
       return;
     }
-    if (o->output.empty()) throw InvalidInput("-o: give an output file (.exr, .json, .csv)");
+    if (!o->preview.empty()) {
+      if (std::filesystem::path(o->preview).extension() != ".png")
+        throw InvalidInput("--preview", "'" + o->preview + "'", "a file ending in .png");
+      const auto resolved = o->medium.resolve();
+      const auto model = make_model(o->kind == "transmission" || o->kind == "albedo-radius" || !o->model_given ? "pbd" : o->model);
+      const auto preview = render_material_preview(resolved.medium, *model);
+      if (!o->output.empty()) format_for(*o, o->output);  // bad -o fails before anything is written
+      write_file_atomically(o->preview, encode_png(preview.image));
+      if (!o->quiet)
+        std::cout << "preview: " << o->preview << " (" << preview.image.width << " x " << preview.image.height
+                  << " px; shadow edge at the centre, +-" << short_number(from_mm(preview.half_width, resolved.unit)) << ' '
+                  << symbol(resolved.unit) << ", ticks every " << short_number(from_mm(preview.tick, resolved.unit)) << ' '
+                  << symbol(resolved.unit) << "; " << model->name() << ")\n";
+      if (o->output.empty()) return;
+    }
+    if (o->output.empty()) throw InvalidInput("-o: give an output file (.exr, .json, .csv), or --preview FILE.png");
     const std::string format = format_for(*o, o->output);
     const auto start = std::chrono::steady_clock::now();
     const auto built = o->kind == "albedo-radius" ? build_albedo_radius(*o) : build(*o, o->medium.resolve());
