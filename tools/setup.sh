@@ -7,6 +7,7 @@ packages=(
   build-essential cmake pkg-config
   libceres-dev libeigen3-dev libopenexr-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libstb-dev
 )
 
 missing=()

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <map>
 #include <optional>
 #include <sstream>
 
@@ -13,8 +14,15 @@
 #include "bssrdf/io/atomic_file.hpp"
 #include "bssrdf/io/exr_table.hpp"
 #include "bssrdf/lut/albedo_radius_table.hpp"
+#include "bssrdf/lut/gaussian_mixture_table.hpp"
+#include "bssrdf/lut/material_preview.hpp"
+#include "bssrdf/lut/preintegrated_table.hpp"
 #include "bssrdf/lut/radial_table.hpp"
+#include "bssrdf/lut/separable_kernel.hpp"
+#include "bssrdf/lut/transmission_table.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/models/multipole.hpp"
+#include "bssrdf/profile.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -27,10 +35,24 @@ struct LutOptions {
   std::string output, format, output_dir, layout = "pbrt", size;
   bool half = false, all = false, quiet = false;
   unsigned threads = 1;
+  bool model_given = false;  // --model appeared on the command line
+  // transmission
+  std::string thickness, d_min, d_max;
+  int samples = 32;
+  bool reference = false, reference_everywhere = false;
+  std::uint64_t photons = 100'000, seed = 1;
+  // preintegrated
+  std::string curvature_max;
+  // separable
+  int taps = 17;
+  std::string range;
+  // gaussians
+  int count = 0;  // 0: quantized diffusion's own mixture with --model quantized, else 6
+  std::string preview;  // PNG file
 };
 
 const std::vector<std::string>& kinds() {
-  static const std::vector<std::string> k = {"radial", "albedo-radius"};
+  static const std::vector<std::string> k = {"radial", "albedo-radius", "transmission", "preintegrated", "separable", "gaussians"};
   return k;
 }
 
@@ -40,10 +62,18 @@ double positive_fraction(const std::string& text, const std::string& field) {
   return v;
 }
 
+// Four significant digits, for the lines people read (the files keep full precision).
+std::string short_number(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", v);
+  return buffer;
+}
+
 // The table and a few lines for people about it.
 struct Built {
   LookupTable table;
   std::string summary;
+  std::map<std::string, std::string> other_formats;  // e.g. "glsl", "hlsl" for kernels
 };
 
 // albedo-radius tables are dimensionless: only (g, eta) come from the medium (a material's first
@@ -87,11 +117,169 @@ Built build_albedo_radius(const LutOptions& o) {
     << t.quadrature_order << "-point Gauss-Legendre (tolerance " << format_number(options.tolerance) << "); table in "
     << format_number(std::round(ms * 100) / 100) << " ms\n  effective albedo: " << format_number(t.effective_albedo.front())
     << " (rho = 0) to " << format_number(t.effective_albedo.back()) << " (rho = 1)\n";
-  return {to_lookup_table(t, context, o.layout), s.str()};
+  return {to_lookup_table(t, context, o.layout), s.str(), {}};
+}
+
+// Thicknesses in mm: --thickness, or --samples log-spaced from --d-min to --d-max (defaults: half
+// the smallest transport mfp to 40 of the largest, so thin slabs are covered too).
+std::vector<double> thicknesses_mm(const LutOptions& o, const MediumOptions::Resolved& resolved) {
+  const double mm = millimetres_per(resolved.unit);
+  std::vector<double> out;
+  if (!o.thickness.empty()) {
+    if (!o.d_min.empty() || !o.d_max.empty()) throw InvalidInput("--thickness: give either --thickness or --d-min/--d-max");
+    for (double d : parse_number_list(o.thickness, "--thickness")) {
+      if (!(d > 0)) throw InvalidInput("--thickness", format_number(d), "> 0");
+      out.push_back(d * mm);
+    }
+    return out;
+  }
+  double ell_min = 1e300, ell_max = 0;
+  for (std::size_t c = 0; c < resolved.medium.channels(); ++c) {
+    ell_min = std::min(ell_min, resolved.medium.reduced(c).ell);
+    ell_max = std::max(ell_max, resolved.medium.reduced(c).ell);
+  }
+  const double a = o.d_min.empty() ? 0.5 * ell_min : parse_number(o.d_min, "--d-min") * mm;
+  const double b = o.d_max.empty() ? 40 * ell_max : parse_number(o.d_max, "--d-max") * mm;
+  if (!(a > 0)) throw InvalidInput("--d-min", format_number(a / mm), "> 0");
+  if (!(b > a)) throw InvalidInput("--d-max", format_number(b / mm), "> --d-min = " + format_number(a / mm));
+  if (o.samples < 2 || o.samples > 4096) throw InvalidInput("--samples", std::to_string(o.samples), "2 to 4096");
+  return log_spaced(a, b, static_cast<std::size_t>(o.samples));
+}
+
+Built build_transmission(const LutOptions& o, const MediumOptions::Resolved& resolved) {
+  if (o.model_given && o.model != "multipole")
+    throw InvalidInput("--model", "'" + o.model + "'", "multipole for --kind transmission (or --reference for Monte Carlo)");
+  TransmissionTableOptions options;
+  options.reference = o.reference;
+  options.reference_everywhere = o.reference_everywhere;
+  options.photons = o.photons;
+  options.seed = o.seed;
+  options.threads = o.threads;
+  const auto t = build_transmission_table(resolved.medium, thicknesses_mm(o, resolved), options);
+  const multipole::Model model(1.0);
+  TableContext context{resolved.material, &resolved.medium, &model, resolved.unit};
+  auto table = to_lookup_table(t, context);  // throws when nothing is left
+  table.set("bssrdf:model_description", std::string("total transmittance of slabs: multipole (Donner & Jensen 2005) where valid") +
+                                            (o.reference || o.reference_everywhere ? ", Monte Carlo reference elsewhere" : ""));
+  const double mm = millimetres_per(resolved.unit);
+  const std::string u(symbol(resolved.unit));
+  std::ostringstream s;
+  std::size_t mc = 0;
+  for (auto x : t.source) mc += x == TransmissionSource::monte_carlo;
+  s << "transmission table: " << t.size() << " thicknesses from " << short_number(t.thickness.front() / mm) << " to "
+    << short_number(t.thickness.back() / mm) << ' ' << u << " (" << t.size() - mc << " multipole, " << mc
+    << " Monte Carlo with " << o.photons << " photons per channel";
+  if (mc) s << ", " << format_number(std::round(t.monte_carlo_seconds * 100) / 100) << " s";
+  s << "); diffuse T per entered flux, ballistic excluded\n";
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
+    s << "  " << t.channel_names[c] << ": T = " << short_number(t.transmittance[c].front()) << " at "
+      << short_number(t.thickness.front() / mm) << ' ' << u << ", " << short_number(t.transmittance[c].back()) << " at "
+      << short_number(t.thickness.back() / mm) << ' ' << u << '\n';
+  if (!t.omitted_thickness.empty()) {
+    s << "  omitted " << t.omitted_thickness.size() << " thicknesses where the multipole is invalid (recorded in bssrdf:omitted; --reference fills them):";
+    for (std::size_t i = 0; i < t.omitted_thickness.size(); ++i) s << ' ' << short_number(t.omitted_thickness[i] / mm);
+    s << ' ' << u << '\n';
+  }
+  return {std::move(table), s.str(), {}};
+}
+
+// "WxH", each >= 1 (width >= 2).
+std::pair<std::size_t, std::size_t> parse_size(const std::string& text, std::size_t width, std::size_t height) {
+  if (text.empty()) return {width, height};
+  unsigned w = 0, h = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%ux%u%c", &w, &h, &tail) != 2 || w < 2 || h < 1 || w > 8192 || h > 8192)
+    throw InvalidInput("--size", "'" + text + "'", "WIDTHxHEIGHT, width 2 to 8192, height 1 to 8192, e.g. 256x256");
+  return {w, h};
+}
+
+Built build_preintegrated(const LutOptions& o, const MediumOptions::Resolved& resolved, const Model& model, const TableContext& context) {
+  PreintegratedOptions options;
+  std::tie(options.width, options.height) = parse_size(o.size, 256, 256);
+  const double mm = millimetres_per(resolved.unit);
+  if (!o.curvature_max.empty()) {
+    const double c = parse_number(o.curvature_max, "--curvature-max");
+    if (!(c > 0)) throw InvalidInput("--curvature-max", format_number(c), "> 0 (1/" + std::string(symbol(resolved.unit)) + ")");
+    options.curvature_max = c / mm;
+  }
+  options.threads = o.threads;
+  const auto t = build_preintegrated_table(resolved.medium, model, options);
+  const std::string u(symbol(resolved.unit));
+  std::ostringstream s;
+  s << "pre-integrated table: " << options.width << " N.L x " << options.height << " curvatures from 0 to "
+    << short_number(t.options.curvature_max * mm) << " 1/" << u << " (sphere radius down to " << short_number(1 / (t.options.curvature_max * mm))
+    << ' ' << u << ", the widest channel's r_50), texel centres\n";
+  const std::size_t W = options.width, H = options.height;
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
+    s << "  " << t.channel_names[c] << ": D at N.L = " << short_number(t.n_dot_l[W / 2]) << ": "
+      << short_number(t.value[c][W / 2]) << " (flattest row) to " << short_number(t.value[c][(H - 1) * W + W / 2])
+      << " (most curved); at N.L = " << short_number(t.n_dot_l[0]) << ": " << short_number(t.value[c][0]) << " to "
+      << short_number(t.value[c][(H - 1) * W]) << '\n';
+  return {to_lookup_table(t, context), s.str(), {}};
+}
+
+Built build_separable(const LutOptions& o, const MediumOptions::Resolved& resolved, const Model& model, const TableContext& context) {
+  SeparableKernelOptions options;
+  options.taps = o.taps;
+  const double mm = millimetres_per(resolved.unit);
+  const std::string u(symbol(resolved.unit));
+  if (!o.range.empty()) {
+    const double r = parse_number(o.range, "--range");
+    if (!(r > 0)) throw InvalidInput("--range", format_number(r), "> 0 (" + u + ")");
+    options.range = r * mm;
+  }
+  if (options.taps < 3 || options.taps % 2 == 0 || options.taps > 255)
+    throw InvalidInput("--taps", std::to_string(options.taps), "an odd number from 3 to 255 (Jimenez: 11, 17, 25)");
+  const auto k = build_separable_kernel(resolved.medium, model, options);
+  std::ostringstream s;
+  s << "separable kernel: " << o.taps << " taps over +-" << short_number(k.options.range / mm) << ' ' << u
+    << (o.range.empty() ? " (Jimenez's range)" : "") << ", offsets warped quadratically, centre tap first\n";
+  double worst = 1;
+  for (std::size_t c = 0; c < k.channel_names.size(); ++c) {
+    s << "  " << k.channel_names[c] << ": centre weight " << short_number(k.weight[c][0]) << ", the band |x| < range holds "
+      << short_number(100 * k.captured[c]) << " % of the total reflectance " << short_number(k.total_reflectance[c]) << '\n';
+    worst = std::min(worst, k.captured[c]);
+  }
+  if (worst < 0.9)
+    s << "  note: the range holds less than 90 % of a channel's light; a wider --range (e.g. "
+      << short_number(1.5 * k.options.range / mm) << " " << u << ") keeps more of it\n";
+  Built b{to_lookup_table(k, context), s.str(), {}};
+  b.other_formats["glsl"] = to_shader(k, context, ShaderLanguage::glsl);
+  b.other_formats["hlsl"] = to_shader(k, context, ShaderLanguage::hlsl);
+  return b;
+}
+
+Built build_gaussians(const LutOptions& o, const MediumOptions::Resolved& resolved, const Model& model, const TableContext& context) {
+  GaussianMixtureTable t;
+  if (o.count == 0 && model.name() == "quantized") {
+    t = quantized_mixture_table(resolved.medium, dynamic_cast<const quantized_diffusion::Model&>(model));
+  } else {
+    const int count = o.count == 0 ? 6 : o.count;
+    if (count < 1 || count > 32) throw InvalidInput("--count", std::to_string(count), "1 to 32");
+    t = fitted_mixture_table(resolved.medium, model, count);
+  }
+  const double mm = millimetres_per(resolved.unit);
+  const std::string u(symbol(resolved.unit));
+  std::ostringstream s;
+  s << "Gaussian mixture: " << t.count() << " Gaussians (" << (t.shared_variance ? "shared" : "per-channel")
+    << " variances) in " << short_number(t.seconds * 1000) << " ms; " << t.method << '\n';
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c) {
+    s << "  " << t.channel_names[c] << ": " << t.weight[c].size() << " Gaussians, variances "
+      << short_number(t.variance[c].front() / (mm * mm)) << " to " << short_number(t.variance[c].back() / (mm * mm)) << ' ' << u
+      << "^2; sum of weights / total reflectance - 1 = " << short_number(t.conservation_error[c]);
+    if (t.shared_variance) s << "; relative L2 error " << short_number(t.relative_l2_error[c]);
+    s << '\n';
+  }
+  return {to_lookup_table(t, context), s.str(), {}};
 }
 
 Built build(const LutOptions& o, const MediumOptions::Resolved& resolved) {
+  if (o.kind == "transmission") return build_transmission(o, resolved);
   auto model = make_model(o.model);
+  const TableContext table_context{resolved.material, &resolved.medium, model.get(), resolved.unit};
+  if (o.kind == "preintegrated") return build_preintegrated(o, resolved, *model, table_context);
+  if (o.kind == "separable") return build_separable(o, resolved, *model, table_context);
+  if (o.kind == "gaussians") return build_gaussians(o, resolved, *model, table_context);
   TableContext context{resolved.material, &resolved.medium, model.get(), resolved.unit};
   std::ostringstream s;
   const std::string u(symbol(resolved.unit));
@@ -110,18 +298,21 @@ Built build(const LutOptions& o, const MediumOptions::Resolved& resolved) {
     for (std::size_t c = 0; c < t.channel_names.size(); ++c)
       s << "  " << t.channel_names[c] << ": total reflectance " << format_number(t.total_reflectance[c])
         << ", range " << format_number(t.range_min[c] / mm) << " to " << format_number(t.range_max[c] / mm) << ' ' << u << '\n';
-    return {to_lookup_table(t, context), s.str()};
+    return {to_lookup_table(t, context), s.str(), {}};
   }
   std::string known;
   for (const auto& k : kinds()) known += (known.empty() ? "" : ", ") + k;
   throw InvalidInput("--kind", "'" + o.kind + "'", "one of " + known);
 }
 
-std::string encode(const LookupTable& table, const std::string& format, bool half) {
-  if (format == "exr") return encode_exr(table, half ? ExrPixelType::half : ExrPixelType::float32);
-  if (format == "json") return to_json(table);
-  if (format == "csv") return to_csv(table);
-  throw InvalidInput("--format", "'" + format + "'", "exr, json or csv");
+std::string encode(const Built& built, const std::string& format, bool half) {
+  const auto other = built.other_formats.find(format);
+  if (other != built.other_formats.end()) return other->second;
+  if (format == "exr") return encode_exr(built.table, half ? ExrPixelType::half : ExrPixelType::float32);
+  if (format == "json") return to_json(built.table);
+  if (format == "csv") return to_csv(built.table);
+  if (format == "glsl" || format == "hlsl") throw InvalidInput("--format", "'" + format + "'", "exr, json or csv for --kind " + built.table.kind + " (glsl and hlsl: --kind separable)");
+  throw InvalidInput("--format", "'" + format + "'", "exr, json, csv, or glsl/hlsl for --kind separable");
 }
 
 std::string format_for(const LutOptions& o, const std::string& path) {
@@ -130,7 +321,9 @@ std::string format_for(const LutOptions& o, const std::string& path) {
   if (ext == ".exr") return "exr";
   if (ext == ".json") return "json";
   if (ext == ".csv") return "csv";
-  throw InvalidInput("-o", "'" + path + "'", "a file ending in .exr, .json or .csv (or give --format)");
+  if (ext == ".glsl") return "glsl";
+  if (ext == ".hlsl") return "hlsl";
+  throw InvalidInput("-o", "'" + path + "'", "a file ending in .exr, .json, .csv, .glsl or .hlsl (or give --format)");
 }
 
 std::string file_name(const std::string& material, const std::string& kind, const std::string& format) {
@@ -145,22 +338,36 @@ Action register_lut(CLI::App& app) {
   auto o = std::make_shared<LutOptions>();
   auto* sub = app.add_subcommand("lut", "Lookup tables for renderers: OpenEXR, JSON or CSV with their conventions recorded");
   o->medium.add_to(*sub);
-  sub->add_option("--kind,-k", o->kind, "Table: radial, albedo-radius [radial]");
+  sub->add_option("--kind,-k", o->kind, "Table: radial, albedo-radius, transmission, preintegrated, separable, gaussians [radial]");
   sub->add_option("--layout", o->layout, "albedo-radius: pbrt (100 x 64, pbrt's spacing) or family (--size) [pbrt]");
-  sub->add_option("--size", o->size, "albedo-radius with --layout family: ALBEDOSxRADII, e.g. 64x48");
-  sub->add_option("--model", o->model, "Profile model (see 'bssrdf models') [pbd]");
+  sub->add_option("--size", o->size, "albedo-radius with --layout family: ALBEDOSxRADII, e.g. 64x48; preintegrated: N.LxCURVATURES [256x256]");
+  auto* model_option = sub->add_option("--model", o->model, "Profile model (see 'bssrdf models') [pbd]");
   sub->add_option("--tolerance", o->tolerance, "radial: relative interpolation error bound [1e-3]; albedo-radius: beam-integral quadrature tolerance [1e-2]");
   sub->add_option("--energy", o->energy, "Fraction of each channel's total inside the checked radius range [0.999]");
   sub->add_option("--interpolation", o->interpolation, "How the consumer interpolates: catmull-rom or linear [catmull-rom]");
   sub->add_option("-o,--output", o->output, "Output file: .exr, .json or .csv");
-  sub->add_option("--format,-f", o->format, "exr, json or csv [from the file's extension]");
+  sub->add_option("--format,-f", o->format, "exr, json, csv; glsl or hlsl for separable [from the file's extension]");
   sub->add_flag("--half", o->half, "OpenEXR: half-float channels instead of float32");
   sub->add_flag("--all", o->all, "Every material of the database, one file per material in --output-dir");
   sub->add_option("--output-dir", o->output_dir, "Directory for --all [.]");
   sub->add_option("--threads", o->threads, "Threads (0: all) [1]; results never depend on it");
   sub->add_flag("-q,--quiet", o->quiet, "Print nothing on stdout");
+  sub->add_option("--thickness", o->thickness, "transmission: slab thicknesses in --unit, comma-separated");
+  sub->add_option("--d-min", o->d_min, "transmission: smallest thickness [half the smallest transport mfp]");
+  sub->add_option("--d-max", o->d_max, "transmission: largest thickness [40 of the largest transport mfp]");
+  sub->add_option("--samples", o->samples, "transmission: thicknesses, log-spaced from --d-min to --d-max [32]");
+  sub->add_flag("--reference", o->reference, "transmission: Monte Carlo reference where the multipole is invalid (else omitted)");
+  sub->add_flag("--reference-everywhere", o->reference_everywhere, "transmission: Monte Carlo reference at every thickness");
+  sub->add_option("--photons", o->photons, "transmission: Monte Carlo photons per channel and thickness [100000]");
+  sub->add_option("--seed", o->seed, "transmission: Monte Carlo seed [1]");
+  sub->add_option("--preview", o->preview, "Also (or, without -o, only) write a PNG preview of the material: shadow-edge swatch + colour falloff");
+  sub->add_option("--taps", o->taps, "separable: number of taps, odd, >= 3 (Jimenez: 11, 17, 25) [17]");
+  sub->add_option("--range", o->range, "separable: kernel half-width in --unit [3 mm if taps > 20 else 2 mm]");
+  sub->add_option("--count,-n", o->count, "gaussians: number of shared-variance Gaussians fitted [6; with --model quantized and no --count: its own mixture]");
+  sub->add_option("--curvature-max", o->curvature_max, "preintegrated: largest curvature 1/r, in 1/--unit [1/r_50 of the widest channel]");
 
-  return [o] {
+  return [o, model_option] {
+    o->model_given = model_option->count() > 0;
     if (o->all) {
       if (!o->medium.material.empty() || !o->medium.sigma_a.empty())
         throw InvalidInput("--all: give no --material or coefficients with --all");
@@ -176,7 +383,7 @@ Action register_lut(CLI::App& app) {
         one.material = material.name;
         const auto built = o->kind == "albedo-radius" ? build_albedo_radius([&] { auto c = *o; c.medium = one; return c; }()) : build(*o, one.resolve());
         const auto path = dir / file_name(material.name, o->kind, format);
-        write_file_atomically(path, encode(built.table, format, o->half));
+        write_file_atomically(path, encode(built, format, o->half));
         if (progress) progress(++done, database.all().size());
         if (!o->quiet && !progress) std::cout << "written: " << path.string() << '\n';
       }
@@ -185,12 +392,27 @@ Action register_lut(CLI::App& app) {
         std::cout << database.all().size() << " " << o->kind << " tables in " << format_number(std::round(seconds * 1000) / 1000) << " s\n";
       return;
     }
-    if (o->output.empty()) throw InvalidInput("-o: give an output file (.exr, .json, .csv)");
+    if (!o->preview.empty()) {
+      if (std::filesystem::path(o->preview).extension() != ".png")
+        throw InvalidInput("--preview", "'" + o->preview + "'", "a file ending in .png");
+      const auto resolved = o->medium.resolve();
+      const auto model = make_model(o->kind == "transmission" || o->kind == "albedo-radius" || !o->model_given ? "pbd" : o->model);
+      const auto preview = render_material_preview(resolved.medium, *model);
+      if (!o->output.empty()) format_for(*o, o->output);  // bad -o fails before anything is written
+      write_file_atomically(o->preview, encode_png(preview.image));
+      if (!o->quiet)
+        std::cout << "preview: " << o->preview << " (" << preview.image.width << " x " << preview.image.height
+                  << " px; shadow edge at the centre, +-" << short_number(from_mm(preview.half_width, resolved.unit)) << ' '
+                  << symbol(resolved.unit) << ", ticks every " << short_number(from_mm(preview.tick, resolved.unit)) << ' '
+                  << symbol(resolved.unit) << "; " << model->name() << ")\n";
+      if (o->output.empty()) return;
+    }
+    if (o->output.empty()) throw InvalidInput("-o: give an output file (.exr, .json, .csv), or --preview FILE.png");
     const std::string format = format_for(*o, o->output);
     const auto start = std::chrono::steady_clock::now();
     const auto built = o->kind == "albedo-radius" ? build_albedo_radius(*o) : build(*o, o->medium.resolve());
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    write_file_atomically(o->output, encode(built.table, format, o->half));
+    write_file_atomically(o->output, encode(built, format, o->half));
     if (!o->quiet)
       std::cout << built.summary << "built in " << format_number(std::round(ms * 100) / 100) << " ms\nwritten: " << o->output << '\n';
   };

@@ -1,0 +1,51 @@
+// Penner's pre-integrated skin LUT (Penner & Borshukov 2011), for any profile: the diffuse
+// shading of a curved surface of radius r = 1/curvature lit at angle theta (u = N.L = cos theta),
+// with light scattered around the ring:
+//
+//   D(theta, r) = int_{-pi}^{pi} max(0, cos(theta + x)) R_ring(2 r sin(x/2)) dx / int_{-pi}^{pi} R_ring(2 r sin(x/2)) dx
+//
+// (reference/MODELS.md section 9) where R_ring is the profile's cross-section through the ring,
+// the line projection of R (ProjectedProfile::line: for a sum of Gaussians, the 1D-normalised
+// Gaussians of MODELS.md), evaluated at the chord length. D is per channel, in [0, 1], and tends
+// to max(0, N.L) as the curvature goes to 0; the diffuse colour is applied separately.
+//
+// Layout: width columns over u = N.L, height rows over curvature, sampled at texel centres:
+// u_i = -1 + 2 (i + 0.5) / width, curvature_j = curvature_max (j + 0.5) / height (1/mm). The ring
+// integral uses nodes geometric in x near 0 (the profile's scale over r) and uniform (step 0.005)
+// beyond 0.1, trapezoid weights.
+//
+//   auto t = build_preintegrated_table(skin, *make_model("pbd"), {});
+#pragma once
+
+#include <vector>
+
+#include "bssrdf/lut/lookup_table.hpp"
+#include "bssrdf/lut/table_context.hpp"
+#include "bssrdf/medium.hpp"
+#include "bssrdf/model.hpp"
+
+namespace bssrdf {
+
+struct PreintegratedOptions {
+  std::size_t width = 256, height = 256;  // N.L columns x curvature rows
+  double curvature_max = 0;               // 1/mm; 0: 1 / r_50 of the widest channel
+  unsigned threads = 1;                   // 0: all; results never depend on it
+
+  void validate() const;  // throws InvalidInput naming the option
+};
+
+struct PreintegratedTable {
+  PreintegratedOptions options;  // curvature_max resolved
+  std::vector<std::string> channel_names;
+  std::vector<double> n_dot_l;    // [i], width
+  std::vector<double> curvature;  // [j], height, 1/mm
+  std::vector<std::vector<double>> value;  // [channel][j * width + i]: D
+  double widest_r50 = 0;          // mm: the default curvature_max is its inverse
+};
+
+PreintegratedTable build_preintegrated_table(const Medium& medium, const Model& model, const PreintegratedOptions& options);
+
+// Channels: one per colour channel (D). Attributes record the axes, sampling and curvature range.
+LookupTable to_lookup_table(const PreintegratedTable& table, const TableContext& context);
+
+}  // namespace bssrdf

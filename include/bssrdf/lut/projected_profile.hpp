@@ -1,0 +1,53 @@
+// A radial profile R(r) and its projections onto one axis, which the screen-space, pre-integrated
+// and preview forms need:
+//
+//   line(x)       = int R(sqrt(x^2 + y^2)) dy            the exitance at distance x from a lit line
+//                                                         (the profile's 1D cross-section: a 2D
+//                                                         Gaussian G2(v) projects to G1(v))
+//   half_plane(x) = int_x^inf line(t) dt                 the exitance at signed distance x from the
+//                 = int int_{X > x} R dA                 edge of a lit half-plane X > x (the shadow edge)
+//   strip(a, b)   = int_a^b line(t) dt                   light from the strip a < X < b
+//   total()       = int 2 pi r R(r) dr                   = 2 half_plane(0) = int line
+//
+// R is tabulated once from the model on 64 points per decade of r (uniform in ln r, from 1e-6 of
+// the transport mean free path until the tail holds less than 1e-10 of the total) and interpolated
+// as a cubic in (ln r, ln R); line() and half_plane() are tabulated on the same nodes (line by the
+// substitution y = x sinh s, half_plane by integrating line in ln x), so every query is O(1).
+// conservation_error() = 2 half_plane(0) / total() - 1 measures the projections' numerical error.
+//
+//   ProjectedProfile p(*make_model("pbd"), skin.reduced(0));
+//   double edge = p.half_plane(0.5);   // shadowed side, 0.5 mm from the edge
+#pragma once
+
+#include <vector>
+
+#include "bssrdf/model.hpp"
+
+namespace bssrdf {
+
+class ProjectedProfile {
+ public:
+  ProjectedProfile(const Model& model, const Reduced<double>& m);
+
+  double total() const { return total_; }
+  double reflectance(double r) const;     // R(r); R(r_min) below the grid, 0 beyond it
+  double line(double x) const;            // even in x
+  double half_plane(double x) const;      // signed x: total - half_plane(-x) for x < 0
+  double strip(double a, double b) const { return half_plane(a) - half_plane(b); }
+  // The radius holding `fraction` of total() (0 < fraction < 1).
+  double radius_for_fraction(double fraction) const;
+  // The distance x >= 0 at which 2 half_plane(x) / total falls to 1 - fraction: the half-width of
+  // the band |X| < x holding `fraction` of the light of a point (the 1D kernel's support).
+  double line_width_for_fraction(double fraction) const;
+  double conservation_error() const { return 2 * half_plane(0) / total_ - 1; }
+  double r_min() const;
+  double r_max() const;
+
+ private:
+  double u0_ = 0, h_ = 0;  // nodes u_j = u0 + j h, u = ln r
+  std::vector<double> log_R_, log_line_, half_plane_, cumulative_;  // cumulative: int_0^{r_j} 2 pi r R dr
+  double total_ = 0, half_plane_0_ = 0;
+  double cubic(const std::vector<double>& f, double u) const;
+};
+
+}  // namespace bssrdf

@@ -1,0 +1,35 @@
+#include "bssrdf/io/png_image.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bssrdf/error.hpp"
+
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#include <stb_image_write.h>
+#pragma GCC diagnostic pop
+
+namespace bssrdf {
+
+std::uint8_t to_srgb8(double v) {
+  v = std::clamp(v, 0.0, 1.0);
+  const double s = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
+  return static_cast<std::uint8_t>(std::lround(255 * s));
+}
+
+std::string encode_png(const RgbImage& image) {
+  if (image.width <= 0 || image.height <= 0) throw InvalidInput("image", "empty", "at least 1 x 1 pixels");
+  std::string out;
+  const auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
+  };
+  if (!stbi_write_png_to_func(append, &out, image.width, image.height, 3, image.pixels.data(), image.width * 3))
+    throw InvalidInput("PNG encoding failed");
+  return out;
+}
+
+}  // namespace bssrdf

@@ -1,0 +1,104 @@
+#include "bssrdf/lut/preintegrated_table.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "bssrdf/error.hpp"
+#include "bssrdf/lut/parallel.hpp"
+#include "bssrdf/lut/projected_profile.hpp"
+
+namespace bssrdf {
+
+void PreintegratedOptions::validate() const {
+  if (width < 2 || width > 8192) throw InvalidInput("size", std::to_string(width) + " columns", "2 to 8192");
+  if (height < 1 || height > 8192) throw InvalidInput("size", std::to_string(height) + " rows", "1 to 8192");
+  if (!(curvature_max >= 0) || !std::isfinite(curvature_max))
+    throw InvalidInput("curvature_max", format_number(curvature_max), "> 0 (0: default)");
+  if (threads > 4096) throw InvalidInput("threads", std::to_string(threads), "0 (all cores) to 4096");
+}
+
+PreintegratedTable build_preintegrated_table(const Medium& medium, const Model& model, const PreintegratedOptions& options) {
+  medium.validate();
+  options.validate();
+  PreintegratedTable t;
+  t.options = options;
+  t.channel_names = medium.channel_names;
+  const std::size_t channels = medium.channels(), W = options.width, H = options.height;
+  std::vector<ProjectedProfile> profiles;
+  for (std::size_t c = 0; c < channels; ++c) {
+    profiles.emplace_back(model, medium.reduced(c));
+    t.widest_r50 = std::max(t.widest_r50, profiles.back().radius_for_fraction(0.5));
+  }
+  if (t.options.curvature_max == 0) t.options.curvature_max = 1 / t.widest_r50;
+  for (std::size_t i = 0; i < W; ++i) t.n_dot_l.push_back(-1 + 2 * (static_cast<double>(i) + 0.5) / static_cast<double>(W));
+  for (std::size_t j = 0; j < H; ++j)
+    t.curvature.push_back(t.options.curvature_max * (static_cast<double>(j) + 0.5) / static_cast<double>(H));
+  t.value.assign(channels, std::vector<double>(W * H));
+  double r_min = profiles.front().r_min();
+  for (const auto& p : profiles) r_min = std::min(r_min, p.r_min());
+
+  parallel_for(H, options.threads, [&](std::size_t j) {
+    const double radius = 1 / t.curvature[j];
+    // Nodes in x in (0, pi]: geometric from the profile's smallest scale (chord r x) to 0.1, then uniform.
+    std::vector<double> x;
+    const double x_lo = std::min(1e-3, r_min / radius), h = std::log(10.0) / 64;
+    for (double v = x_lo; v < 0.1; v *= std::exp(h)) x.push_back(v);
+    const double step = 0.005;
+    const auto n_uniform = static_cast<std::size_t>(std::ceil((std::numbers::pi - 0.1) / step));
+    for (std::size_t k = 0; k <= n_uniform; ++k) x.push_back(0.1 + (std::numbers::pi - 0.1) * static_cast<double>(k) / static_cast<double>(n_uniform));
+    const std::size_t K = x.size();
+    std::vector<double> quad(K), cos_x(K), sin_x(K);
+    for (std::size_t k = 0; k < K; ++k) {
+      // Trapezoid weight; the first node also covers (0, x_0] (the integrand taken constant there).
+      quad[k] = k == 0 ? x[0] + 0.5 * (x[1] - x[0]) : k + 1 == K ? 0.5 * (x[k] - x[k - 1]) : 0.5 * (x[k + 1] - x[k - 1]);
+      cos_x[k] = std::cos(x[k]);
+      sin_x[k] = std::sin(x[k]);
+    }
+    std::vector<double> w(K);
+    for (std::size_t c = 0; c < channels; ++c) {
+      double norm = 0;
+      for (std::size_t k = 0; k < K; ++k) {
+        w[k] = quad[k] * profiles[c].line(2 * radius * std::sin(0.5 * x[k]));
+        norm += w[k];
+      }
+      for (std::size_t i = 0; i < W; ++i) {
+        const double u = t.n_dot_l[i], s = std::sqrt(std::max(0.0, 1 - u * u));
+        double sum = 0;
+        // cos(theta + x) + cos(theta - x) over x > 0, both clamped at 0.
+        for (std::size_t k = 0; k < K; ++k) {
+          const double a = u * cos_x[k], b = s * sin_x[k];
+          sum += w[k] * (std::max(0.0, a - b) + std::max(0.0, a + b));
+        }
+        t.value[c][j * W + i] = std::min(1.0, sum / (2 * norm));
+      }
+    }
+  });
+  return t;
+}
+
+LookupTable to_lookup_table(const PreintegratedTable& t, const TableContext& context) {
+  LookupTable out;
+  out.kind = "preintegrated";
+  out.width = t.options.width;
+  out.height = t.options.height;
+  const double mm = millimetres_per(context.unit);
+  const std::string u(symbol(context.unit));
+  describe(out, context);
+  out.set("bssrdf:unit", u);
+  out.set("bssrdf:formula", std::string("D(theta, r) = int max(0, cos(theta + x)) R_ring(2 r sin(x/2)) dx / int R_ring(2 r sin(x/2)) dx "
+                                        "over x in [-pi, pi] (Penner 2011); R_ring(d) = int R(sqrt(d^2 + y^2)) dy, the profile's "
+                                        "cross-section through the ring"));
+  out.set("bssrdf:normalization", std::string("per channel, int R_ring = 1: D is in [0, 1]; multiply by the diffuse colour"));
+  out.set("bssrdf:x_axis", std::string("u = N.L in [-1, 1]: column i holds u_i = -1 + 2 (i + 0.5) / width (texture coordinate (u + 1) / 2)"));
+  out.set("bssrdf:y_axis", "curvature 1/r in 1/" + u + ": row j holds c_j = curvature_max (j + 0.5) / height (texture coordinate c / curvature_max); row 0 is the flattest");
+  out.set("bssrdf:curvature_max", t.options.curvature_max * mm);
+  out.set("bssrdf:curvature_unit", "1/" + u);
+  out.set("bssrdf:widest_r50", t.widest_r50 / mm);
+  out.set("bssrdf:size", std::to_string(t.options.width) + "x" + std::to_string(t.options.height));
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
+    out.add_channel(t.channel_names[c], "pre-integrated diffuse D(N.L, curvature), dimensionless", t.value[c]);
+  return out;
+}
+
+}  // namespace bssrdf

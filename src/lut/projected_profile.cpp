@@ -1,0 +1,135 @@
+#include "bssrdf/lut/projected_profile.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "bssrdf/error.hpp"
+
+namespace bssrdf {
+namespace {
+
+constexpr double kTwoPi = 2 * std::numbers::pi;
+constexpr double kNegligible = -745.0;  // ln of the smallest double: R treated as 0 below
+
+double safe_log(double v) { return v > 0 ? std::log(v) : kNegligible; }
+
+}  // namespace
+
+ProjectedProfile::ProjectedProfile(const Model& model, const Reduced<double>& m) {
+  h_ = std::log(10.0) / 64;
+  u0_ = std::log(1e-6 * m.ell);
+  // R on the grid until the geometric tail estimate of int 2 pi r^2 R d(ln r) is negligible.
+  std::vector<double> R;
+  double cum = 0, f_prev = 0;
+  const double u_stop = std::log(1e8 * m.ell);
+  for (double u = u0_;; u += h_) {
+    const double r = std::exp(u);
+    const double value = model.reflectance(m, r);
+    if (!std::isfinite(value)) throw InvalidInput("profile", "R(" + format_number(r) + ") = " + format_number(value), "finite");
+    R.push_back(value);
+    const double f = kTwoPi * r * r * std::max(value, 0.0);
+    cum += R.size() == 1 ? 0.5 * f : 0.5 * h_ * (f + f_prev);  // first: the inner disc pi r0^2 R(r0)
+    cumulative_.push_back(cum);
+    const double q = R.size() > 1 && f_prev > 0 ? f / f_prev : 1;
+    f_prev = f;
+    if ((r > m.ell && q < 1 && f * h_ * q / (1 - q) < 1e-10 * cum) || u > u_stop) break;
+  }
+  if (!(cum > 0)) throw InvalidInput("profile", "total " + format_number(cum), "> 0");
+  total_ = cum;
+  const std::size_t n = R.size();
+  log_R_.resize(n);
+  for (std::size_t j = 0; j < n; ++j) log_R_[j] = safe_log(R[j]);
+  // line(x_j) = 2 int_0^inf R(x cosh s) x cosh s ds, trapezoid in s with step h / 2 (the tail of the
+  // integrand varies on the scale of the grid in ln r, since ln(x cosh s) ~ s + ln(x / 2)).
+  const double r_end = std::exp(u0_ + h_ * static_cast<double>(n - 1));
+  std::vector<double> line(n);
+  const double hs = 0.5 * h_;
+  for (std::size_t j = 0; j < n; ++j) {
+    const double x = std::exp(u0_ + h_ * static_cast<double>(j));
+    double sum = 0.5 * R[j] * x;
+    for (double s = hs;; s += hs) {
+      const double rho = x * std::cosh(s);
+      if (rho > r_end) break;
+      sum += reflectance(rho) * rho;
+    }
+    line[j] = 2 * hs * sum;
+  }
+  log_line_.resize(n);
+  for (std::size_t j = 0; j < n; ++j) log_line_[j] = safe_log(line[j]);
+  // half_plane(x_j) = int_{x_j}^inf line(t) t d(ln t), from the far end (trapezoid in ln t).
+  half_plane_.assign(n, 0.0);
+  for (std::size_t j = n - 1; j-- > 0;) {
+    const double t0 = std::exp(u0_ + h_ * static_cast<double>(j)), t1 = std::exp(u0_ + h_ * static_cast<double>(j + 1));
+    half_plane_[j] = half_plane_[j + 1] + 0.5 * h_ * (line[j] * t0 + line[j + 1] * t1);
+  }
+  // Inside the first node line() is taken as constant.
+  half_plane_0_ = half_plane_[0] + std::exp(u0_) * line[0];
+}
+
+double ProjectedProfile::cubic(const std::vector<double>& f, double u) const {
+  const double t = (u - u0_) / h_;
+  const auto n = static_cast<std::ptrdiff_t>(f.size());
+  auto i = static_cast<std::ptrdiff_t>(std::floor(t));
+  i = std::clamp<std::ptrdiff_t>(i, 0, n - 2);
+  const double x = t - static_cast<double>(i);
+  const auto at = [&](std::ptrdiff_t k) { return f[static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(k, 0, n - 1))]; };
+  const double p0 = at(i - 1), p1 = at(i), p2 = at(i + 1), p3 = at(i + 2);
+  // Catmull-Rom; one-sided (linear) at the ends where a neighbour is missing.
+  const double m1 = i > 0 ? 0.5 * (p2 - p0) : p2 - p1;
+  const double m2 = i + 2 < n ? 0.5 * (p3 - p1) : p2 - p1;
+  const double x2 = x * x, x3 = x2 * x;
+  return (2 * x3 - 3 * x2 + 1) * p1 + (x3 - 2 * x2 + x) * m1 + (-2 * x3 + 3 * x2) * p2 + (x3 - x2) * m2;
+}
+
+double ProjectedProfile::r_min() const { return std::exp(u0_); }
+double ProjectedProfile::r_max() const { return std::exp(u0_ + h_ * static_cast<double>(log_R_.size() - 1)); }
+
+double ProjectedProfile::reflectance(double r) const {
+  if (r <= r_min()) return std::exp(log_R_.front());
+  if (r >= r_max()) return 0;
+  const double v = cubic(log_R_, std::log(r));
+  return v <= kNegligible ? 0 : std::exp(v);
+}
+
+double ProjectedProfile::line(double x) const {
+  x = std::abs(x);
+  if (x <= r_min()) return std::exp(log_line_.front());
+  if (x >= r_max()) return 0;
+  const double v = cubic(log_line_, std::log(x));
+  return v <= kNegligible ? 0 : std::exp(v);
+}
+
+double ProjectedProfile::half_plane(double x) const {
+  if (x < 0) return total_ - half_plane(-x);
+  if (x <= r_min()) return half_plane_0_ - x * std::exp(log_line_.front());
+  if (x >= r_max()) return 0;
+  return std::max(0.0, cubic(half_plane_, std::log(x)));
+}
+
+double ProjectedProfile::radius_for_fraction(double fraction) const {
+  if (!(fraction > 0 && fraction < 1)) throw InvalidInput("fraction", format_number(fraction), "0 < fraction < 1");
+  const double target = fraction * total_;
+  const auto it = std::lower_bound(cumulative_.begin(), cumulative_.end(), target);
+  if (it == cumulative_.begin()) return r_min();
+  if (it == cumulative_.end()) return r_max();
+  const auto j = static_cast<std::size_t>(it - cumulative_.begin());
+  const double t = (target - cumulative_[j - 1]) / (cumulative_[j] - cumulative_[j - 1]);
+  return std::exp(u0_ + h_ * (static_cast<double>(j - 1) + t));
+}
+
+double ProjectedProfile::line_width_for_fraction(double fraction) const {
+  if (!(fraction > 0 && fraction < 1)) throw InvalidInput("fraction", format_number(fraction), "0 < fraction < 1");
+  // half_plane decreases: bisect in ln x for half_plane(x) = (1 - fraction) total / 2.
+  const double target = 0.5 * (1 - fraction) * total_;
+  double lo = std::log(r_min()), hi = std::log(r_max());
+  if (half_plane(r_min()) <= target) return r_min();
+  for (int k = 0; k < 100; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (half_plane(std::exp(mid)) > target ? lo : hi) = mid;
+  }
+  return std::exp(hi);
+}
+
+}  // namespace bssrdf

@@ -1,0 +1,241 @@
+// Real-time forms: pre-integrated skin LUT, separable kernel, Gaussian mixtures, and the profile
+// projections they rest on. Conservation is measured against independent integrals.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <unistd.h>
+
+#include "bssrdf/lut/gaussian_mixture_table.hpp"
+#include "bssrdf/lut/preintegrated_table.hpp"
+#include "bssrdf/lut/projected_profile.hpp"
+#include "bssrdf/lut/separable_kernel.hpp"
+#include "bssrdf/materials.hpp"
+#include "bssrdf/models/quantized_diffusion.hpp"
+#include "cli_runner.hpp"
+#include "exr_reader.hpp"
+
+using namespace bssrdf;
+
+namespace {
+
+const Medium& material(const std::string& name) {
+  static const auto db = MaterialDatabase::load(default_materials_dir());
+  return db.find(name).medium;
+}
+
+std::filesystem::path temp(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("bssrdf-lut-realtime-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return dir / name;
+}
+
+// Light of a point source inside the band |X| < a, integrated directly in 2D: int 2 pi r R(r) P(r) dr
+// with P the fraction of the circle of radius r inside the band (independent of the projections).
+double band_energy(const Model& model, const Reduced<double>& m, double a) {
+  double sum = 0;
+  const double h = std::log(10.0) / 400;
+  for (double u = std::log(1e-7 * m.ell); u < std::log(1e4 * m.ell); u += h) {
+    const double r = std::exp(u);
+    const double inside = r <= a ? 1.0 : 2 / std::numbers::pi * std::asin(a / r);
+    sum += h * 2 * std::numbers::pi * r * r * model.reflectance(m, r) * inside;
+  }
+  return sum;
+}
+
+}  // namespace
+
+TEST(ProjectedProfile, ConservesTheTotalAndMatchesGaussianProjection) {
+  for (const char* name : {"pbd", "better-dipole", "burley"}) {
+    const auto model = make_model(name);
+    for (std::size_t c = 0; c < 3; ++c) {
+      const auto m = material("Skin1").reduced(c);
+      const ProjectedProfile p(*model, m);
+      EXPECT_NEAR(p.total(), model->total_reflectance(m), 2e-3 * p.total()) << name << c;
+      EXPECT_LT(std::abs(p.conservation_error()), 1e-3) << name << c;
+      EXPECT_NEAR(p.half_plane(-1e3), p.total(), 1e-9);
+      // half_plane(x) against the direct 2D integral over the band.
+      for (double a : {0.3, 1.0, 3.0})
+        EXPECT_NEAR(p.strip(-a, a), band_energy(*model, m, a), 2e-3 * p.total()) << name << c << " a " << a;
+    }
+  }
+  // Quantized diffusion is a sum of 2D Gaussians: its line projection is the sum of 1D Gaussians.
+  const quantized_diffusion::Model q;
+  const auto m = material("Skin1").reduced(0);
+  const ProjectedProfile p(q, m);
+  const auto mix = q.gaussians(m);
+  for (double x : {0.01, 0.1, 1.0, 5.0}) {
+    double expected = 0;
+    for (std::size_t k = 0; k < mix.weight.size(); ++k)
+      expected += mix.weight[k] * std::exp(-x * x / (2 * mix.variance[k])) / std::sqrt(2 * std::numbers::pi * mix.variance[k]);
+    EXPECT_NEAR(p.line(x), expected, 3e-3 * expected) << x;
+  }
+}
+
+TEST(PreintegratedTable, InUnitRangeAndFlatRowsTendToNDotL) {
+  const auto model = make_model("pbd");
+  PreintegratedOptions o;
+  o.width = 64;
+  o.height = 32;
+  const auto t = build_preintegrated_table(material("Skin1"), *model, o);
+  for (const auto& channel : t.value)
+    for (double v : channel) {
+      EXPECT_GE(v, 0);
+      EXPECT_LE(v, 1);
+    }
+  // Flattest row (curvature c_max / 64): close to max(0, N.L); the difference grows with curvature.
+  double flat = 0, curved = 0;
+  for (std::size_t c = 0; c < 3; ++c)
+    for (std::size_t i = 0; i < o.width; ++i) {
+      flat = std::max(flat, std::abs(t.value[c][i] - std::max(0.0, t.n_dot_l[i])));
+      curved = std::max(curved, std::abs(t.value[c][(o.height - 1) * o.width + i] - std::max(0.0, t.n_dot_l[i])));
+    }
+  EXPECT_LT(flat, 5e-3);  // measured 3.1e-3 at the kink N.L = 0
+  EXPECT_GT(curved, 0.05);
+  // Rows increase with N.L; red (widest) wraps furthest into the shadow.
+  for (std::size_t i = 1; i < o.width; ++i) EXPECT_GE(t.value[0][16 * o.width + i], t.value[0][16 * o.width + i - 1]);
+  EXPECT_GT(t.value[0][31 * o.width + 10], t.value[2][31 * o.width + 10]);
+  // A much smaller curvature range: every row close to max(0, N.L).
+  o.curvature_max = 1e-3;
+  const auto nearly_flat = build_preintegrated_table(material("Skin1"), *model, o);
+  for (std::size_t i = 0; i < o.width; ++i)
+    EXPECT_NEAR(nearly_flat.value[1][(o.height - 1) * o.width + i], std::max(0.0, t.n_dot_l[i]), 2e-3);
+}
+
+TEST(SeparableKernel, ConservesTheBandEnergyAndFollowsJimenez) {
+  const auto model = make_model("pbd");
+  const auto& medium = material("Skin1");
+  for (int taps : {11, 17, 25}) {
+    const auto k = build_separable_kernel(medium, *model, {taps, 0});
+    EXPECT_EQ(k.options.range, taps > 20 ? 3.0 : 2.0);
+    ASSERT_EQ(k.offset.size(), static_cast<std::size_t>(taps));
+    EXPECT_EQ(k.offset[0], 0);
+    EXPECT_EQ(k.offset[1], -1);
+    EXPECT_EQ(k.offset.back(), 1);
+    EXPECT_NEAR(k.offset[2], -std::pow(1 - 2.0 / (taps - 1), 2), 1e-12);  // quadratic warp
+    for (std::size_t c = 0; c < 3; ++c) {
+      double sum = 0, strip = 0;
+      for (int i = 0; i < taps; ++i) sum += k.weight[c][i], strip += k.strip[c][i];
+      EXPECT_NEAR(sum, 1, 1e-12);
+      // Before normalisation: the light inside |x| < range, against the direct 2D integral.
+      const double direct = band_energy(*model, medium.reduced(c), k.options.range);
+      EXPECT_NEAR(strip / direct, 1, 2e-3) << taps << " " << c;
+    }
+  }
+  // A range far wider than the profile captures the whole total reflectance.
+  const auto wide = build_separable_kernel(medium, *model, {25, 500});
+  for (std::size_t c = 0; c < 3; ++c) EXPECT_NEAR(wide.captured[c], 1, 2e-3);
+}
+
+TEST(GaussianMixtures, ConserveTheTotal) {
+  const auto& medium = material("Skin1");
+  const quantized_diffusion::Model q;
+  const auto own = quantized_mixture_table(medium, q);
+  for (std::size_t c = 0; c < 3; ++c) {
+    EXPECT_LT(std::abs(own.conservation_error[c]), 1e-12);
+    // Against an independent quadrature of its R(r).
+    const ProjectedProfile p(q, medium.reduced(c));
+    EXPECT_NEAR(p.total() / own.total_reflectance[c], 1, 1e-3);
+  }
+  const auto dipole = make_model("better-dipole");
+  const auto fit = fitted_mixture_table(medium, *dipole, 6);
+  for (std::size_t c = 0; c < 3; ++c) {
+    EXPECT_LT(std::abs(fit.conservation_error[c]), 0.01) << c;  // measured 0.6 % (R)
+    EXPECT_LT(fit.relative_l2_error[c], 0.01) << c;
+  }
+  const auto pbd = make_model("pbd");
+  const auto singular = fitted_mixture_table(medium, *pbd, 6);
+  for (std::size_t c = 0; c < 3; ++c) EXPECT_LT(std::abs(singular.conservation_error[c]), 0.1) << c;  // measured 7.5 % (R)
+}
+
+TEST(CliLutRealtime, FilesCarryValuesAndAttributes) {
+  const auto pre = temp("pre.exr"), ker = temp("k.exr"), glsl = temp("k.glsl"), hlsl = temp("k.hlsl"), gauss = temp("g.exr"),
+             gauss_json = temp("g.json");
+  auto r = test_cli::run("lut --material Skin1 --kind preintegrated --size 32x8 -q -o " + pre.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto p = test_exr::read_exr(pre);
+  EXPECT_EQ(p.width, 32);
+  EXPECT_EQ(p.height, 8);
+  EXPECT_EQ(p.channel_order, (std::vector<std::string>{"B", "G", "R"}));
+  EXPECT_EQ(p.strings.at("bssrdf:kind"), "preintegrated");
+  EXPECT_GT(p.doubles.at("bssrdf:curvature_max"), 0);
+  PreintegratedOptions o;
+  o.width = 32;
+  o.height = 8;
+  const auto t = build_preintegrated_table(material("Skin1"), *make_model("pbd"), o);
+  for (std::size_t i = 0; i < 256; ++i) EXPECT_FLOAT_EQ(p.channels.at("G")[i], static_cast<float>(t.value[1][i]));
+
+  r = test_cli::run("lut --material Skin1 --kind separable --taps 11 -q -o " + ker.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto k = test_exr::read_exr(ker);
+  EXPECT_EQ(k.width, 11);
+  EXPECT_DOUBLE_EQ(k.doubles.at("bssrdf:range"), 2.0);
+  EXPECT_EQ(k.ints.at("bssrdf:taps"), 11);
+  EXPECT_EQ(k.channels.at("offset")[0], 0.0f);
+  float sum = 0;
+  for (float w : k.channels.at("R")) sum += w;
+  EXPECT_NEAR(sum, 1, 1e-6);
+  r = test_cli::run("lut --material Skin1 --kind separable --taps 11 --unit cm -q -o " + glsl.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto g = test_cli::slurp(glsl);
+  EXPECT_NE(g.find("const vec4 kernel[11] = vec4[11]("), std::string::npos) << g;
+  EXPECT_NE(g.find("const float kernelRange = 0.2;  // cm"), std::string::npos) << g;
+  r = test_cli::run("lut --material Skin1 --kind separable --taps 25 -q -o " + hlsl.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto h = test_cli::slurp(hlsl);
+  EXPECT_NE(h.find("static const float4 kernel[25] = {"), std::string::npos) << h;
+  EXPECT_NE(h.find(", -1.0)"), std::string::npos) << h;  // no bare integers
+
+  r = test_cli::run("lut --material Skin1 --kind gaussians --model quantized -q -o " + gauss.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto q = test_exr::read_exr(gauss);
+  EXPECT_EQ(q.channels.size(), 6u);  // variance.<c> and <c> per channel
+  const quantized_diffusion::Model model;
+  const auto mix = model.gaussians(material("Skin1").reduced(2));
+  EXPECT_EQ(q.ints.at("bssrdf:count.B"), static_cast<int>(mix.weight.size()));
+  EXPECT_FLOAT_EQ(q.channels.at("variance.B")[3], static_cast<float>(mix.variance[3]));
+  EXPECT_FLOAT_EQ(q.channels.at("B")[3], static_cast<float>(mix.weight[3]));
+  r = test_cli::run("lut --material Skin1 --kind gaussians --model better-dipole --count 4 -q -o " + gauss_json.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto doc = nlohmann::json::parse(test_cli::slurp(gauss_json));
+  EXPECT_EQ(doc["width"], 4);
+  EXPECT_EQ(doc["channels"][0]["name"], "variance");
+  EXPECT_LT(std::abs(doc["attributes"]["bssrdf:conservation_error.R"].get<double>()), 0.05);
+}
+
+TEST(CliLutRealtime, BadInputIsOneLineExitTwoAndNoFile) {
+  const auto out = temp("bad.exr");
+  for (const std::string args :
+       {"--kind separable --taps 2", "--kind separable --taps 1", "--kind separable --taps 12", "--kind separable --range 0",
+        "--kind preintegrated --size 0x0", "--kind preintegrated --size 0x16", "--kind preintegrated --size 16x0",
+        "--kind preintegrated --size 16", "--kind preintegrated --curvature-max -1", "--kind gaussians --count -1",
+        "--kind gaussians --count 40", "--kind unknown", "--kind radial --format glsl"}) {
+    std::filesystem::remove(out);
+    const auto r = test_cli::run("lut --material Skin1 " + args + " -o " + out.string());
+    EXPECT_EQ(r.status, 2) << args << ": " << r.err;
+    EXPECT_EQ(test_cli::count_lines(r.err), 1) << args << ": " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << args;
+  }
+  const auto r = test_cli::run("lut --material Skin1 --kind separable -o /nonexistent-dir/k.glsl");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(test_cli::count_lines(r.err), 1);
+}
+
+TEST(CliLutRealtime, PreviewIsAPngAndBadPathsWriteNothing) {
+  const auto png = temp("skin.png");
+  auto r = test_cli::run("lut --material Skin1 --preview " + png.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto bytes = test_cli::slurp(png);
+  ASSERT_GT(bytes.size(), 100u);
+  EXPECT_EQ(bytes.substr(1, 3), "PNG");
+  for (const std::string args : std::vector<std::string>{"--preview " + temp("x.jpg").string(), "--preview /nonexistent-dir/x.png",
+                                 "--sigma-a 0.1,0.2 --sigma-s 1,1 --preview " + temp("two.png").string()}) {
+    r = test_cli::run("lut " + std::string(args.find("sigma") == std::string::npos ? "--material Skin1 " : "") + args);
+    EXPECT_EQ(r.status, 2) << args << ": " << r.err;
+    EXPECT_EQ(test_cli::count_lines(r.err), 1) << args;
+  }
+  EXPECT_FALSE(std::filesystem::exists(temp("x.jpg")));
+  EXPECT_FALSE(std::filesystem::exists(temp("two.png")));
+}
