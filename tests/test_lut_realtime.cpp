@@ -142,12 +142,16 @@ TEST(GaussianMixtures, ConserveTheTotal) {
   const auto dipole = make_model("better-dipole");
   const auto fit = fitted_mixture_table(medium, *dipole, 6);
   for (std::size_t c = 0; c < 3; ++c) {
-    EXPECT_LT(std::abs(fit.conservation_error[c]), 0.01) << c;  // measured 0.6 % (R)
+    EXPECT_LT(std::abs(fit.conservation_error[c]), 1e-4) << c;  // held to the model's total: measured < 1e-6
     EXPECT_LT(fit.relative_l2_error[c], 0.01) << c;
   }
   const auto pbd = make_model("pbd");
   const auto singular = fitted_mixture_table(medium, *pbd, 6);
-  for (std::size_t c = 0; c < 3; ++c) EXPECT_LT(std::abs(singular.conservation_error[c]), 0.1) << c;  // measured 7.5 % (R)
+  for (std::size_t c = 0; c < 3; ++c) {
+    // Singular at r = 0: the sampled radii miss part of the energy, the total constraint restores it.
+    EXPECT_LT(std::abs(singular.conservation_error[c]), 1e-4) << c;
+    EXPECT_LT(singular.relative_l2_error[c], 0.02) << c;  // measured 1.5-1.9 %
+  }
 }
 
 TEST(CliLutRealtime, FilesCarryValuesAndAttributes) {

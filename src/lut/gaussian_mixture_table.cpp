@@ -57,10 +57,12 @@ GaussianMixtureTable fitted_mixture_table(const Medium& medium, const Model& mod
   std::vector<NamedProfile> profiles;
   for (std::size_t c = 0; c < medium.channels(); ++c)
     profiles.push_back({medium.channel_names[c], model.sample(medium.reduced(c), radii)});
-  const auto report = fit_gaussians(profiles, count, LengthUnit::millimetre, model.name() + " profile");
+  std::vector<double> totals;
+  for (std::size_t c = 0; c < medium.channels(); ++c) totals.push_back(model.total_reflectance(medium.reduced(c)));
+  const auto report = fit_gaussians(profiles, count, LengthUnit::millimetre, model.name() + " profile", totals);
   GaussianMixtureTable t;
   t.method = "least-squares fit of " + std::to_string(count) + " shared-variance Gaussians to the " + model.name() +
-             " profile on " + std::to_string(samples) + " radii (min int r (R - sum w G2)^2 dr, weights >= 0; bssrdf fit gaussians)";
+             " profile on " + std::to_string(samples) + " radii (min int r (R - sum w G2)^2 dr, weights >= 0, weights held to the model's total; bssrdf fit gaussians)";
   t.shared_variance = true;
   t.channel_names = medium.channel_names;
   std::vector<double> variance;

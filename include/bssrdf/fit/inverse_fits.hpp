@@ -60,7 +60,11 @@ struct NamedProfile {
   SampledProfile profile;  // radius in unit, R in 1/unit^2
 };
 
-FitReport fit_gaussians(const std::vector<NamedProfile>& channels, int count, LengthUnit unit, const std::string& source);
+// `totals`: when given (one per channel), the weights of each channel are also held to sum to it
+// (a stiff penalty residual): a mixture that conserves the profile's energy even where the
+// sampled radii miss part of it (profiles singular at r = 0).
+FitReport fit_gaussians(const std::vector<NamedProfile>& channels, int count, LengthUnit unit, const std::string& source,
+                        const std::vector<double>& totals = {});
 FitReport fit_burley(const std::vector<NamedProfile>& channels, LengthUnit unit, const std::string& source);
 
 }  // namespace bssrdf
