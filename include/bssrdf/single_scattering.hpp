@@ -40,11 +40,9 @@ double single_scattering_total(double albedo, double g, double eta);
 // < 1e-17. r = 0 is singular (R_ss ~ 1/r): callers evaluate r > 0.
 template <class T>
 T single_scattering_reflectance(const Reduced<T>& m, T r, int samples = 64) {
-  using std::cosh;
   using std::exp;
   using std::log;
   using std::sinh;
-  using std::tanh;
   const T sigma_t = m.sigma_t();
   const T v_c = m.eta > T(1) ? inverse_cosh(m.eta) : T(0);
   T v_max = log(T(40) / (sigma_t * r));
@@ -52,9 +50,10 @@ T single_scattering_reflectance(const Reduced<T>& m, T r, int samples = 64) {
   const T span = v_max - v_c;
   const auto integrand = [&](T s) {
     const T v = v_c + span * s * s;
-    const T mu = tanh(v), c = cosh(v);
-    return exp(-sigma_t * r * exp(v)) * henyey_greenstein(-mu, m.g) * (T(1) - fresnel_reflectance(mu, m.eta)) *
-           sinh(v) / (c * c) * T(2) * span * s;
+    // One transcendental call: cosh v = sqrt(1 + sinh^2 v), tanh = sinh / cosh, e^v = sinh + cosh.
+    const T sh = sinh(v), c = sqrt(T(1) + sh * sh), mu = sh / c;
+    return exp(-sigma_t * r * (sh + c)) * henyey_greenstein(-mu, m.g) * (T(1) - fresnel_reflectance(mu, m.eta)) *
+           sh / (c * c) * T(2) * span * s;
   };
   return m.sigma_s / r * integrate_gauss_legendre<T>(integrand, T(0), T(1), static_cast<std::size_t>(samples));
 }

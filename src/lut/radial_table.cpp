@@ -180,8 +180,13 @@ RadialTable build_radial_table(const Medium& medium, const Model& model, const R
   table.decay_length = L;
   const double u0 = map.x(r_min), u1 = map.x(r_max);
 
-  // Smallest N meeting the tolerance: grow geometrically (guided by the error's order) until one
-  // passes, then bisect between the last failure and the first success to within 3 %.
+  // Smallest N meeting the tolerance (to within 3 %). The interpolation error falls as a power of
+  // the spacing, e(N) ~ C (N - 1)^-p, so each next size is predicted from the last two trials
+  // (regula falsi in log-log; p from the interpolation order before there are two): grow to the
+  // predicted size until one passes, then test the size predicted between the last failure and the
+  // first success, or, once that lies within 3 % of the success, the size 3 % below it, which
+  // settles the search when it fails. Every trial evaluates the whole grid, so a good prediction
+  // saves whole grids: about half the evaluations of bisection.
   const double order = options.interpolation == Interpolation::linear ? 2.0 : 3.0;
   const auto trial = [&](std::size_t n) {
     auto g = evaluate(model, media, map, u0, u1, n, options.threads);
@@ -189,21 +194,39 @@ RadialTable build_radial_table(const Medium& medium, const Model& model, const R
     const double e = worst_error(g, probes, map, options.interpolation);
     return std::pair{std::move(g), e};
   };
-  std::size_t fail = 1, n = 16;
+  // The size where the error reaches `target`, from (n_a, e_a) and the exponent p.
+  const auto predict = [](std::size_t n_a, double e_a, double p, double target) {
+    return 1 + static_cast<double>(n_a - 1) * std::pow(e_a / target, 1 / p);
+  };
+  const auto exponent = [&](std::size_t n_a, double e_a, std::size_t n_b, double e_b) {
+    const double p = std::log(e_a / e_b) / std::log(static_cast<double>(n_b - 1) / static_cast<double>(n_a - 1));
+    return std::isfinite(p) ? std::clamp(p, 1.0, 8.0) : order;
+  };
+  // First size: where a typical profile meets the tolerance (64 radii at 1e-3, error ~ N^-2.5):
+  // starting near the answer saves the coarse trials' evaluations.
+  const double guess = 64 * std::pow(1e-3 / options.tolerance, 1 / 2.5);
+  std::size_t fail = 1, n = std::min(options.max_size, std::max<std::size_t>(16, static_cast<std::size_t>(std::ceil(guess))));
+  double fail_error = 0;
   auto [best, best_error] = trial(n);
   while (best_error > options.tolerance) {
+    const double p = fail > 1 ? exponent(fail, fail_error, n, best_error) : order;
     fail = n;
+    fail_error = best_error;
     if (n >= options.max_size)
       throw InvalidInput("tolerance", format_number(options.tolerance),
                          "reachable with at most " + std::to_string(options.max_size) + " radii (error " +
                              format_number(best_error) + " there)");
-    const double grow = std::pow(best_error / (0.8 * options.tolerance), 1 / order);
-    n = std::min(options.max_size, std::max(n + 1, static_cast<std::size_t>(std::ceil(static_cast<double>(n - 1) * std::min(grow, 8.0))) + 1));
+    const double next = std::min(predict(n, best_error, p, 0.95 * options.tolerance), 1 + 8.0 * static_cast<double>(n - 1));
+    n = std::min(options.max_size, std::max(n + 1, static_cast<std::size_t>(std::ceil(next))));
     std::tie(best, best_error) = trial(n);
   }
   std::size_t pass = n;
   while (pass - fail > std::max<std::size_t>(1, pass / 32)) {
-    const std::size_t mid = (pass + fail) / 2;
+    const std::size_t gap = std::max<std::size_t>(1, pass / 32);
+    const double p = fail > 1 ? exponent(fail, fail_error, pass, best_error) : order;
+    const double star = predict(pass, best_error, p, options.tolerance);
+    std::size_t mid = star >= static_cast<double>(pass - gap) ? pass - gap : static_cast<std::size_t>(std::ceil(star));
+    mid = std::clamp(mid, fail + 1, pass - 1);
     auto [g, e] = trial(mid);
     if (e <= options.tolerance) {
       pass = mid;
@@ -211,6 +234,7 @@ RadialTable build_radial_table(const Medium& medium, const Model& model, const R
       best_error = e;
     } else {
       fail = mid;
+      fail_error = e;
     }
   }
   table.max_error = best_error;

@@ -2,7 +2,9 @@
 // albedo-radius table built the pbrt way (100 + 100 midpoint samples per evaluation, rows in
 // parallel) against ours with the same layout, in the same process, with both tables' accuracy
 // against a converged evaluation of the same model (1024-point Gauss-Legendre); then a radial
-// table per material and the whole database.
+// table per material and the whole database. Accuracy against the Monte Carlo reference, the
+// issue's criterion, is measured by tools/validation/validate_albedo_radius (recorded in
+// tools/validation/albedo_radius_vs_montecarlo.txt) and quoted in the conclusion line.
 //
 //   bench_lut [repetitions=9]
 #include <algorithm>
@@ -72,6 +74,8 @@ int main(int argc, char** argv) {
   std::printf("pbrt-layout albedo-radius table (100 x 64, photon beam diffusion), median of %d builds, %u hardware threads\n",
               repetitions, std::thread::hardware_concurrency());
   std::printf("  case (g, eta)   builder                         threads   ms      worst err   median err   speed-up vs pbrt 1 thread\n");
+  double pbrt_ms[2][2] = {}, ours_ms[2][2] = {};  // [case][threads - 1], ours at the default tolerance
+  int case_index = 0;
   for (const auto& [g, eta] : {std::pair{0.0, 1.3}, std::pair{0.9, 1.4}}) {
     // Reference: the same model converged (the table's own physics, quadrature error ~1e-10).
     std::vector<double> reference(layout.albedo.size() * cols);
@@ -88,6 +92,7 @@ int main(int argc, char** argv) {
     for (unsigned threads : {1u, 2u}) {
       const double ms = median_ms([&] { pbrt = pbrt_style_table(layout, g, eta, threads); }, repetitions);
       if (threads == 1) pbrt_1 = ms;
+      pbrt_ms[case_index][threads - 1] = ms;
       const auto [worst, median] = errors(pbrt, reference, cols);
       std::printf("  g %.1f eta %.1f  pbrt-style (100+100 midpoint)     %u     %7.2f   %9.2e   %9.2e    %6.1fx\n", g, eta, threads, ms, worst, median, pbrt_1 / ms);
     }
@@ -99,10 +104,24 @@ int main(int argc, char** argv) {
         AlbedoRadiusTable t;
         const double ms = median_ms([&] { t = build_albedo_radius_table(layout, g, eta, options); }, repetitions);
         const auto [worst, median] = errors(t.profile, reference, cols);
+        if (tolerance == AlbedoRadiusOptions{}.tolerance) ours_ms[case_index][threads - 1] = ms;
         std::printf("  g %.1f eta %.1f  ours, tolerance %.0e (GL %3d)      %u     %7.2f   %9.2e   %9.2e    %6.1fx\n", g, eta, tolerance,
                     t.quadrature_order, threads, ms, worst, median, pbrt_1 / ms);
       }
+    ++case_index;
   }
+  // Figures from tools/validation/albedo_radius_vs_montecarlo.txt (validate_albedo_radius 10000000 50:
+  // 24 rows, g 0 and 0.9, eta 1.0 and 1.3, rho 0.28-0.99; the tables are deterministic, so these
+  // hold for every run of this benchmark).
+  std::printf("\nAccuracy against the Monte Carlo reference (tools/validation/albedo_radius_vs_montecarlo.txt, 24 rows, 10M photons each),\n"
+              "medians over rows, pbrt-style vs ours at the default tolerance: L2 of 2 pi r R 13.16 %% vs 13.21 %%, L2 in ln r 8.25 %% vs 8.25 %%,\n"
+              "|rho_eff error| 13.94 %% vs 13.81 %%; at g 0, eta 1.3 ours is closer in all 6 rows (L2 by 0.09-1.84 pp), elsewhere pbrt-style is\n"
+              "closer in some rows (g 0.9; eta 1.0) by at most 0.10 pp (L2), 0.39 pp (L2 ln), 0.21 pp (rho_eff) - closer than the converged model too, so\n"
+              "no tolerance of ours can gain it: the model's own error (L2 5.8-35 %%) dominates. (The Monte Carlo rows are at eta 1.0 and 1.3.)\n");
+  std::printf("Conclusion: equal accuracy against Monte Carlo (better at g 0, eta 1.3); ours at the default tolerance builds the 100 x 64 table\n"
+              "%.1fx faster on one thread and %.1fx on two at g 0, eta 1.3 (%.1fx / %.1fx at g 0.9, eta 1.4): the 10x goal is %s.\n",
+              pbrt_ms[0][0] / ours_ms[0][0], pbrt_ms[0][1] / ours_ms[0][1], pbrt_ms[1][0] / ours_ms[1][0], pbrt_ms[1][1] / ours_ms[1][1],
+              std::min({pbrt_ms[0][0] / ours_ms[0][0], pbrt_ms[1][0] / ours_ms[1][0]}) >= 10 ? "met" : "NOT met in this run");
 
   const auto db = MaterialDatabase::load(default_materials_dir());
   std::printf("\nRadial tables (tolerance 1e-3, energy 0.999, Catmull-Rom), one thread, median of %d\n", repetitions);
