@@ -101,3 +101,45 @@ TEST(AlbedoRadiusVsMonteCarlo, DefaultToleranceRowsMatchTheDocumentedError) {
     EXPECT_NEAR(eff, doc.rho_eff, 3 * eff_sigma + 1e-3) << rho;
   }
 }
+
+TEST(AlbedoRadiusAdaptive, MeetsItsToleranceBetweenTheSamples) {
+  // Checked at points the search did not look at: a quarter of the way along each interval, in
+  // albedo and (geometrically) in radius, against a table built exactly there.
+  for (double tolerance : {1e-2}) {
+    AlbedoRadiusOptions options;
+    const auto adaptive = adaptive_albedo_radius_layout(0.0, 1.3, tolerance, options);
+    const auto table = build_albedo_radius_table(adaptive.layout, 0.0, 1.3, options);
+    AlbedoRadiusLayout quarter;
+    const auto& a = adaptive.layout.albedo;
+    const auto& r = adaptive.layout.radius;
+    for (std::size_t i = 0; i + 1 < a.size(); i += 3) quarter.albedo.push_back(0.75 * a[i] + 0.25 * a[i + 1]);
+    for (std::size_t j = 1; j + 1 < r.size(); ++j) quarter.radius.push_back(std::pow(r[j], 0.75) * std::pow(r[j + 1], 0.25));
+    const auto direct = build_albedo_radius_table(quarter, 0.0, 1.3, options);
+    double worst = 0;
+    for (std::size_t i = 0; i < direct.rows(); ++i) {
+      double peak = 0;
+      for (std::size_t j = 0; j < direct.columns(); ++j) peak = std::max(peak, direct.profile[i * direct.columns() + j]);
+      for (std::size_t j = 0; j < direct.columns(); ++j)
+        worst = std::max(worst, std::abs(table.interpolate(quarter.albedo[i], quarter.radius[j]) -
+                                         direct.profile[i * direct.columns() + j]) / peak);
+    }
+    std::printf("  tolerance %.0e: %zu albedos x %zu radii (pbrt: 100 x 64), worst error at quarter points %.2e\n", tolerance,
+                table.rows(), table.columns(), worst);
+    EXPECT_LE(adaptive.albedo_error, tolerance / 3);
+    EXPECT_LE(adaptive.radius_error, tolerance / 3);
+    EXPECT_LT(worst, tolerance);
+    // pbrt's 100 x 64 layout, measured the same way, for comparison.
+    const auto pbrt = build_albedo_radius_table(AlbedoRadiusLayout::pbrt(), 0.0, 1.3, options);
+    double pbrt_worst = 0;
+    for (std::size_t i = 0; i < direct.rows(); ++i) {
+      double peak = 0;
+      for (std::size_t j = 0; j < direct.columns(); ++j) peak = std::max(peak, direct.profile[i * direct.columns() + j]);
+      for (std::size_t j = 0; j < direct.columns(); ++j)
+        if (quarter.radius[j] >= pbrt.layout.radius[1] && quarter.radius[j] <= pbrt.layout.radius.back())
+          pbrt_worst = std::max(pbrt_worst, std::abs(pbrt.interpolate(quarter.albedo[i], quarter.radius[j]) -
+                                                     direct.profile[i * direct.columns() + j]) / peak);
+    }
+    std::printf("  pbrt's 100 x 64 layout at the same points: worst error %.2e\n", pbrt_worst);
+    EXPECT_GT(pbrt_worst, worst);
+  }
+}

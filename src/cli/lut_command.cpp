@@ -32,7 +32,7 @@ namespace {
 struct LutOptions {
   MediumOptions medium;
   std::string kind = "radial", model = "pbd", tolerance, energy = "0.999", interpolation = "catmull-rom";
-  std::string output, format, output_dir, layout = "pbrt", size;
+  std::string output, format, output_dir, layout = "pbrt", size, table_tolerance;
   bool half = false, all = false, quiet = false;
   unsigned threads = 1;
   bool model_given = false;  // --model appeared on the command line
@@ -96,6 +96,7 @@ Built build_albedo_radius(const LutOptions& o) {
   options.tolerance = o.tolerance.empty() ? 1e-2 : positive_fraction(o.tolerance, "--tolerance");
   options.threads = o.threads;
   AlbedoRadiusLayout layout;
+  std::string adaptive_note;
   if (o.layout == "pbrt") {
     layout = AlbedoRadiusLayout::pbrt();
   } else if (o.layout == "family") {
@@ -103,8 +104,15 @@ Built build_albedo_radius(const LutOptions& o) {
     if (std::sscanf(o.size.c_str(), "%ux%u", &a, &r) != 2)
       throw InvalidInput("--size", "'" + o.size + "'", "ALBEDOSxRADII, e.g. 64x48 (each >= 4)");
     layout = AlbedoRadiusLayout::family(a, r);
+  } else if (o.layout == "adaptive") {
+    const double table_tolerance = o.table_tolerance.empty() ? 1e-3 : positive_fraction(o.table_tolerance, "--table-tolerance");
+    const auto adaptive = adaptive_albedo_radius_layout(g, eta, table_tolerance, options);
+    layout = adaptive.layout;
+    adaptive_note = "adaptive layout for interpolation tolerance " + format_number(table_tolerance) + ": worst midpoint error " +
+                    format_number(std::round(adaptive.albedo_error * 1e6) / 1e6) + " (albedo), " +
+                    format_number(std::round(adaptive.radius_error * 1e6) / 1e6) + " (radius), relative to each row's peak";
   } else {
-    throw InvalidInput("--layout", "'" + o.layout + "'", "pbrt or family (with --size AxR)");
+    throw InvalidInput("--layout", "'" + o.layout + "'", "pbrt, family (with --size AxR) or adaptive (with --table-tolerance)");
   }
   const auto start = std::chrono::steady_clock::now();
   const auto t = build_albedo_radius_table(layout, g, eta, options);
@@ -117,7 +125,12 @@ Built build_albedo_radius(const LutOptions& o) {
     << t.quadrature_order << "-point Gauss-Legendre (tolerance " << format_number(options.tolerance) << "); table in "
     << format_number(std::round(ms * 100) / 100) << " ms\n  effective albedo: " << format_number(t.effective_albedo.front())
     << " (rho = 0) to " << format_number(t.effective_albedo.back()) << " (rho = 1)\n";
-  return {to_lookup_table(t, context, o.layout), s.str(), {}};
+  auto table = to_lookup_table(t, context, o.layout);
+  if (!adaptive_note.empty()) {
+    s << "  " << adaptive_note << "\n";
+    table.set("bssrdf:adaptive", adaptive_note);
+  }
+  return {std::move(table), s.str(), {}};
 }
 
 // Thicknesses in mm: --thickness, or --samples log-spaced from --d-min to --d-max (defaults: half
@@ -339,7 +352,10 @@ Action register_lut(CLI::App& app) {
   auto* sub = app.add_subcommand("lut", "Lookup tables for renderers: OpenEXR, JSON or CSV with their conventions recorded");
   o->medium.add_to(*sub);
   sub->add_option("--kind,-k", o->kind, "Table: radial, albedo-radius, transmission, preintegrated, separable, gaussians [radial]");
-  sub->add_option("--layout", o->layout, "albedo-radius: pbrt (100 x 64, pbrt's spacing) or family (--size) [pbrt]");
+  sub->add_option("--layout", o->layout,
+                  "albedo-radius: pbrt (100 x 64, pbrt's spacing), family (--size) or adaptive (--table-tolerance) [pbrt]");
+  sub->add_option("--table-tolerance", o->table_tolerance,
+                  "albedo-radius --layout adaptive: interpolation error allowed, relative to each row's peak [1e-3]");
   sub->add_option("--size", o->size, "albedo-radius with --layout family: ALBEDOSxRADII, e.g. 64x48; preintegrated: N.LxCURVATURES [256x256]");
   auto* model_option = sub->add_option("--model", o->model, "Profile model (see 'bssrdf models') [pbd]");
   sub->add_option("--tolerance", o->tolerance, "radial: relative interpolation error bound [1e-3]; albedo-radius: beam-integral quadrature tolerance [1e-2]");

@@ -99,6 +99,72 @@ AlbedoRadiusTable build_albedo_radius_table(const AlbedoRadiusLayout& layout, do
   return t;
 }
 
+namespace {
+
+// Worst |interpolated - direct| / row peak at the given (albedo, radius) points, where `direct` is a
+// table built at exactly those points (rows = albedos, columns = radii).
+double midpoint_error(const AlbedoRadiusTable& table, const AlbedoRadiusTable& direct) {
+  double worst = 0;
+  for (std::size_t i = 0; i < direct.rows(); ++i) {
+    double peak = 0;
+    for (std::size_t j = 0; j < direct.columns(); ++j) peak = std::max(peak, direct.profile[i * direct.columns() + j]);
+    if (!(peak > 0)) continue;
+    for (std::size_t j = 0; j < direct.columns(); ++j) {
+      const double interpolated = table.interpolate(direct.layout.albedo[i], direct.layout.radius[j]);
+      worst = std::max(worst, std::abs(interpolated - direct.profile[i * direct.columns() + j]) / peak);
+    }
+  }
+  return worst;
+}
+
+// Midpoints of the intervals; geometric ones for radii, skipping the first interval [0, r_1]
+// (pbrt's r = 0 column, which carries no energy: 2 pi r R vanishes there).
+std::vector<double> midpoints(const std::vector<double>& x, bool geometric) {
+  std::vector<double> m;
+  for (std::size_t i = 0; i + 1 < x.size(); ++i) {
+    if (geometric && x[i] == 0) continue;
+    m.push_back(geometric ? std::sqrt(x[i] * x[i + 1]) : 0.5 * (x[i] + x[i + 1]));
+  }
+  return m;
+}
+
+}  // namespace
+
+AdaptiveAlbedoRadiusLayout adaptive_albedo_radius_layout(double g, double eta, double tolerance,
+                                                         const AlbedoRadiusOptions& options) {
+  if (!(tolerance > 0 && tolerance < 1)) throw InvalidInput("table tolerance", format_number(tolerance), "0 < tolerance < 1");
+  const auto grow = [](std::size_t n) { return n + std::max<std::size_t>(1, n / 4); };
+  constexpr std::size_t kLargest = 2048;
+  AdaptiveAlbedoRadiusLayout out;
+  // Each axis's midpoint error is held to a third of the tolerance: errors off the grid in both
+  // axes add, and the midpoint is not always the worst point of an interval (measured: 2x).
+  const double target = tolerance / 3;
+  // Radii first, on a few albedo rows spread over the range.
+  const auto probe_rows = AlbedoRadiusLayout::family(9, 4).albedo;
+  std::size_t radii = 12;
+  for (;; radii = grow(radii)) {
+    AlbedoRadiusLayout grid = AlbedoRadiusLayout::family(4, radii);
+    grid.albedo = probe_rows;
+    AlbedoRadiusLayout mid = grid;
+    mid.radius = midpoints(grid.radius, true);
+    out.radius_error = midpoint_error(build_albedo_radius_table(grid, g, eta, options),
+                                      build_albedo_radius_table(mid, g, eta, options));
+    if (out.radius_error <= target || radii >= kLargest) break;
+  }
+  // Then albedos, on the chosen radii.
+  std::size_t albedos = 12;
+  for (;; albedos = grow(albedos)) {
+    AlbedoRadiusLayout grid = AlbedoRadiusLayout::family(albedos, radii);
+    AlbedoRadiusLayout mid = grid;
+    mid.albedo = midpoints(grid.albedo, false);
+    out.albedo_error = midpoint_error(build_albedo_radius_table(grid, g, eta, options),
+                                      build_albedo_radius_table(mid, g, eta, options));
+    if (out.albedo_error <= target || albedos >= kLargest) break;
+  }
+  out.layout = AlbedoRadiusLayout::family(albedos, radii);
+  return out;
+}
+
 double AlbedoRadiusTable::interpolate(double albedo, double r) const {
   const auto wa = catmull_rom_weights(layout.albedo, albedo);
   const auto wr = catmull_rom_weights(layout.radius, r);

@@ -59,6 +59,17 @@ struct AlbedoRadiusTable {
 AlbedoRadiusTable build_albedo_radius_table(const AlbedoRadiusLayout& layout, double g, double eta,
                                             const AlbedoRadiusOptions& options);
 
+// The smallest family layout (pbrt's spacings, sizes grown by 25 % steps, each axis on its own)
+// whose Catmull-Rom interpolation stays within `tolerance` of the table's own model, relative to
+// each row's peak of 2 pi r R: each axis is sized so that its midpoint error is below a third of
+// the tolerance (tests check points off the grid in both axes). Model no more than the case needs.
+struct AdaptiveAlbedoRadiusLayout {
+  AlbedoRadiusLayout layout;
+  double albedo_error = 0, radius_error = 0;  // worst midpoint errors found (<= tolerance / 3)
+};
+AdaptiveAlbedoRadiusLayout adaptive_albedo_radius_layout(double g, double eta, double tolerance,
+                                                         const AlbedoRadiusOptions& options);
+
 // Channels "profile" (2 pi r R), "cdf", "radius", "albedo", "effective_albedo" (per-row values repeated
 // along the row); width = radii, height = albedos.
 LookupTable to_lookup_table(const AlbedoRadiusTable& table, const TableContext& context, const std::string& layout_name);
