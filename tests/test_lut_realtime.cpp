@@ -243,3 +243,19 @@ TEST(CliLutRealtime, PreviewIsAPngAndBadPathsWriteNothing) {
   EXPECT_FALSE(std::filesystem::exists(temp("x.jpg")));
   EXPECT_FALSE(std::filesystem::exists(temp("two.png")));
 }
+
+TEST(CliLutRealtime, BatchSkipsWhatCannotBeTabulatedAndWritesTheRest) {
+  // Coke and others have a channel that does not scatter: no kernel exists there. The batch names
+  // each skipped material on stderr and still writes every other one.
+  const auto dir = temp("batch");
+  std::filesystem::create_directories(dir);
+  const auto r = test_cli::run("lut --all --kind separable --taps 11 -f json -q --output-dir " + dir.string());
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("bssrdf: skipped Coke: "), std::string::npos) << r.err;
+  std::size_t files = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir)) ++files;
+  const auto skipped = static_cast<std::size_t>(test_cli::count_lines(r.err));
+  EXPECT_EQ(files + skipped, 47u);
+  EXPECT_GE(files, 40u);
+  EXPECT_TRUE(std::filesystem::exists(dir / "skin1-separable.json"));
+}

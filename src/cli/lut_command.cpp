@@ -393,19 +393,32 @@ Action register_lut(CLI::App& app) {
       const auto database = MaterialDatabase::load(o->medium.db.empty() ? default_materials_dir() : std::filesystem::path(o->medium.db));
       const auto progress = progress_bar("lut --all");
       const auto start = std::chrono::steady_clock::now();
-      std::size_t done = 0;
+      std::size_t done = 0, written = 0;
+      // A material this kind cannot tabulate (e.g. a channel that does not scatter) is skipped with
+      // its reason, one line each on stderr; the others are still written.
+      std::vector<std::string> skipped;
       for (const auto& material : database.all()) {
         MediumOptions one = o->medium;
         one.material = material.name;
-        const auto built = o->kind == "albedo-radius" ? build_albedo_radius([&] { auto c = *o; c.medium = one; return c; }()) : build(*o, one.resolve());
-        const auto path = dir / file_name(material.name, o->kind, format);
-        write_file_atomically(path, encode(built, format, o->half));
+        try {
+          const auto built = o->kind == "albedo-radius" ? build_albedo_radius([&] { auto c = *o; c.medium = one; return c; }())
+                                                        : build(*o, one.resolve());
+          const auto path = dir / file_name(material.name, o->kind, format);
+          write_file_atomically(path, encode(built, format, o->half));
+          ++written;
+          if (!o->quiet && !progress) std::cout << "written: " << path.string() << '\n';
+        } catch (const FileError&) {
+          throw;  // an unwritable directory stops the batch
+        } catch (const InvalidInput& e) {
+          skipped.push_back(material.name + ": " + e.what());
+        }
         if (progress) progress(++done, database.all().size());
-        if (!o->quiet && !progress) std::cout << "written: " << path.string() << '\n';
       }
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      for (const auto& line : skipped) std::cerr << "bssrdf: skipped " << line << '\n';
       if (!o->quiet)
-        std::cout << database.all().size() << " " << o->kind << " tables in " << format_number(std::round(seconds * 1000) / 1000) << " s\n";
+        std::cout << written << " " << o->kind << " tables in " << format_number(std::round(seconds * 1000) / 1000) << " s"
+                  << (skipped.empty() ? "" : ", " + std::to_string(skipped.size()) + " materials skipped (see stderr)") << "\n";
       return;
     }
     if (!o->preview.empty()) {
