@@ -304,13 +304,13 @@ Built build(const LutOptions& o, const MediumOptions::Resolved& resolved) {
     options.interpolation = parse_interpolation(o.interpolation, "--interpolation");
     options.threads = o.threads;
     const auto t = build_radial_table(resolved.medium, *model, options);
-    s << "radial table: " << t.size() << " radii from " << format_number(t.radius.front() / mm) << " to "
-      << format_number(t.radius.back() / mm) << ' ' << u << ", uniform in ln r + r/" << format_number(t.decay_length / mm)
-      << " (" << to_string(options.interpolation) << "; worst error " << format_number(t.max_error) << " <= tolerance " << format_number(options.tolerance)
-      << " over the range holding " << format_number(options.energy) << " of each channel's total; " << t.evaluations << " model evaluations)\n";
+    s << "radial table: " << t.size() << " radii from " << short_number(t.radius.front() / mm) << " to "
+      << short_number(t.radius.back() / mm) << ' ' << u << ", uniform in ln r + r/" << short_number(t.decay_length / mm)
+      << " (" << to_string(options.interpolation) << "; worst error " << short_number(t.max_error) << " <= tolerance " << short_number(options.tolerance)
+      << " over the range holding " << short_number(options.energy) << " of each channel's total; " << t.evaluations << " model evaluations)\n";
     for (std::size_t c = 0; c < t.channel_names.size(); ++c)
-      s << "  " << t.channel_names[c] << ": total reflectance " << format_number(t.total_reflectance[c])
-        << ", range " << format_number(t.range_min[c] / mm) << " to " << format_number(t.range_max[c] / mm) << ' ' << u << '\n';
+      s << "  " << t.channel_names[c] << ": total reflectance " << short_number(t.total_reflectance[c])
+        << ", range " << short_number(t.range_min[c] / mm) << " to " << short_number(t.range_max[c] / mm) << ' ' << u << '\n';
     return {to_lookup_table(t, context), s.str(), {}};
   }
   std::string known;
