@@ -1,7 +1,10 @@
 // bssrdf lut: lookup tables for renderers (radial, albedo-radius, transmission, pre-integrated,
 // separable kernel, Gaussian mixture) as OpenEXR, JSON, CSV or shader arrays; --all for the whole
 // materials database, one file per material.
+#include <atomic>
 #include <chrono>
+#include <mutex>
+#include <thread>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -393,26 +396,49 @@ Action register_lut(CLI::App& app) {
       const auto database = MaterialDatabase::load(o->medium.db.empty() ? default_materials_dir() : std::filesystem::path(o->medium.db));
       const auto progress = progress_bar("lut --all");
       const auto start = std::chrono::steady_clock::now();
-      std::size_t done = 0, written = 0;
-      // A material this kind cannot tabulate (e.g. a channel that does not scatter) is skipped with
+      // Materials are built in parallel (--threads workers, each table single-threaded), then
+      // written in database order, so files and messages do not depend on the thread count. A
+      // material this kind cannot tabulate (e.g. a channel that does not scatter) is skipped with
       // its reason, one line each on stderr; the others are still written.
-      std::vector<std::string> skipped;
-      for (const auto& material : database.all()) {
-        MediumOptions one = o->medium;
-        one.material = material.name;
-        try {
-          const auto built = o->kind == "albedo-radius" ? build_albedo_radius([&] { auto c = *o; c.medium = one; return c; }())
-                                                        : build(*o, one.resolve());
-          const auto path = dir / file_name(material.name, o->kind, format);
-          write_file_atomically(path, encode(built, format, o->half));
-          ++written;
-          if (!o->quiet && !progress) std::cout << "written: " << path.string() << '\n';
-        } catch (const FileError&) {
-          throw;  // an unwritable directory stops the batch
-        } catch (const InvalidInput& e) {
-          skipped.push_back(material.name + ": " + e.what());
+      const auto& materials = database.all();
+      std::vector<std::string> encoded(materials.size()), failure(materials.size());
+      std::atomic<std::size_t> next{0}, done{0};
+      std::mutex progress_mutex;
+      const auto work = [&] {
+        for (std::size_t i; (i = next++) < materials.size();) {
+          LutOptions one = *o;
+          one.medium.material = materials[i].name;
+          one.threads = 1;
+          try {
+            const auto built = o->kind == "albedo-radius" ? build_albedo_radius(one) : build(one, one.medium.resolve());
+            encoded[i] = encode(built, format, o->half);
+          } catch (const InvalidInput& e) {
+            failure[i] = e.what();
+          }
+          const std::size_t finished = ++done;
+          if (progress) {
+            std::lock_guard lock(progress_mutex);
+            progress(finished, materials.size());
+          }
         }
-        if (progress) progress(++done, database.all().size());
+      };
+      const unsigned workers = std::max(1u, std::min<unsigned>(o->threads == 0 ? std::thread::hardware_concurrency() : o->threads,
+                                                               static_cast<unsigned>(materials.size())));
+      std::vector<std::thread> pool;
+      for (unsigned t = 1; t < workers; ++t) pool.emplace_back(work);
+      work();
+      for (auto& t : pool) t.join();
+      std::size_t written = 0;
+      std::vector<std::string> skipped;
+      for (std::size_t i = 0; i < materials.size(); ++i) {
+        if (!failure[i].empty()) {
+          skipped.push_back(materials[i].name + ": " + failure[i]);
+          continue;
+        }
+        const auto path = dir / file_name(materials[i].name, o->kind, format);
+        write_file_atomically(path, encoded[i]);  // an unwritable directory stops the batch
+        ++written;
+        if (!o->quiet && !progress) std::cout << "written: " << path.string() << '\n';
       }
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       for (const auto& line : skipped) std::cerr << "bssrdf: skipped " << line << '\n';
