@@ -258,4 +258,12 @@ TEST(CliLutRealtime, BatchSkipsWhatCannotBeTabulatedAndWritesTheRest) {
   EXPECT_EQ(files + skipped, 47u);
   EXPECT_GE(files, 40u);
   EXPECT_TRUE(std::filesystem::exists(dir / "skin1-separable.json"));
+  // Built in parallel, the files are the same bytes.
+  const auto parallel = temp("batch2");
+  std::filesystem::create_directories(parallel);
+  const auto r2 = test_cli::run("lut --all --kind separable --taps 11 -f json -q --threads 2 --output-dir " + parallel.string());
+  EXPECT_EQ(r2.status, 0) << r2.err;
+  EXPECT_EQ(r2.err, r.err);
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    EXPECT_EQ(test_cli::slurp(entry.path()), test_cli::slurp(parallel / entry.path().filename())) << entry.path();
 }
