@@ -62,15 +62,32 @@ PreintegratedTable build_preintegrated_table(const Medium& medium, const Model& 
         w[k] = quad[k] * profiles[c].line(2 * radius * std::sin(0.5 * x[k]));
         norm += w[k];
       }
+      // sum_k w_k [max(0, cos(theta + x_k)) + max(0, cos(theta - x_k))], theta = acos(N.L) in [0, pi],
+      // x_k in (0, pi]: each clamp keeps a contiguous range of nodes (cos(theta + x) > 0 for
+      // x < pi/2 - theta or x > 3pi/2 - theta; cos(theta - x) > 0 for |x - theta| < pi/2), so
+      // prefix sums of w cos x and w sin x give every column in O(log K) instead of O(K).
+      std::vector<double> prefix_cos(K + 1, 0.0), prefix_sin(K + 1, 0.0);
+      for (std::size_t k = 0; k < K; ++k) {
+        prefix_cos[k + 1] = prefix_cos[k] + w[k] * cos_x[k];
+        prefix_sin[k + 1] = prefix_sin[k] + w[k] * sin_x[k];
+      }
+      // Nodes with lo < x < hi as an index range.
+      const auto range = [&](double lo, double hi) {
+        const auto a = static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), lo) - x.begin());
+        const auto b = static_cast<std::size_t>(std::lower_bound(x.begin(), x.end(), hi) - x.begin());
+        return std::pair{a, std::max(a, b)};
+      };
+      const auto sums = [&](std::pair<std::size_t, std::size_t> r) {
+        return std::pair{prefix_cos[r.second] - prefix_cos[r.first], prefix_sin[r.second] - prefix_sin[r.first]};
+      };
+      const double pi = std::numbers::pi;
       for (std::size_t i = 0; i < W; ++i) {
-        const double u = t.n_dot_l[i], s = std::sqrt(std::max(0.0, 1 - u * u));
-        double sum = 0;
-        // cos(theta + x) + cos(theta - x) over x > 0, both clamped at 0.
-        for (std::size_t k = 0; k < K; ++k) {
-          const double a = u * cos_x[k], b = s * sin_x[k];
-          sum += w[k] * (std::max(0.0, a - b) + std::max(0.0, a + b));
-        }
-        t.value[c][j * W + i] = std::min(1.0, sum / (2 * norm));
+        const double u = t.n_dot_l[i], s = std::sqrt(std::max(0.0, 1 - u * u)), theta = std::acos(std::clamp(u, -1.0, 1.0));
+        const auto [c1, s1] = sums(range(-1.0, pi / 2 - theta));
+        const auto [c2, s2] = sums(range(3 * pi / 2 - theta, 4.0));
+        const auto [c3, s3] = sums(range(theta - pi / 2, theta + pi / 2));
+        const double sum = u * (c1 + c2) - s * (s1 + s2) + u * c3 + s * s3;
+        t.value[c][j * W + i] = std::clamp(sum / (2 * norm), 0.0, 1.0);
       }
     }
   });
