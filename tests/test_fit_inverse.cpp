@@ -148,3 +148,10 @@ TEST(FitBurley, RecoversDAndReportsTheErrorAgainstPhysicalProfiles) {
   EXPECT_GT(report.find("relative_l2_error", "x")->value, 0.01);  // the shapes differ: not 0
   EXPECT_LT(report.find("relative_l2_error", "x")->value, 0.3);
 }
+
+TEST(FitGaussians, RefusesAChannelWithoutReflectance) {
+  NamedProfile zero{"B", {}};
+  zero.profile.radius = log_spaced(0.01, 10.0, 16);
+  zero.profile.value.assign(16, 0.0);
+  EXPECT_THROW(fit_gaussians({zero}, 4, LengthUnit::millimetre, "zero"), InvalidInput);
+}

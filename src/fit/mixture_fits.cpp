@@ -88,6 +88,9 @@ void check_profiles(const std::vector<NamedProfile>& channels) {
       throw InvalidInput("channel " + c.name + ": " + e.what());
     }
     if (c.profile.size() < 8) throw InvalidInput("channel " + c.name + ": radii", std::to_string(c.profile.size()), ">= 8 samples");
+    double peak = 0;
+    for (double v : c.profile.value) peak = std::max(peak, v);
+    if (!(peak > 0)) throw InvalidInput("channel " + c.name + ": profile", "0 everywhere", "a profile with some reflectance (the channel does not scatter)");
   }
 }
 
