@@ -48,6 +48,16 @@ void Medium::validate() const {
     throw InvalidInput("eta", format_number(eta), "> 0 and finite (n_medium / n_outside)");
 }
 
+Medium Medium::single_channel(double sigma_a, double sigma_s, double g, double eta) {
+  Medium m;
+  m.channel_names = {"x"};
+  m.sigma_a = {sigma_a};
+  m.sigma_s = {sigma_s};
+  m.g = {g};
+  m.eta = eta;
+  return m;
+}
+
 Reduced<double> Medium::reduced(std::size_t channel) const {
   return reduce(sigma_a.at(channel), sigma_s.at(channel), g.at(channel), eta);
 }

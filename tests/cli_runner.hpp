@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace bssrdf::test_cli {
 
@@ -32,6 +33,13 @@ inline Run run(const std::string& arguments) {
   const std::string command = std::string(BSSRDF_CLI) + " " + arguments + " >" + out.string() + " 2>" + err.string() + " </dev/null";
   const int raw = std::system(command.c_str());
   return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+}
+
+// A path in this process's own temporary directory (ctest runs test cases in parallel processes).
+inline std::filesystem::path temp(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("bssrdf-test-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return dir / name;
 }
 
 inline int count_lines(const std::string& text) {

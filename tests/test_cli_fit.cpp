@@ -13,9 +13,7 @@ using test_cli::run;
 using json = nlohmann::json;
 
 namespace {
-std::string temp(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "-" + name)).string();
-}
+std::string temp(const std::string& name) { return test_cli::temp(name).string(); }
 void write(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 }  // namespace
 

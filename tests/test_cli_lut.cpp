@@ -15,11 +15,7 @@ using test_cli::slurp;
 
 namespace {
 
-std::filesystem::path temp(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("bssrdf-cli-lut-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir / name;
-}
+using test_cli::temp;
 
 }  // namespace
 

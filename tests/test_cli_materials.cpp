@@ -23,11 +23,7 @@ using json = nlohmann::json;
 
 namespace {
 
-std::filesystem::path temp(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("bssrdf-cli-materials-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir / name;
-}
+using test_cli::temp;
 
 // Well-formedness: declaration, comments, properly nested elements, quoted attributes.
 bool well_formed_xml(const std::string& text, std::string& error) {

@@ -47,7 +47,7 @@ TEST(CliProfile, JsonForABundledMaterial) {
 }
 
 TEST(CliProfile, WritesTheFileAndPrintsTheTable) {
-  const auto path = std::filesystem::temp_directory_path() / ("bssrdf-cli-profile-" + std::to_string(::getpid()) + ".json");
+  const auto path = test_cli::temp("profile.json");
   std::filesystem::remove(path);
   const auto r = run("profile --material Marble -o " + path.string());
   ASSERT_EQ(r.status, 0) << r.err;
@@ -178,7 +178,7 @@ struct BadInput {
 class CliBadInput : public ::testing::TestWithParam<BadInput> {};
 
 TEST_P(CliBadInput, ExitsTwoWithOneLineAndNoFile) {
-  const auto path = std::filesystem::temp_directory_path() / ("bssrdf-bad-input-" + std::to_string(::getpid()) + ".json");
+  const auto path = test_cli::temp("bad-input.json");
   std::filesystem::remove(path);
   const auto r = run(std::string(GetParam().arguments) + " -o " + path.string());
   EXPECT_EQ(r.status, 2) << r.err;

@@ -99,12 +99,7 @@ TEST(FitProfile, NoisyRoundTripsLieWithinTheReportedUncertainty) {
 
 TEST(FitProfile, MonteCarloDataAndHowWellEachModelExplainsIt) {
   // Data the fitter did not produce: a Monte Carlo profile (alpha' = 0.95, eta = 1.3, g = 0).
-  Medium medium;
-  medium.channel_names = {"x"};
-  medium.sigma_a = {0.05};
-  medium.sigma_s = {0.95};
-  medium.g = {0};
-  medium.eta = 1.3;
+  const auto medium = Medium::single_channel(0.05, 0.95, 0.0, 1.3);
   MonteCarloOptions mc;
   mc.photons = 200000;
   mc.spacing = BinSpacing::log;

@@ -20,24 +20,6 @@
 
 using namespace bssrdf;
 
-namespace {
-
-// Integral over [a, b] of the Catmull-Rom spline through the row (exact: GL2 on each cubic piece).
-double row_integral(const std::vector<double>& x, std::span<const double> f, double a, double b) {
-  std::vector<double> cuts{a};
-  for (double xi : x)
-    if (xi > a && xi < b) cuts.push_back(xi);
-  cuts.push_back(b);
-  double sum = 0;
-  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
-    const double h = cuts[k + 1] - cuts[k];
-    for (double t : kCheckPoint) sum += 0.5 * h * interpolate(x, f, cuts[k] + t * h);
-  }
-  return sum;
-}
-
-}  // namespace
-
 TEST(AlbedoRadiusVsMonteCarlo, DefaultToleranceRowsMatchTheDocumentedError) {
   const double g = 0.0, eta = 1.3;
   const auto layout = AlbedoRadiusLayout::pbrt();
@@ -62,12 +44,7 @@ TEST(AlbedoRadiusVsMonteCarlo, DefaultToleranceRowsMatchTheDocumentedError) {
     while (k + 1 < cols && cdf[k] < 0.999) ++k;
     const double r_max = layout.radius[k - 1] + (layout.radius[k] - layout.radius[k - 1]) * (0.999 - cdf[k - 1]) / (cdf[k] - cdf[k - 1]);
 
-    Medium medium;
-    medium.channel_names = {"x"};
-    medium.sigma_a = {1 - rho};
-    medium.sigma_s = {rho};
-    medium.g = {g};
-    medium.eta = eta;
+    const auto medium = Medium::single_channel(1 - rho, rho, g, eta);
     MonteCarloOptions options;
     options.photons = 2000000;  // 0.4 s
     options.seed = 5;
@@ -83,8 +60,8 @@ TEST(AlbedoRadiusVsMonteCarlo, DefaultToleranceRowsMatchTheDocumentedError) {
       const double a = result.bin_inner[n], c = result.bin_outer[n], w = c - a;
       const double area = std::numbers::pi * (c * c - a * a);
       const double f = mc.reflectance[n] * area / w, se = mc.reflectance_stderr[n] * area / w;
-      const double v_ours = row_integral(layout.radius, std::span(&ours.profile[row * cols], cols), a, c) / w;
-      const double v_pbrt = row_integral(layout.radius, pbrt, a, c) / w;
+      const double v_ours = catmull_rom_integral(layout.radius, std::span(&ours.profile[row * cols], cols), a, c) / w;
+      const double v_pbrt = catmull_rom_integral(layout.radius, pbrt, a, c) / w;
       norm += f * f * w;
       noise += se * se * w;
       sq_ours += (v_ours - f) * (v_ours - f) * w;

@@ -26,11 +26,7 @@ const Medium& material(const std::string& name) {
   return db.find(name).medium;
 }
 
-std::filesystem::path temp(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("bssrdf-lut-realtime-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir / name;
-}
+using test_cli::temp;
 
 // Light of a point source inside the band |X| < a, integrated directly in 2D: int 2 pi r R(r) P(r) dr
 // with P the fraction of the circle of radius r inside the band (independent of the projections).

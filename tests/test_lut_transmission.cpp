@@ -18,11 +18,7 @@ namespace {
 
 Medium skin() { return MaterialDatabase::load(default_materials_dir()).find("Skin1").medium; }
 
-std::filesystem::path temp(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("bssrdf-lut-transmission-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir / name;
-}
+using test_cli::temp;
 
 }  // namespace
 

@@ -24,13 +24,8 @@ struct Reference {
 };
 
 Reference simulate(double albedo_prime, double eta, double g, std::uint64_t photons) {
-  const double albedo = albedo_prime / (1 - g + albedo_prime * g);
-  Medium medium;
-  medium.channel_names = {"x"};
-  medium.sigma_a = {1 - albedo};
-  medium.sigma_s = {albedo};
-  medium.g = {g};
-  medium.eta = eta;
+  const double albedo = albedo_from_reduced(albedo_prime, g);
+  const auto medium = Medium::single_channel(1 - albedo, albedo, g, eta);
   MonteCarloOptions options;
   options.photons = photons;
   options.seed = 11;

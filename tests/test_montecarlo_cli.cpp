@@ -12,12 +12,6 @@ using namespace bssrdf::test_cli;
 
 namespace {
 
-std::filesystem::path temp(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("bssrdf-mc-cli-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir / name;
-}
-
 const std::string kMedium = "reference --sigma-a 0.1 --sigma-s 5 --g 0.8 --eta 1.4 --photons 20000 --seed 3 ";
 
 }  // namespace

@@ -28,6 +28,10 @@ struct Medium {
 
   // The similarity-reduced coefficients of one channel, used by every diffusion model.
   Reduced<double> reduced(std::size_t channel) const;
+
+  // One channel named "x" (coefficients in 1/mm): what references, fits and validations of a single
+  // set of coefficients use.
+  static Medium single_channel(double sigma_a, double sigma_s, double g, double eta);
 };
 
 // Channel names for n channels: R, G, B for three, c0, c1, ... otherwise.

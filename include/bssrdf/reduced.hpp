@@ -59,6 +59,13 @@ Reduced<T> reduce_prime(T sigma_a, T sigma_s_prime, T eta) {
   return reduce(sigma_a, sigma_s_prime, T(0), eta);
 }
 
+// The single-scattering albedo alpha whose similarity-reduced albedo is alpha' at anisotropy g:
+// the inverse of alpha' = alpha (1 - g) / (1 - alpha g).
+template <class T>
+T albedo_from_reduced(T albedo_prime, T g) {
+  return albedo_prime / (T(1) - g + albedo_prime * g);
+}
+
 // Optical units (sigma_t' = 1, lengths in transport mean free paths) for a given alpha'.
 template <class T>
 Reduced<T> reduced_optical(T albedo_prime, T eta) {

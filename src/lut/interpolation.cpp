@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <string>
+#include <vector>
 
 #include "bssrdf/error.hpp"
 
@@ -68,6 +69,19 @@ double interpolate(std::span<const double> nodes, std::span<const double> values
   for (int k = 0; k < 4; ++k) {
     const int j = w.offset + k;
     if (j >= 0 && j < n && w.weight[k] != 0) sum += w.weight[k] * values[j];
+  }
+  return sum;
+}
+
+double catmull_rom_integral(std::span<const double> nodes, std::span<const double> values, double a, double b) {
+  std::vector<double> cuts{a};
+  for (double x : nodes)
+    if (x > a && x < b) cuts.push_back(x);
+  cuts.push_back(b);
+  double sum = 0;
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    const double h = cuts[k + 1] - cuts[k];
+    for (double t : kCheckPoint) sum += 0.5 * h * interpolate(nodes, values, cuts[k] + t * h);
   }
   return sum;
 }

@@ -212,15 +212,7 @@ int main(int argc, char** argv) {
         {"analog", AbsorptionEstimator::analog, 0, 1, cores},
     };
     constexpr int kRuns = sizeof runs / sizeof runs[0];
-    LayerStack stack;
-    stack.channel_names = {"c0"};
-    Layer layer;
-    layer.sigma_a = {c.mua};
-    layer.sigma_s = {c.mus};
-    layer.g = {c.g};
-    layer.n = c.n;
-    layer.thickness = c.thickness_mm;
-    stack.layers.push_back(layer);
+    const auto stack = LayerStack::slab(Medium::single_channel(c.mua, c.mus, c.g, c.n), c.thickness_mm);
 
     // Repetition k runs the baseline and every configuration once, in turn, so a burst of load
     // from other processes hits one repetition of each rather than all repetitions of one.

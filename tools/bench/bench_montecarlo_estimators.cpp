@@ -89,15 +89,7 @@ int main(int argc, char** argv) {
       {"albedo'=0.99 eta=1.3 g=0 half-space", 1 - a99, a99, 0.0, 1.3, kSemiInfinite},
   };
   const Case& c = cases[std::clamp(which, 0, 3)];
-  LayerStack stack;
-  stack.channel_names = {"c0"};
-  Layer layer;
-  layer.sigma_a = {c.mua};
-  layer.sigma_s = {c.mus};
-  layer.g = {c.g};
-  layer.n = c.n;
-  layer.thickness = c.thickness;
-  stack.layers.push_back(layer);
+  const auto stack = LayerStack::slab(Medium::single_channel(c.mua, c.mus, c.g, c.n), c.thickness);
   const double ell = 1 / (c.mua + c.mus * (1 - c.g));
 
   const std::vector<Setting> settings = {

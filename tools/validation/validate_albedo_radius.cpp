@@ -47,20 +47,6 @@ namespace {
 
 constexpr double kTwoPi = 2 * std::numbers::pi;
 
-// Integral over [a, b] of the Catmull-Rom spline through the row (exact: GL2 on each cubic piece).
-double row_integral(const std::vector<double>& x, std::span<const double> f, double a, double b) {
-  std::vector<double> cuts{a};
-  for (double xi : x)
-    if (xi > a && xi < b) cuts.push_back(xi);
-  cuts.push_back(b);
-  double sum = 0;
-  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
-    const double h = cuts[k + 1] - cuts[k];
-    for (double t : kCheckPoint) sum += 0.5 * h * interpolate(x, f, cuts[k] + t * h);
-  }
-  return sum;
-}
-
 struct Errors {
   double l2 = 0, l2_log = 0, worst = 0, rho_eff = 0;
 };
@@ -99,7 +85,7 @@ int main(int argc, char** argv) {
     });
     for (auto* t : {&tables[0], &tables[3]})
       for (std::size_t i = 0; i < t->rows(); ++i)
-        t->effective_albedo[i] = row_integral(layout.radius, std::span(&t->profile[i * cols], cols), 0, layout.radius.back());
+        t->effective_albedo[i] = catmull_rom_integral(layout.radius, std::span(&t->profile[i * cols], cols), 0, layout.radius.back());
 
     for (double target : {0.3, 0.6, 0.8, 0.9, 0.95, 0.99}) {
       std::size_t row = 0;
@@ -112,12 +98,7 @@ int main(int argc, char** argv) {
       while (k + 1 < cols && cdf[k] < 0.999) ++k;
       const double r_max = layout.radius[k - 1] + (layout.radius[k] - layout.radius[k - 1]) * (0.999 - cdf[k - 1]) / (cdf[k] - cdf[k - 1]);
 
-      Medium medium;
-      medium.channel_names = {"x"};
-      medium.sigma_a = {1 - rho};
-      medium.sigma_s = {rho};
-      medium.g = {g};
-      medium.eta = eta;
+      const auto medium = Medium::single_channel(1 - rho, rho, g, eta);
       MonteCarloOptions options;
       options.photons = photons;
       options.seed = 11;
@@ -148,7 +129,7 @@ int main(int argc, char** argv) {
         const std::span<const double> f(&tables[t].profile[row * cols], cols);
         double sq = 0, sq_log = 0;
         for (std::size_t n = 0; n < bins; ++n) {
-          const double v = row_integral(layout.radius, f, result.bin_inner[n], result.bin_outer[n]) / width[n];
+          const double v = catmull_rom_integral(layout.radius, f, result.bin_inner[n], result.bin_outer[n]) / width[n];
           sq += (v - f_mc[n]) * (v - f_mc[n]) * width[n];
           if (n > 0) sq_log += (v - f_mc[n]) * (v - f_mc[n]) * std::log(result.bin_outer[n] / result.bin_inner[n]);
           if (f_mc[n] * width[n] >= 0.01 * energy) e[t].worst = std::max(e[t].worst, std::abs(v / f_mc[n] - 1));

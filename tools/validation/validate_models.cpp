@@ -45,13 +45,8 @@ int main(int argc, char** argv) {
   for (double g : {0.0, 0.9})
     for (double eta : {1.0, 1.3, 1.4})
       for (double ap : {0.5, 0.8, 0.9, 0.95, 0.99, 0.999}) {
-        const double albedo = ap / (1 - g + ap * g);  // inverts alpha' = alpha (1 - g)/(1 - alpha g)
-        Medium medium;
-        medium.channel_names = {"x"};
-        medium.sigma_a = {1 - albedo};
-        medium.sigma_s = {albedo};
-        medium.g = {g};
-        medium.eta = eta;
+        const double albedo = albedo_from_reduced(ap, g);
+        const auto medium = Medium::single_channel(1 - albedo, albedo, g, eta);
         const auto m = medium.reduced(0);
         MonteCarloOptions options;
         options.photons = photons;

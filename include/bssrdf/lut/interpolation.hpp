@@ -34,4 +34,8 @@ double interpolate(std::span<const double> nodes, std::span<const double> values
 // Gauss-Legendre 2-point nodes on [0, 1]: where the tabulators check and integrate each interval.
 inline constexpr double kCheckPoint[2] = {0.21132486540518713, 0.78867513459481287};
 
+// The integral over [a, b] of the Catmull-Rom curve through (nodes, values), exact (two-point
+// Gauss-Legendre on each cubic piece): how a renderer's interpolated table averages over a range.
+double catmull_rom_integral(std::span<const double> nodes, std::span<const double> values, double a, double b);
+
 }  // namespace bssrdf
