@@ -2,7 +2,9 @@
 // its CDF and inverse CDF for importance sampling, sized adaptively: the smallest grid (uniform in
 // x = ln r + r/L) whose interpolation (Catmull-Rom or linear, in x) stays within a relative tolerance of the
 // model, checked at the two Gauss-Legendre points of every interval, over each channel's radius
-// range holding a given fraction of its total reflectance.
+// range holding a given fraction of its total reflectance. The size is searched against a dense
+// stand-in (the model on a doubling grid, 6-point Lagrange in ln R, refined until accurate to about
+// 1/256 of the tolerance), so the model is evaluated only there, at the chosen nodes and in a probe.
 //
 //   RadialTableOptions o;  o.tolerance = 1e-3;  o.energy = 0.999;
 //   auto table = build_radial_table(skin, *make_model("pbd"), o);
