@@ -124,6 +124,27 @@ TEST(RadialTable, TighterToleranceNeedsMoreSamplesAndLinearMoreThanCubic) {
   EXPECT_LE(worst_error_between_samples(c, medium, *model), 1e-2);
 }
 
+// Coke's blue channel does not scatter (sigma_s = 0): R = 0 there, all of its CDF at r = 0, and
+// the grid is built for the other channels; a medium that scatters nowhere is refused.
+TEST(RadialTable, ChannelWithoutScatteringIsZeroAndDoesNotShapeTheGrid) {
+  const auto& coke = database().find("Coke").medium;
+  const auto model = make_model("pbd");
+  const auto t = build_radial_table(coke, *model, {});
+  EXPECT_EQ(t.total_reflectance[2], 0);
+  EXPECT_EQ(t.table_reflectance[2], 0);
+  EXPECT_EQ(t.range_max[2], 0);
+  for (std::size_t j = 0; j < t.size(); ++j) {
+    EXPECT_EQ(t.reflectance[2][j], 0);
+    EXPECT_EQ(t.cdf[2][j], 1);
+    EXPECT_EQ(t.inverse_cdf[2][j], 0);
+  }
+  EXPECT_EQ(t.radius.front(), std::min(t.range_min[0], t.range_min[1]));
+  EXPECT_LE(worst_error_between_samples(t, coke, *model), 1.25e-3);
+  Medium absorbing = coke;
+  absorbing.sigma_s = {0, 0, 0};
+  EXPECT_THROW(build_radial_table(absorbing, *model, {}), InvalidInput);
+}
+
 TEST(RadialTable, InverseCdfInvertsTheCdf) {
   const auto& medium = database().find("Skin1").medium;
   const auto t = build_radial_table(medium, *make_model("pbd"), {});

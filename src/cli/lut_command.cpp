@@ -48,7 +48,7 @@ struct LutOptions {
   std::string curvature_max;
   // separable
   int taps = 17;
-  std::string range;
+  std::string range, band = "0.95";
   // gaussians
   int count = 0;  // 0: quantized diffusion's own mixture with --model quantized, else 6
   std::string preview;  // PNG file
@@ -239,19 +239,28 @@ Built build_separable(const LutOptions& o, const MediumOptions::Resolved& resolv
   options.taps = o.taps;
   const double mm = millimetres_per(resolved.unit);
   const std::string u(symbol(resolved.unit));
-  if (!o.range.empty()) {
+  if (o.range == "jimenez") {
+    options.range = jimenez_range(o.taps);
+  } else if (!o.range.empty()) {
     const double r = parse_number(o.range, "--range");
-    if (!(r > 0)) throw InvalidInput("--range", format_number(r), "> 0 (" + u + ")");
+    if (!(r > 0)) throw InvalidInput("--range", format_number(r), "> 0 (" + u + ") or jimenez");
     options.range = r * mm;
   }
+  options.band = positive_fraction(o.band, "--band");
   if (options.taps < 3 || options.taps % 2 == 0 || options.taps > 255)
     throw InvalidInput("--taps", std::to_string(options.taps), "an odd number from 3 to 255 (Jimenez: 11, 17, 25)");
   const auto k = build_separable_kernel(resolved.medium, model, options);
   std::ostringstream s;
   s << "separable kernel: " << o.taps << " taps over +-" << short_number(k.options.range / mm) << ' ' << u
-    << (o.range.empty() ? " (Jimenez's range)" : "") << ", offsets warped quadratically, centre tap first\n";
+    << (k.range_from_band ? " (the band holding " + short_number(100 * options.band) + " % of the widest channel's light)"
+                          : o.range == "jimenez" ? std::string(" (Jimenez's range)") : std::string())
+    << ", offsets warped quadratically, centre tap first\n";
   double worst = 1;
   for (std::size_t c = 0; c < k.channel_names.size(); ++c) {
+    if (k.total_reflectance[c] == 0) {
+      s << "  " << k.channel_names[c] << ": does not scatter (total reflectance 0): identity kernel, centre weight 1\n";
+      continue;
+    }
     s << "  " << k.channel_names[c] << ": centre weight " << short_number(k.weight[c][0]) << ", the band |x| < range holds "
       << short_number(100 * k.captured[c]) << " % of the total reflectance " << short_number(k.total_reflectance[c]) << '\n';
     worst = std::min(worst, k.captured[c]);
@@ -280,6 +289,10 @@ Built build_gaussians(const LutOptions& o, const MediumOptions::Resolved& resolv
   s << "Gaussian mixture: " << t.count() << " Gaussians (" << (t.shared_variance ? "shared" : "per-channel")
     << " variances) in " << short_number(t.seconds * 1000) << " ms; " << t.method << '\n';
   for (std::size_t c = 0; c < t.channel_names.size(); ++c) {
+    if (t.total_reflectance[c] == 0) {
+      s << "  " << t.channel_names[c] << ": does not scatter (total reflectance 0): every weight 0\n";
+      continue;
+    }
     s << "  " << t.channel_names[c] << ": " << t.weight[c].size() << " Gaussians, variances "
       << short_number(t.variance[c].front() / (mm * mm)) << " to " << short_number(t.variance[c].back() / (mm * mm)) << ' ' << u
       << "^2; sum of weights / total reflectance - 1 = " << short_number(t.conservation_error[c]);
@@ -312,8 +325,11 @@ Built build(const LutOptions& o, const MediumOptions::Resolved& resolved) {
       << " (" << to_string(options.interpolation) << "; worst error " << short_number(t.max_error) << " <= tolerance " << short_number(options.tolerance)
       << " over the range holding " << short_number(options.energy) << " of each channel's total; " << t.evaluations << " model evaluations)\n";
     for (std::size_t c = 0; c < t.channel_names.size(); ++c)
-      s << "  " << t.channel_names[c] << ": total reflectance " << short_number(t.total_reflectance[c])
-        << ", range " << short_number(t.range_min[c] / mm) << " to " << short_number(t.range_max[c] / mm) << ' ' << u << '\n';
+      if (t.range_max[c] == 0)
+        s << "  " << t.channel_names[c] << ": does not scatter (total reflectance 0): R = 0, all of its CDF at r = 0\n";
+      else
+        s << "  " << t.channel_names[c] << ": total reflectance " << short_number(t.total_reflectance[c])
+          << ", range " << short_number(t.range_min[c] / mm) << " to " << short_number(t.range_max[c] / mm) << ' ' << u << '\n';
     return {to_lookup_table(t, context), s.str(), {}};
   }
   std::string known;
@@ -381,7 +397,9 @@ Action register_lut(CLI::App& app) {
   sub->add_option("--seed", o->seed, "transmission: Monte Carlo seed [1]");
   sub->add_option("--preview", o->preview, "Also (or, without -o, only) write a PNG preview of the material: shadow-edge swatch + colour falloff");
   sub->add_option("--taps", o->taps, "separable: number of taps, odd, >= 3 (Jimenez: 11, 17, 25) [17]");
-  sub->add_option("--range", o->range, "separable: kernel half-width in --unit [3 mm if taps > 20 else 2 mm]");
+  sub->add_option("--range", o->range,
+                  "separable: kernel half-width in --unit, or jimenez (3 mm if taps > 20 else 2 mm) [the band holding --band of the widest channel's light]");
+  sub->add_option("--band", o->band, "separable: fraction of the widest channel's light inside +-range when --range is not given [0.95]");
   sub->add_option("--count,-n", o->count, "gaussians: number of shared-variance Gaussians fitted [6; with --model quantized and no --count: its own mixture]");
   sub->add_option("--curvature-max", o->curvature_max, "preintegrated: largest curvature 1/r, in 1/--unit [1/r_50 of the widest channel]");
 

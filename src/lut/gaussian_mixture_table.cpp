@@ -12,6 +12,8 @@ namespace {
 // Innermost fitted radius, in transport mfp of the clearest channel: 0.05 keeps Skin1 pbd within 8 %
 // of its total (1e-3: 39 % short; 0.2: 12 %, the near field then missing).
 constexpr double kFitInner = 0.05;
+
+bool scatters(const Medium& medium, std::size_t c) { return medium.sigma_s[c] > 0; }
 }  // namespace
 
 std::size_t GaussianMixtureTable::count() const {
@@ -29,6 +31,14 @@ GaussianMixtureTable quantized_mixture_table(const Medium& medium, const quantiz
   t.channel_names = medium.channel_names;
   for (std::size_t c = 0; c < medium.channels(); ++c) {
     const auto m = medium.reduced(c);
+    if (!scatters(medium, c)) {
+      t.variance.push_back({1.0});  // any variance: its weight is 0
+      t.weight.push_back({0.0});
+      t.total_reflectance.push_back(0);
+      t.conservation_error.push_back(0);
+      t.relative_l2_error.push_back(0);
+      continue;
+    }
     const auto mix = model.gaussians(m);
     t.variance.push_back(mix.variance);
     t.weight.push_back(mix.weight);
@@ -54,11 +64,16 @@ GaussianMixtureTable fitted_mixture_table(const Medium& medium, const Model& mod
   double ell_min = 1e300;
   for (std::size_t c = 0; c < medium.channels(); ++c) ell_min = std::min(ell_min, medium.reduced(c).ell);
   const auto radii = log_spaced(kFitInner * ell_min, default_radii_mm(medium, model, 2).back(), samples);
+  // Channels without scattering (sigma_s = 0) reflect nothing: weight 0 for every Gaussian, out of the fit.
   std::vector<NamedProfile> profiles;
-  for (std::size_t c = 0; c < medium.channels(); ++c)
-    profiles.push_back({medium.channel_names[c], model.sample(medium.reduced(c), radii)});
   std::vector<double> totals;
-  for (std::size_t c = 0; c < medium.channels(); ++c) totals.push_back(model.total_reflectance(medium.reduced(c)));
+  for (std::size_t c = 0; c < medium.channels(); ++c) {
+    if (!scatters(medium, c)) continue;
+    profiles.push_back({medium.channel_names[c], model.sample(medium.reduced(c), radii)});
+    totals.push_back(model.total_reflectance(medium.reduced(c)));
+  }
+  if (profiles.empty())
+    throw InvalidInput("profile", "0 in every channel", "a medium that scatters (sigma_s > 0) in at least one channel");
   const auto report = fit_gaussians(profiles, count, LengthUnit::millimetre, model.name() + " profile", totals);
   GaussianMixtureTable t;
   t.method = "least-squares fit of " + std::to_string(count) + " shared-variance Gaussians to the " + model.name() +
@@ -69,6 +84,14 @@ GaussianMixtureTable fitted_mixture_table(const Medium& medium, const Model& mod
   for (int k = 1; k <= count; ++k) variance.push_back(report.find("variance_" + std::to_string(k))->value);
   for (std::size_t c = 0; c < medium.channels(); ++c) {
     const auto& name = medium.channel_names[c];
+    if (!scatters(medium, c)) {
+      t.variance.push_back(variance);
+      t.weight.emplace_back(count, 0.0);
+      t.total_reflectance.push_back(0);
+      t.conservation_error.push_back(0);
+      t.relative_l2_error.push_back(0);
+      continue;
+    }
     std::vector<double> w;
     double sum = 0;
     for (int k = 1; k <= count; ++k) {
@@ -105,6 +128,8 @@ LookupTable to_lookup_table(const GaussianMixtureTable& t, const TableContext& c
   for (std::size_t c = 0; c < t.channel_names.size(); ++c) {
     const auto& name = t.channel_names[c];
     out.set("bssrdf:count." + name, static_cast<int>(t.weight[c].size()));
+    if (t.total_reflectance[c] == 0)
+      out.set("bssrdf:note." + name, std::string("the channel does not scatter (sigma_s = 0): every weight is 0"));
     out.set("bssrdf:total_reflectance." + name, t.total_reflectance[c]);
     out.set("bssrdf:conservation_error." + name, t.conservation_error[c]);
     if (t.shared_variance) out.set("bssrdf:relative_l2_error." + name, t.relative_l2_error[c]);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/lut/parallel.hpp"
@@ -25,18 +26,23 @@ PreintegratedTable build_preintegrated_table(const Medium& medium, const Model& 
   t.options = options;
   t.channel_names = medium.channel_names;
   const std::size_t channels = medium.channels(), W = options.width, H = options.height;
-  std::vector<ProjectedProfile> profiles;
+  // A channel that does not scatter (sigma_s = 0) keeps the limit of a vanishing profile: D = max(0, N.L).
+  std::vector<std::optional<ProjectedProfile>> profiles(channels);
+  double r_min = INFINITY;
   for (std::size_t c = 0; c < channels; ++c) {
-    profiles.emplace_back(model, medium.reduced(c));
-    t.widest_r50 = std::max(t.widest_r50, profiles.back().radius_for_fraction(0.5));
+    t.scatters.push_back(medium.reduced(c).sigma_s > 0);
+    if (!t.scatters.back()) continue;
+    profiles[c].emplace(model, medium.reduced(c));
+    t.widest_r50 = std::max(t.widest_r50, profiles[c]->radius_for_fraction(0.5));
+    r_min = std::min(r_min, profiles[c]->r_min());
   }
+  if (t.widest_r50 == 0)
+    throw InvalidInput("profile", "0 in every channel", "a medium that scatters (sigma_s > 0) in at least one channel");
   if (t.options.curvature_max == 0) t.options.curvature_max = 1 / t.widest_r50;
   for (std::size_t i = 0; i < W; ++i) t.n_dot_l.push_back(-1 + 2 * (static_cast<double>(i) + 0.5) / static_cast<double>(W));
   for (std::size_t j = 0; j < H; ++j)
     t.curvature.push_back(t.options.curvature_max * (static_cast<double>(j) + 0.5) / static_cast<double>(H));
   t.value.assign(channels, std::vector<double>(W * H));
-  double r_min = profiles.front().r_min();
-  for (const auto& p : profiles) r_min = std::min(r_min, p.r_min());
 
   parallel_for(H, options.threads, [&](std::size_t j) {
     const double radius = 1 / t.curvature[j];
@@ -57,9 +63,13 @@ PreintegratedTable build_preintegrated_table(const Medium& medium, const Model& 
     }
     std::vector<double> w(K);
     for (std::size_t c = 0; c < channels; ++c) {
+      if (!profiles[c]) {
+        for (std::size_t i = 0; i < W; ++i) t.value[c][j * W + i] = std::max(0.0, t.n_dot_l[i]);
+        continue;
+      }
       double norm = 0;
       for (std::size_t k = 0; k < K; ++k) {
-        w[k] = quad[k] * profiles[c].line(2 * radius * std::sin(0.5 * x[k]));
+        w[k] = quad[k] * profiles[c]->line(2 * radius * std::sin(0.5 * x[k]));
         norm += w[k];
       }
       // sum_k w_k [max(0, cos(theta + x_k)) + max(0, cos(theta - x_k))], theta = acos(N.L) in [0, pi],
@@ -113,6 +123,9 @@ LookupTable to_lookup_table(const PreintegratedTable& t, const TableContext& con
   out.set("bssrdf:curvature_unit", "1/" + u);
   out.set("bssrdf:widest_r50", t.widest_r50 / mm);
   out.set("bssrdf:size", std::to_string(t.options.width) + "x" + std::to_string(t.options.height));
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
+    if (t.scatters.size() > c && !t.scatters[c])
+      out.set("bssrdf:note." + t.channel_names[c], std::string("the channel does not scatter (sigma_s = 0): D = max(0, N.L)"));
   for (std::size_t c = 0; c < t.channel_names.size(); ++c)
     out.add_channel(t.channel_names[c], "pre-integrated diffuse D(N.L, curvature), dimensionless", t.value[c]);
   return out;

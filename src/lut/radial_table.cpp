@@ -16,6 +16,8 @@ struct Probe {
   double total = 0, r_lo = 0, r_hi = 0;
   double decay_length = 0;                // -1 / (d ln R / dr) at r_hi
   std::vector<double> log_r, cumulative;  // for the inner disc below the table
+  // A channel without scattering (sigma_s = 0) reflects nothing: no range, no grid, R = 0.
+  bool scatters() const { return total > 0; }
 };
 
 // R on a geometric grid of 16 points per decade from 1e-5 ell until the tail beyond is negligible;
@@ -138,6 +140,7 @@ DenseProfile dense_profile(const Model& model, const std::vector<Reduced<double>
   d.h = (u1 - u0) / static_cast<double>(n - 1);
   d.log_value.assign(channels, std::vector<double>(n));
   const auto log_R = [&](std::size_t c, double x) {
+    if (!probes[c].scatters()) return -745.0;
     const double R = model.reflectance(media[c], map.r(x));
     return R > 0 ? std::log(R) : -745.0;  // below the smallest double: treated as zero
   };
@@ -155,6 +158,7 @@ DenseProfile dense_profile(const Model& model, const std::vector<Reduced<double>
     evaluations += channels * (n - 1);
     d.error = 0;
     for (std::size_t c = 0; c < channels; ++c) {
+      if (!probes[c].scatters()) continue;
       const double lo = map.x(probes[c].r_lo), hi = map.x(probes[c].r_hi);
       for (std::size_t j = 0; j + 1 < n; ++j) {
         const double x = u0 + d.h * (static_cast<double>(j) + 0.5);
@@ -201,6 +205,7 @@ double worst_error(const GridValues& g, const std::vector<Probe>& probes, const 
   const std::size_t n = g.log_r.size();
   const double scale = scheme == Interpolation::linear ? 1.5 : 1.0;
   for (std::size_t c = 0; c < g.node.size(); ++c) {
+    if (!probes[c].scatters()) continue;
     const double lo = map.x(probes[c].r_lo), hi = map.x(probes[c].r_hi);
     for (std::size_t j = 0; j + 1 < n; ++j)
       for (int k = 0; k < 2; ++k) {
@@ -247,16 +252,18 @@ RadialTable build_radial_table(const Medium& medium, const Model& model, const R
   parallel_for(channels, options.threads,
                [&](std::size_t c) { probes[c] = probe(model, media[c], options.energy, probe_evaluations[c]); });
   for (auto e : probe_evaluations) table.evaluations += e;
-  double r_min = probes[0].r_lo, r_max = probes[0].r_hi;
+  double r_min = INFINITY, r_max = 0, L = 0;
   for (const auto& p : probes) {
+    table.total_reflectance.push_back(p.total);
+    table.range_min.push_back(p.scatters() ? p.r_lo : 0);
+    table.range_max.push_back(p.scatters() ? p.r_hi : 0);
+    if (!p.scatters()) continue;
     r_min = std::min(r_min, p.r_lo);
     r_max = std::max(r_max, p.r_hi);
-    table.total_reflectance.push_back(p.total);
-    table.range_min.push_back(p.r_lo);
-    table.range_max.push_back(p.r_hi);
+    L = std::max(L, p.decay_length);
   }
-  double L = probes[0].decay_length;
-  for (const auto& p : probes) L = std::max(L, p.decay_length);
+  if (r_max == 0)
+    throw InvalidInput("profile", "0 in every channel", "a medium that scatters (sigma_s > 0) in at least one channel");
   const GridMap map{L};
   table.decay_length = L;
   const double u0 = map.x(r_min), u1 = map.x(r_max);
@@ -325,7 +332,7 @@ RadialTable build_radial_table(const Medium& medium, const Model& model, const R
   // The model at the chosen nodes (the check points keep the stand-in's values).
   parallel_for(channels * pass, options.threads, [&](std::size_t item) {
     const std::size_t c = item / pass, j = item % pass;
-    best.node[c][j] = model.reflectance(media[c], map.r(best.log_r[j]));
+    best.node[c][j] = probes[c].scatters() ? model.reflectance(media[c], map.r(best.log_r[j])) : 0.0;
   });
   table.evaluations += channels * pass;
   best_error = worst_error(best, probes, map, options.interpolation) + dense.error / 16;
@@ -353,6 +360,14 @@ RadialTable build_radial_table(const Medium& medium, const Model& model, const R
     }
     const double in_table = cum.back();
     std::vector<double> cdf(N), inverse(N);
+    if (!probes[c].scatters()) {  // the limit of a vanishing profile: all of it at r = 0
+      table.reflectance.push_back(R);
+      table.ring.push_back(std::move(ring));
+      table.cdf.push_back(std::vector<double>(N, 1.0));
+      table.inverse_cdf.push_back(std::vector<double>(N, 0.0));
+      table.table_reflectance.push_back(0);
+      continue;
+    }
     for (std::size_t j = 0; j < N; ++j) cdf[j] = cum[j] / in_table;
     // Inverse CDF: linear in (cdf, x) between nodes; below the first node cdf ~ r (R ~ 1/r).
     for (std::size_t j = 0; j < N; ++j) {
@@ -406,7 +421,8 @@ LookupTable to_lookup_table(const RadialTable& t, const TableContext& context) {
     const auto& name = t.channel_names[c];
     out.set("bssrdf:total_reflectance." + name, t.total_reflectance[c]);
     out.set("bssrdf:table_reflectance." + name, t.table_reflectance[c]);
-    out.set("bssrdf:range." + name, format_number(t.range_min[c] / mm) + " to " + format_number(t.range_max[c] / mm) + " " + u);
+    out.set("bssrdf:range." + name, t.range_max[c] > 0 ? format_number(t.range_min[c] / mm) + " to " + format_number(t.range_max[c] / mm) + " " + u
+                                                       : std::string("none: the channel does not scatter (total reflectance 0); R = 0, cdf = 1 and inverse_cdf = 0 (all at r = 0)"));
   }
   for (std::size_t c = 0; c < t.channel_names.size(); ++c)
     out.add_channel(t.channel_names[c], "R(r), 1/" + u + "^2 per unit entered flux", scaled(t.reflectance[c], mm * mm));

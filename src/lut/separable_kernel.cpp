@@ -1,6 +1,8 @@
 #include "bssrdf/lut/separable_kernel.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <sstream>
 
@@ -12,15 +14,27 @@ namespace bssrdf {
 void SeparableKernelOptions::validate() const {
   if (taps < 3 || taps > 255 || taps % 2 == 0) throw InvalidInput("taps", std::to_string(taps), "an odd number from 3 to 255");
   if (!(range >= 0) || !std::isfinite(range)) throw InvalidInput("range", format_number(range), "> 0 (0: default)");
+  if (!(band > 0 && band < 1)) throw InvalidInput("band", format_number(band), "0 < band < 1");
 }
+
+double jimenez_range(int taps) { return taps > 20 ? 3.0 : 2.0; }
 
 SeparableKernel build_separable_kernel(const Medium& medium, const Model& model, const SeparableKernelOptions& options) {
   medium.validate();
   options.validate();
   SeparableKernel k;
   k.options = options;
-  if (k.options.range == 0) k.options.range = options.taps > 20 ? 3.0 : 2.0;
+  k.range_from_band = options.range == 0;
   k.channel_names = medium.channel_names;
+  std::vector<std::optional<ProjectedProfile>> profiles(medium.channels());
+  for (std::size_t c = 0; c < medium.channels(); ++c) {
+    const auto m = medium.reduced(c);
+    if (m.sigma_s > 0) profiles[c].emplace(model, m);
+    if (options.range == 0 && profiles[c])
+      k.options.range = std::max(k.options.range, profiles[c]->line_width_for_fraction(options.band));
+  }
+  if (k.options.range == 0)
+    throw InvalidInput("profile", "0 in every channel", "a medium that scatters (sigma_s > 0) in at least one channel");
   const int N = options.taps;
   const double range = k.options.range;
   // Offsets in [-range, range], sorted; then the footprints' edges.
@@ -39,7 +53,16 @@ SeparableKernel build_separable_kernel(const Medium& medium, const Model& model,
     if (i != N / 2) order.push_back(i);
   for (int i : order) k.offset.push_back(o[i] / range);
   for (std::size_t c = 0; c < medium.channels(); ++c) {
-    const ProjectedProfile p(model, medium.reduced(c));
+    if (!profiles[c]) {  // no scattering: the identity kernel
+      k.strip.emplace_back(N, 0.0);
+      k.weight.emplace_back(N, 0.0);
+      k.weight.back()[0] = 1;
+      k.total_reflectance.push_back(0);
+      k.captured.push_back(1);
+      k.projection_error.push_back(0);
+      continue;
+    }
+    const ProjectedProfile& p = *profiles[c];
     std::vector<double> strip, weight;
     double sum = 0;
     for (int i : order) {
@@ -68,6 +91,9 @@ LookupTable to_lookup_table(const SeparableKernel& k, const TableContext& contex
   out.set("bssrdf:taps", static_cast<int>(k.offset.size()));
   out.set("bssrdf:range", k.options.range / mm);
   out.set("bssrdf:range_unit", u);
+  out.set("bssrdf:range_rule", k.range_from_band ? "half-width of the band |x| < range holding " + format_number(k.options.band) +
+                                                      " of the widest channel's light (line projection of R)"
+                                                : std::string("given"));
   out.set("bssrdf:offset", "offset in units of the kernel half-width bssrdf:range (" + format_number(k.options.range / mm) + " " + u +
                                "): physical offset = offset x range; o_i = sign(t) t^2, t = -1 + 2 i / (N - 1); centre tap first");
   out.set("bssrdf:weights", std::string("per channel: the line-projected profile integrated over each tap's footprint, normalised to sum to 1 "
@@ -76,6 +102,8 @@ LookupTable to_lookup_table(const SeparableKernel& k, const TableContext& contex
   for (std::size_t c = 0; c < k.channel_names.size(); ++c) {
     out.set("bssrdf:total_reflectance." + k.channel_names[c], k.total_reflectance[c]);
     out.set("bssrdf:captured." + k.channel_names[c], k.captured[c]);
+    if (k.total_reflectance[c] == 0)
+      out.set("bssrdf:note." + k.channel_names[c], std::string("the channel does not scatter (sigma_s = 0, total reflectance 0): identity kernel, centre tap 1"));
   }
   for (std::size_t c = 0; c < k.channel_names.size(); ++c)
     out.add_channel(k.channel_names[c], "tap weight, normalised per channel", k.weight[c]);

@@ -41,6 +41,7 @@ struct PreintegratedTable {
   std::vector<double> curvature;  // [j], height, 1/mm
   std::vector<std::vector<double>> value;  // [channel][j * width + i]: D
   double widest_r50 = 0;          // mm: the default curvature_max is its inverse
+  std::vector<bool> scatters;     // [channel]: false for sigma_s = 0, whose D is max(0, N.L)
 };
 
 PreintegratedTable build_preintegrated_table(const Medium& medium, const Model& model, const PreintegratedOptions& options);
