@@ -302,6 +302,25 @@ Built build_gaussians(const LutOptions& o, const MediumOptions::Resolved& resolv
   return {to_lookup_table(t, context), s.str(), {}};
 }
 
+// The PNG preview (any kind; the model is --model where given, else pbd) and a line about it.
+struct RenderedPreview {
+  std::string png, description;
+};
+RenderedPreview render_preview(const LutOptions& o, const MediumOptions::Resolved& resolved) {
+  if (std::filesystem::path(o.preview).extension() != ".png")
+    throw InvalidInput("--preview", "'" + o.preview + "'", "a file ending in .png");
+  const auto model = make_model(o.kind == "transmission" || o.kind == "albedo-radius" || !o.model_given ? "pbd" : o.model);
+  PreviewOptions options;
+  options.unit = resolved.unit;
+  options.label = (resolved.material ? resolved.material->name : std::string("custom medium")) + ", " + model->name();
+  const auto preview = render_material_preview(resolved.medium, *model, options);
+  const std::string u(symbol(resolved.unit));
+  return {encode_png(preview.image), std::to_string(preview.image.width) + " x " + std::to_string(preview.image.height) +
+                                         " px; shadow edge at the centre, +-" + short_number(from_mm(preview.half_width, resolved.unit)) +
+                                         ' ' + u + ", ticks every " + short_number(from_mm(preview.tick, resolved.unit)) + ' ' + u +
+                                         "; " + model->name()};
+}
+
 Built build(const LutOptions& o, const MediumOptions::Resolved& resolved) {
   if (o.kind == "transmission") return build_transmission(o, resolved);
   auto model = make_model(o.model);
@@ -358,10 +377,15 @@ std::string format_for(const LutOptions& o, const std::string& path) {
   throw InvalidInput("-o", "'" + path + "'", "a file ending in .exr, .json, .csv, .glsl or .hlsl (or give --format)");
 }
 
-std::string file_name(const std::string& material, const std::string& kind, const std::string& format) {
+// A material's name as a file-name stem: lower case, anything but letters and digits as '-'.
+std::string file_stem(const std::string& material) {
   std::string name;
   for (char ch : material) name += std::isalnum(static_cast<unsigned char>(ch)) ? static_cast<char>(std::tolower(ch)) : '-';
-  return name + "-" + kind + "." + format;
+  return name;
+}
+
+std::string file_name(const std::string& material, const std::string& kind, const std::string& format) {
+  return file_stem(material) + "-" + kind + "." + format;
 }
 
 }  // namespace
@@ -419,7 +443,10 @@ Action register_lut(CLI::App& app) {
       // material this kind cannot tabulate (e.g. a channel that does not scatter) is skipped with
       // its reason, one line each on stderr; the others are still written.
       const auto& materials = database.all();
-      std::vector<std::string> encoded(materials.size()), failure(materials.size());
+      // With --preview NAME.png each material also gets <material>-NAME.png beside its table.
+      if (!o->preview.empty() && std::filesystem::path(o->preview).extension() != ".png")
+        throw InvalidInput("--preview", "'" + o->preview + "'", "a file name ending in .png (with --all: <material>-NAME.png each)");
+      std::vector<std::string> encoded(materials.size()), failure(materials.size()), previews(materials.size());
       std::atomic<std::size_t> next{0}, done{0};
       std::mutex progress_mutex;
       const auto work = [&] {
@@ -428,8 +455,10 @@ Action register_lut(CLI::App& app) {
           one.medium.material = materials[i].name;
           one.threads = 1;
           try {
-            const auto built = o->kind == "albedo-radius" ? build_albedo_radius(one) : build(one, one.medium.resolve());
+            const auto resolved = one.medium.resolve();
+            const auto built = o->kind == "albedo-radius" ? build_albedo_radius(one) : build(one, resolved);
             encoded[i] = encode(built, format, o->half);
+            if (!o->preview.empty()) previews[i] = render_preview(one, resolved).png;
           } catch (const InvalidInput& e) {
             failure[i] = e.what();
           }
@@ -457,6 +486,10 @@ Action register_lut(CLI::App& app) {
         write_file_atomically(path, encoded[i]);  // an unwritable directory stops the batch
         ++written;
         if (!o->quiet && !progress) std::cout << "written: " << path.string() << '\n';
+        if (previews[i].empty()) continue;
+        const auto png = dir / (file_stem(materials[i].name) + "-" + std::filesystem::path(o->preview).filename().string());
+        write_file_atomically(png, previews[i]);
+        if (!o->quiet && !progress) std::cout << "written: " << png.string() << '\n';
       }
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       for (const auto& line : skipped) std::cerr << "bssrdf: skipped " << line << '\n';
@@ -466,18 +499,11 @@ Action register_lut(CLI::App& app) {
       return;
     }
     if (!o->preview.empty()) {
-      if (std::filesystem::path(o->preview).extension() != ".png")
-        throw InvalidInput("--preview", "'" + o->preview + "'", "a file ending in .png");
       const auto resolved = o->medium.resolve();
-      const auto model = make_model(o->kind == "transmission" || o->kind == "albedo-radius" || !o->model_given ? "pbd" : o->model);
-      const auto preview = render_material_preview(resolved.medium, *model);
+      const auto preview = render_preview(*o, resolved);
       if (!o->output.empty()) format_for(*o, o->output);  // bad -o fails before anything is written
-      write_file_atomically(o->preview, encode_png(preview.image));
-      if (!o->quiet)
-        std::cout << "preview: " << o->preview << " (" << preview.image.width << " x " << preview.image.height
-                  << " px; shadow edge at the centre, +-" << short_number(from_mm(preview.half_width, resolved.unit)) << ' '
-                  << symbol(resolved.unit) << ", ticks every " << short_number(from_mm(preview.tick, resolved.unit)) << ' '
-                  << symbol(resolved.unit) << "; " << model->name() << ")\n";
+      write_file_atomically(o->preview, preview.png);
+      if (!o->quiet) std::cout << "preview: " << o->preview << " (" << preview.description << ")\n";
       if (o->output.empty()) return;
     }
     if (o->output.empty()) throw InvalidInput("-o: give an output file (.exr, .json, .csv), or --preview FILE.png");

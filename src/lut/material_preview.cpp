@@ -3,39 +3,66 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <optional>
 
 #include "bssrdf/error.hpp"
+#include "bssrdf/io/bitmap_text.hpp"
 #include "bssrdf/lut/projected_profile.hpp"
 
 namespace bssrdf {
+namespace {
+
+constexpr int kTextScale = 2;
+constexpr int kCaptionHeight = 7 * kTextScale + 10;
+
+std::string number(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", v);
+  return buffer;
+}
+
+}  // namespace
 
 Preview render_material_preview(const Medium& medium, const Model& model, const PreviewOptions& o) {
   medium.validate();
-  if (medium.channels() != 3) throw InvalidInput("preview", std::to_string(medium.channels()) + " channels", "3 (R, G, B)");
+  const std::size_t n = medium.channels();
+  if (n != 1 && n != 3) throw InvalidInput("preview", std::to_string(n) + " channels", "1 (grey) or 3 (R, G, B)");
   if (o.width < 16 || o.width > 8192 || o.swatch_height < 1 || o.strip_height < 1 || o.swatch_height + o.strip_height > 8192)
     throw InvalidInput("preview size", std::to_string(o.width) + "x" + std::to_string(o.swatch_height + o.strip_height), "16 to 8192 pixels");
-  std::vector<ProjectedProfile> p;
+  // A channel that does not scatter (sigma_s = 0) sends no light across the edge: it stays black.
+  std::vector<std::optional<ProjectedProfile>> p(n);
   double half = o.half_width;
-  for (std::size_t c = 0; c < 3; ++c) p.emplace_back(model, medium.reduced(c));
-  if (half <= 0)
-    for (const auto& q : p) half = std::max(half, q.line_width_for_fraction(0.99));
-  Preview out{RgbImage(o.width, o.swatch_height + o.strip_height), half, 0};
-  // Ticks: 1, 2 or 5 x 10^k, about 8 per half-width.
-  const double raw = half / 8, decade = std::pow(10.0, std::floor(std::log10(raw)));
-  out.tick = raw / decade < 2 ? decade : raw / decade < 5 ? 2 * decade : 5 * decade;
+  for (std::size_t c = 0; c < n; ++c)
+    if (medium.sigma_s[c] > 0) {
+      p[c].emplace(model, medium.reduced(c));
+      if (o.half_width <= 0) half = std::max(half, p[c]->line_width_for_fraction(0.99));
+    }
+  if (!(half > 0)) throw InvalidInput("profile", "0 in every channel", "a medium that scatters (sigma_s > 0) in at least one channel");
+  const int caption = o.caption ? kCaptionHeight : 0;
+  const int height = o.swatch_height + o.strip_height + caption;
+  Preview out{RgbImage(o.width, height), half, 0};
+  // Ticks: 1, 2 or 5 x 10^k in the caption's unit, about 8 per half-width.
+  const double unit = millimetres_per(o.unit);
+  const double raw = half / unit / 8, decade = std::pow(10.0, std::floor(std::log10(raw)));
+  out.tick = unit * (raw / decade < 2 ? decade : raw / decade < 5 ? 2 * decade : 5 * decade);
   const double pixel = 2 * half / o.width;
+  const auto source = [&](std::size_t k) { return n == 1 ? 0 : k; };  // display channel k shows medium channel source(k)
   for (int x = 0; x < o.width; ++x) {
     const double d = -half + (x + 0.5) * pixel;  // signed distance from the edge; lit for d < 0
+    const double r = std::max(std::abs(d), 1e-9);
     std::array<double, 3> swatch{}, hue{};
-    for (std::size_t c = 0; c < 3; ++c) swatch[c] = p[c].half_plane(d);
-    const double r = std::abs(d);
     double top = 0;
-    for (std::size_t c = 0; c < 3; ++c) top = std::max(top, hue[c] = p[c].reflectance(std::max(r, 1e-9)));
-    for (std::size_t c = 0; c < 3; ++c) hue[c] = top > 0 ? hue[c] / top : 0;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const auto& q = p[source(k)];
+      swatch[k] = q ? q->half_plane(d) : 0;
+      top = std::max(top, hue[k] = q ? q->reflectance(r) : 0);
+    }
+    for (std::size_t k = 0; k < 3; ++k) hue[k] = top > 0 ? hue[k] / top : 0;
     for (int y = 0; y < o.swatch_height; ++y)
-      for (std::size_t c = 0; c < 3; ++c) out.image.at(x, y)[c] = to_srgb8(swatch[c]);
+      for (std::size_t k = 0; k < 3; ++k) out.image.at(x, y)[k] = to_srgb8(swatch[k]);
     for (int y = o.swatch_height; y < o.swatch_height + o.strip_height; ++y)
-      for (std::size_t c = 0; c < 3; ++c) out.image.at(x, y)[c] = to_srgb8(hue[c]);
+      for (std::size_t k = 0; k < 3; ++k) out.image.at(x, y)[k] = to_srgb8(hue[k]);
   }
   // Tick marks (grey) at multiples of `tick` from the edge, along the bottom of both parts.
   for (int k = -static_cast<int>(half / out.tick); k <= static_cast<int>(half / out.tick); ++k) {
@@ -45,6 +72,22 @@ Preview render_material_preview(const Medium& medium, const Model& model, const 
     for (int base : {o.swatch_height, o.swatch_height + o.strip_height})
       for (int y = base - length; y < base; ++y)
         for (int c = 0; c < 3; ++c) out.image.at(x, y)[c] = 128;
+  }
+  if (caption) {
+    // Dark band with the caption on the left and the tick spacing on the right.
+    const int top = o.swatch_height + o.strip_height;
+    for (int y = top; y < height; ++y)
+      for (int x = 0; x < o.width; ++x)
+        for (int c = 0; c < 3; ++c) out.image.at(x, y)[c] = 32;
+    const std::array<std::uint8_t, 3> white{230, 230, 230};
+    const std::string scale = "ticks " + number(out.tick / unit) + " " + std::string(symbol(o.unit));
+    const int y = top + (kCaptionHeight - text_height(kTextScale)) / 2;
+    draw_text(out.image, o.width - 6 - text_width(scale, kTextScale), y, scale, white, kTextScale);
+    const int room = (o.width - 18 - text_width(scale, kTextScale)) / (6 * kTextScale);
+    std::string label = o.label;
+    if (room < 1) label.clear();
+    else if (static_cast<int>(label.size()) > room) label = label.substr(0, static_cast<std::size_t>(std::max(0, room - 2))) + "..";
+    draw_text(out.image, 6, y, label, white, kTextScale);
   }
   return out;
 }

@@ -1,6 +1,7 @@
 #include "bssrdf/lut/projected_profile.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -41,18 +42,47 @@ ProjectedProfile::ProjectedProfile(const Model& model, const Reduced<double>& m)
   const std::size_t n = R.size();
   log_R_.resize(n);
   for (std::size_t j = 0; j < n; ++j) log_R_[j] = safe_log(R[j]);
-  // line(x_j) = 2 int_0^inf R(x cosh s) x cosh s ds, trapezoid in s with step h / 2 (the tail of the
-  // integrand varies on the scale of the grid in ln r, since ln(x cosh s) ~ s + ln(x / 2)).
-  const double r_end = std::exp(u0_ + h_ * static_cast<double>(n - 1));
+  // line(x_j) = 2 int_0^inf R(x cosh s) x cosh s ds, trapezoid in s with step hs from s = 0 (half
+  // weight there): the integrand is even and smooth in s, so that is the trapezoid rule on the
+  // whole line, which converges geometrically. Every node's samples sit at the same offsets in ln r
+  // (ln(x_j cosh s) = u_j + ln cosh s), so each sample's Catmull-Rom stencil and weights in the
+  // (ln r, ln R) table are computed once, not once per node.
+  struct Sample {
+    double offset;                      // ln cosh s / h: grid positions beyond the node
+    std::ptrdiff_t i;                   // floor(offset)
+    std::array<double, 4> weight;       // of log_R at j + i - 1 .. j + i + 2
+    double cosh_s;
+  };
+  std::vector<Sample> samples;
+  const double hs = h_;
+  for (int k = 1;; ++k) {
+    const double cosh_s = std::cosh(k * hs), offset = std::log(cosh_s) / h_;
+    if (offset > static_cast<double>(n)) break;
+    const auto i = static_cast<std::ptrdiff_t>(std::floor(offset));
+    const double f = offset - static_cast<double>(i), f2 = f * f, f3 = f2 * f;
+    // Catmull-Rom (as cubic()) written as weights of the four nodes around the interval.
+    samples.push_back({offset, i,
+                       {-0.5 * (f3 - 2 * f2 + f), 2 * f3 - 3 * f2 + 1 - 0.5 * (f3 - f2), -2 * f3 + 3 * f2 + 0.5 * (f3 - 2 * f2 + f),
+                        0.5 * (f3 - f2)},
+                       cosh_s});
+  }
   std::vector<double> line(n);
-  const double hs = 0.5 * h_;
+  const auto last = static_cast<std::ptrdiff_t>(n) - 1;
   for (std::size_t j = 0; j < n; ++j) {
     const double x = std::exp(u0_ + h_ * static_cast<double>(j));
     double sum = 0.5 * R[j] * x;
-    for (double s = hs;; s += hs) {
-      const double rho = x * std::cosh(s);
-      if (rho > r_end) break;
-      sum += reflectance(rho) * rho;
+    const auto jj = static_cast<std::ptrdiff_t>(j);
+    for (const auto& sample : samples) {
+      if (static_cast<double>(jj) + sample.offset > static_cast<double>(last)) break;  // beyond r_end: R = 0
+      const double rho = x * sample.cosh_s;
+      const std::ptrdiff_t first = jj + sample.i - 1;
+      if (first < 0 || first + 3 > last) {  // a one-sided stencil at either end of the table
+        sum += reflectance(rho) * rho;
+        continue;
+      }
+      const double* f = log_R_.data() + first;
+      const double v = sample.weight[0] * f[0] + sample.weight[1] * f[1] + sample.weight[2] * f[2] + sample.weight[3] * f[3];
+      sum += (v <= kNegligible ? 0 : std::exp(v)) * rho;
     }
     line[j] = 2 * hs * sum;
   }
