@@ -1,6 +1,7 @@
 #include "bssrdf/lut/preintegrated_table.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -44,6 +45,8 @@ PreintegratedTable build_preintegrated_table(const Medium& medium, const Model& 
     t.curvature.push_back(t.options.curvature_max * (static_cast<double>(j) + 0.5) / static_cast<double>(H));
   t.value.assign(channels, std::vector<double>(W * H));
 
+  std::vector<double> theta(W);
+  for (std::size_t i = 0; i < W; ++i) theta[i] = std::acos(std::clamp(t.n_dot_l[i], -1.0, 1.0));
   parallel_for(H, options.threads, [&](std::size_t j) {
     const double radius = 1 / t.curvature[j];
     // Nodes in x in (0, pi]: geometric from the profile's smallest scale (chord r x) to 0.1, then uniform.
@@ -54,14 +57,29 @@ PreintegratedTable build_preintegrated_table(const Medium& medium, const Model& 
     const auto n_uniform = static_cast<std::size_t>(std::ceil((std::numbers::pi - 0.1) / step));
     for (std::size_t k = 0; k <= n_uniform; ++k) x.push_back(0.1 + (std::numbers::pi - 0.1) * static_cast<double>(k) / static_cast<double>(n_uniform));
     const std::size_t K = x.size();
-    std::vector<double> quad(K), cos_x(K), sin_x(K);
+    std::vector<double> quad(K), cos_x(K), sin_x(K), chord(K);
     for (std::size_t k = 0; k < K; ++k) {
       // Trapezoid weight; the first node also covers (0, x_0] (the integrand taken constant there).
       quad[k] = k == 0 ? x[0] + 0.5 * (x[1] - x[0]) : k + 1 == K ? 0.5 * (x[k] - x[k - 1]) : 0.5 * (x[k + 1] - x[k - 1]);
       cos_x[k] = std::cos(x[k]);
       sin_x[k] = std::sin(x[k]);
+      chord[k] = 2 * radius * std::sin(0.5 * x[k]);
     }
-    std::vector<double> w(K);
+    // sum_k w_k [max(0, cos(theta + x_k)) + max(0, cos(theta - x_k))], theta = acos(N.L) in [0, pi],
+    // x_k in (0, pi]: each clamp keeps a contiguous range of nodes (cos(theta + x) > 0 for
+    // x < pi/2 - theta or x > 3pi/2 - theta; cos(theta - x) > 0 for |x - theta| < pi/2), so
+    // prefix sums of w cos x and w sin x give every column in O(1) once the ranges (the same for
+    // every channel) are known.
+    const auto range = [&](double lo, double hi) {  // nodes with lo < x < hi as an index range
+      const auto a = static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), lo) - x.begin());
+      const auto b = static_cast<std::size_t>(std::lower_bound(x.begin(), x.end(), hi) - x.begin());
+      return std::pair{a, std::max(a, b)};
+    };
+    const double pi = std::numbers::pi;
+    std::vector<std::array<std::pair<std::size_t, std::size_t>, 3>> ranges(W);
+    for (std::size_t i = 0; i < W; ++i)
+      ranges[i] = {range(-1.0, pi / 2 - theta[i]), range(3 * pi / 2 - theta[i], 4.0), range(theta[i] - pi / 2, theta[i] + pi / 2)};
+    std::vector<double> prefix_cos(K + 1, 0.0), prefix_sin(K + 1, 0.0);
     for (std::size_t c = 0; c < channels; ++c) {
       if (!profiles[c]) {
         for (std::size_t i = 0; i < W; ++i) t.value[c][j * W + i] = std::max(0.0, t.n_dot_l[i]);
@@ -69,33 +87,19 @@ PreintegratedTable build_preintegrated_table(const Medium& medium, const Model& 
       }
       double norm = 0;
       for (std::size_t k = 0; k < K; ++k) {
-        w[k] = quad[k] * profiles[c]->line(2 * radius * std::sin(0.5 * x[k]));
-        norm += w[k];
+        const double w = quad[k] * profiles[c]->line(chord[k]);
+        norm += w;
+        prefix_cos[k + 1] = prefix_cos[k] + w * cos_x[k];
+        prefix_sin[k + 1] = prefix_sin[k] + w * sin_x[k];
       }
-      // sum_k w_k [max(0, cos(theta + x_k)) + max(0, cos(theta - x_k))], theta = acos(N.L) in [0, pi],
-      // x_k in (0, pi]: each clamp keeps a contiguous range of nodes (cos(theta + x) > 0 for
-      // x < pi/2 - theta or x > 3pi/2 - theta; cos(theta - x) > 0 for |x - theta| < pi/2), so
-      // prefix sums of w cos x and w sin x give every column in O(log K) instead of O(K).
-      std::vector<double> prefix_cos(K + 1, 0.0), prefix_sin(K + 1, 0.0);
-      for (std::size_t k = 0; k < K; ++k) {
-        prefix_cos[k + 1] = prefix_cos[k] + w[k] * cos_x[k];
-        prefix_sin[k + 1] = prefix_sin[k] + w[k] * sin_x[k];
-      }
-      // Nodes with lo < x < hi as an index range.
-      const auto range = [&](double lo, double hi) {
-        const auto a = static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), lo) - x.begin());
-        const auto b = static_cast<std::size_t>(std::lower_bound(x.begin(), x.end(), hi) - x.begin());
-        return std::pair{a, std::max(a, b)};
-      };
       const auto sums = [&](std::pair<std::size_t, std::size_t> r) {
         return std::pair{prefix_cos[r.second] - prefix_cos[r.first], prefix_sin[r.second] - prefix_sin[r.first]};
       };
-      const double pi = std::numbers::pi;
       for (std::size_t i = 0; i < W; ++i) {
-        const double u = t.n_dot_l[i], s = std::sqrt(std::max(0.0, 1 - u * u)), theta = std::acos(std::clamp(u, -1.0, 1.0));
-        const auto [c1, s1] = sums(range(-1.0, pi / 2 - theta));
-        const auto [c2, s2] = sums(range(3 * pi / 2 - theta, 4.0));
-        const auto [c3, s3] = sums(range(theta - pi / 2, theta + pi / 2));
+        const double u = t.n_dot_l[i], s = std::sqrt(std::max(0.0, 1 - u * u));
+        const auto [c1, s1] = sums(ranges[i][0]);
+        const auto [c2, s2] = sums(ranges[i][1]);
+        const auto [c3, s3] = sums(ranges[i][2]);
         const double sum = u * (c1 + c2) - s * (s1 + s2) + u * c3 + s * s3;
         t.value[c][j * W + i] = std::clamp(sum / (2 * norm), 0.0, 1.0);
       }
