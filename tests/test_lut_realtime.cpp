@@ -2,6 +2,7 @@
 // projections they rest on. Conservation is measured against independent integrals.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -10,6 +11,7 @@
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/lut/gaussian_mixture_table.hpp"
+#include "bssrdf/lut/penumbra_table.hpp"
 #include "bssrdf/lut/preintegrated_table.hpp"
 #include "bssrdf/lut/projected_profile.hpp"
 #include "bssrdf/lut/separable_kernel.hpp"
@@ -99,6 +101,53 @@ TEST(PreintegratedTable, InUnitRangeAndFlatRowsTendToNDotL) {
   const auto nearly_flat = build_preintegrated_table(material("Skin1"), *model, o);
   for (std::size_t i = 0; i < o.width; ++i)
     EXPECT_NEAR(nearly_flat.value[1][(o.height - 1) * o.width + i], std::max(0.0, t.n_dot_l[i]), 2e-3);
+}
+
+// Light at distance p from the centre of a penumbra of width w (a linear ramp of incident light),
+// integrated directly in 2D from the model: int 2 pi r R(r) <L(p + r cos phi)>_phi dr / total.
+double ramp_exitance(const Model& model, const Reduced<double>& m, double p, double w) {
+  const auto light = [&](double X) { return std::clamp(X / w + 0.5, 0.0, 1.0); };
+  double sum = 0, total = 0;
+  const double h = std::log(10.0) / 200;
+  for (double u = std::log(1e-7 * m.ell); u < std::log(1e4 * m.ell); u += h) {
+    const double r = std::exp(u), ring = h * 2 * std::numbers::pi * r * r * model.reflectance(m, r);
+    double mean = 0;
+    for (int k = 0; k < 128; ++k) mean += light(p + r * std::cos(std::numbers::pi * (k + 0.5) / 128)) / 128;
+    sum += ring * mean;
+    total += ring;
+  }
+  return sum / total;
+}
+
+TEST(PenumbraTable, MatchesTheDirectConvolutionAndItsLimits) {
+  const auto model = make_model("pbd");
+  const auto& skin = material("Skin1");
+  PenumbraOptions o;
+  o.width = 33;  // column 16 is s = 1/2
+  o.height = 16;
+  const auto t = build_penumbra_table(skin, *model, o);
+  EXPECT_NEAR(t.options.width_max, 8 * t.widest_r50, 1e-12);
+  for (std::size_t c = 0; c < 3; ++c) {
+    for (std::size_t j = 0; j < o.height; ++j) {
+      EXPECT_NEAR(t.value[c][j * o.width + 16], 0.5, 1e-6) << c << ' ' << j;  // symmetry
+      for (std::size_t i = 1; i < o.width; ++i) EXPECT_GE(t.value[c][j * o.width + i], t.value[c][j * o.width + i - 1]);
+    }
+    // Against the direct 2D integral at a few texels, narrow and wide penumbrae.
+    for (std::size_t j : {0u, 5u, 15u})
+      for (std::size_t i : {2u, 10u, 27u}) {
+        const double w = t.penumbra_width[j], p = (t.shadow[i] - 0.5) * w;
+        EXPECT_NEAR(t.value[c][j * o.width + i], ramp_exitance(*model, skin.reduced(c), p, w), 1e-4) << c << ' ' << i << ' ' << j;
+      }
+  }
+  // Light scatters into the umbra side, red (widest) most; far wider penumbrae tend to D = s.
+  EXPECT_GT(t.value[0][5 * o.width + 3], t.shadow[3]);
+  EXPECT_GT(t.value[0][5 * o.width + 3], t.value[2][5 * o.width + 3]);
+  o.width_max = 1e4;
+  const auto wide = build_penumbra_table(skin, *model, o);
+  for (std::size_t i = 0; i < o.width; ++i) EXPECT_NEAR(wide.value[1][(o.height - 1) * o.width + i], wide.shadow[i], 1e-3);
+  // A channel without scattering passes the light ramp through: D = s.
+  const auto coke = build_penumbra_table(material("Coke"), *model, o);
+  for (std::size_t i = 0; i < o.width; ++i) EXPECT_EQ(coke.value[2][3 * o.width + i], coke.shadow[i]);
 }
 
 TEST(SeparableKernel, ConservesTheBandEnergyAndFollowsJimenez) {
@@ -256,12 +305,30 @@ TEST(CliLutRealtime, FilesCarryValuesAndAttributes) {
   EXPECT_LT(std::abs(doc["attributes"]["bssrdf:conservation_error.R"].get<double>()), 0.05);
 }
 
+TEST(CliLutRealtime, PenumbraExrReadsBack) {
+  const auto file = temp("pen.exr");
+  const auto r = test_cli::run("lut --material Skin1 --kind penumbra --size 32x8 --width-max 1 --unit cm -q -o " + file.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto p = test_exr::read_exr(file);
+  EXPECT_EQ(p.width, 32);
+  EXPECT_EQ(p.height, 8);
+  EXPECT_EQ(p.strings.at("bssrdf:kind"), "penumbra");
+  EXPECT_DOUBLE_EQ(p.doubles.at("bssrdf:width_max"), 1.0);  // in the output unit, cm
+  PenumbraOptions o;
+  o.width = 32;
+  o.height = 8;
+  o.width_max = 10;  // mm
+  const auto t = build_penumbra_table(material("Skin1"), *make_model("pbd"), o);
+  for (std::size_t i = 0; i < 256; ++i) EXPECT_FLOAT_EQ(p.channels.at("R")[i], static_cast<float>(t.value[0][i]));
+}
+
 TEST(CliLutRealtime, BadInputIsOneLineExitTwoAndNoFile) {
   const auto out = temp("bad.exr");
   for (const std::string args :
        {"--kind separable --taps 2", "--kind separable --taps 1", "--kind separable --taps 12", "--kind separable --range 0", "--kind separable --range wide", "--kind separable --band 1",
         "--kind preintegrated --size 0x0", "--kind preintegrated --size 0x16", "--kind preintegrated --size 16x0",
-        "--kind preintegrated --size 16", "--kind preintegrated --curvature-max -1", "--kind gaussians --count -1",
+        "--kind preintegrated --size 16", "--kind preintegrated --curvature-max -1", "--kind penumbra --width-max -1",
+        "--kind penumbra --size 1x16", "--kind gaussians --count -1",
         "--kind gaussians --count 40", "--kind unknown", "--kind radial --format glsl"}) {
     std::filesystem::remove(out);
     const auto r = test_cli::run("lut --material Skin1 " + args + " -o " + out.string());

@@ -19,6 +19,7 @@
 #include "bssrdf/lut/albedo_radius_table.hpp"
 #include "bssrdf/lut/gaussian_mixture_table.hpp"
 #include "bssrdf/lut/material_preview.hpp"
+#include "bssrdf/lut/penumbra_table.hpp"
 #include "bssrdf/lut/preintegrated_table.hpp"
 #include "bssrdf/lut/radial_table.hpp"
 #include "bssrdf/lut/separable_kernel.hpp"
@@ -44,8 +45,8 @@ struct LutOptions {
   int samples = 32;
   bool reference = false, reference_everywhere = false;
   std::uint64_t photons = 100'000, seed = 1;
-  // preintegrated
-  std::string curvature_max;
+  // preintegrated, penumbra
+  std::string curvature_max, width_max;
   // separable
   int taps = 17;
   std::string range, band = "0.95";
@@ -55,7 +56,7 @@ struct LutOptions {
 };
 
 const std::vector<std::string>& kinds() {
-  static const std::vector<std::string> k = {"radial", "albedo-radius", "transmission", "preintegrated", "separable", "gaussians"};
+  static const std::vector<std::string> k = {"radial", "albedo-radius", "transmission", "preintegrated", "penumbra", "separable", "gaussians"};
   return k;
 }
 
@@ -234,6 +235,34 @@ Built build_preintegrated(const LutOptions& o, const MediumOptions::Resolved& re
   return {to_lookup_table(t, context), s.str(), {}};
 }
 
+Built build_penumbra(const LutOptions& o, const MediumOptions::Resolved& resolved, const Model& model, const TableContext& context) {
+  PenumbraOptions options;
+  std::tie(options.width, options.height) = parse_size(o.size, 256, 256);
+  const double mm = millimetres_per(resolved.unit);
+  const std::string u(symbol(resolved.unit));
+  if (!o.width_max.empty()) {
+    const double w = parse_number(o.width_max, "--width-max");
+    if (!(w > 0)) throw InvalidInput("--width-max", format_number(w), "> 0 (" + u + ")");
+    options.width_max = w * mm;
+  }
+  options.threads = o.threads;
+  const auto t = build_penumbra_table(resolved.medium, model, options);
+  std::ostringstream s;
+  s << "penumbra table: " << options.width << " shadow values x " << options.height << " penumbra widths from 0 to "
+    << short_number(t.options.width_max / mm) << ' ' << u << (o.width_max.empty() ? " (8 r_50 of the widest channel)" : "")
+    << ", texel centres\n";
+  const std::size_t W = options.width, H = options.height;
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c) {
+    if (!t.scatters[c]) {
+      s << "  " << t.channel_names[c] << ": does not scatter (total reflectance 0): D = s\n";
+      continue;
+    }
+    s << "  " << t.channel_names[c] << ": D at s = " << short_number(t.shadow[W / 8]) << ": " << short_number(t.value[c][W / 8])
+      << " (narrowest penumbra) to " << short_number(t.value[c][(H - 1) * W + W / 8]) << " (widest)\n";
+  }
+  return {to_lookup_table(t, context), s.str(), {}};
+}
+
 Built build_separable(const LutOptions& o, const MediumOptions::Resolved& resolved, const Model& model, const TableContext& context) {
   SeparableKernelOptions options;
   options.taps = o.taps;
@@ -326,6 +355,7 @@ Built build(const LutOptions& o, const MediumOptions::Resolved& resolved) {
   auto model = make_model(o.model);
   const TableContext table_context{resolved.material, &resolved.medium, model.get(), resolved.unit};
   if (o.kind == "preintegrated") return build_preintegrated(o, resolved, *model, table_context);
+  if (o.kind == "penumbra") return build_penumbra(o, resolved, *model, table_context);
   if (o.kind == "separable") return build_separable(o, resolved, *model, table_context);
   if (o.kind == "gaussians") return build_gaussians(o, resolved, *model, table_context);
   TableContext context{resolved.material, &resolved.medium, model.get(), resolved.unit};
@@ -394,12 +424,12 @@ Action register_lut(CLI::App& app) {
   auto o = std::make_shared<LutOptions>();
   auto* sub = app.add_subcommand("lut", "Lookup tables for renderers: OpenEXR, JSON or CSV with their conventions recorded");
   o->medium.add_to(*sub);
-  sub->add_option("--kind,-k", o->kind, "Table: radial, albedo-radius, transmission, preintegrated, separable, gaussians [radial]");
+  sub->add_option("--kind,-k", o->kind, "Table: radial, albedo-radius, transmission, preintegrated, penumbra, separable, gaussians [radial]");
   sub->add_option("--layout", o->layout,
                   "albedo-radius: pbrt (100 x 64, pbrt's spacing), family (--size) or adaptive (--table-tolerance) [pbrt]");
   sub->add_option("--table-tolerance", o->table_tolerance,
                   "albedo-radius --layout adaptive: interpolation error allowed, relative to each row's peak [1e-3]");
-  sub->add_option("--size", o->size, "albedo-radius with --layout family: ALBEDOSxRADII, e.g. 64x48; preintegrated: N.LxCURVATURES [256x256]");
+  sub->add_option("--size", o->size, "albedo-radius with --layout family: ALBEDOSxRADII, e.g. 64x48; preintegrated: N.LxCURVATURES; penumbra: SHADOWSxWIDTHS [256x256]");
   auto* model_option = sub->add_option("--model", o->model, "Profile model (see 'bssrdf models') [pbd]");
   sub->add_option("--tolerance", o->tolerance, "radial: relative interpolation error bound [1e-3]; albedo-radius: beam-integral quadrature tolerance [1e-2]");
   sub->add_option("--energy", o->energy, "Fraction of each channel's total inside the checked radius range [0.999]");
@@ -426,6 +456,7 @@ Action register_lut(CLI::App& app) {
   sub->add_option("--band", o->band, "separable: fraction of the widest channel's light inside +-range when --range is not given [0.95]");
   sub->add_option("--count,-n", o->count, "gaussians: number of shared-variance Gaussians fitted [6; with --model quantized and no --count: its own mixture]");
   sub->add_option("--curvature-max", o->curvature_max, "preintegrated: largest curvature 1/r, in 1/--unit [1/r_50 of the widest channel]");
+  sub->add_option("--width-max", o->width_max, "penumbra: widest penumbra, in --unit [8 r_50 of the widest channel]");
 
   return [o, model_option] {
     o->model_given = model_option->count() > 0;

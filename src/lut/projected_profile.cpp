@@ -96,6 +96,14 @@ ProjectedProfile::ProjectedProfile(const Model& model, const Reduced<double>& m)
   }
   // Inside the first node line() is taken as constant.
   half_plane_0_ = half_plane_[0] + std::exp(u0_) * line[0];
+  // int_0^{x_j} half_plane: the first node's disc by the midpoint of a linear half_plane there, then
+  // trapezoid in ln x.
+  half_plane_integral_.assign(n, 0.0);
+  half_plane_integral_[0] = std::exp(u0_) * 0.5 * (half_plane_0_ + half_plane_[0]);
+  for (std::size_t j = 1; j < n; ++j) {
+    const double t0 = std::exp(u0_ + h_ * static_cast<double>(j - 1)), t1 = std::exp(u0_ + h_ * static_cast<double>(j));
+    half_plane_integral_[j] = half_plane_integral_[j - 1] + 0.5 * h_ * (half_plane_[j - 1] * t0 + half_plane_[j] * t1);
+  }
 }
 
 double ProjectedProfile::cubic(const std::vector<double>& f, double u) const {
@@ -136,6 +144,13 @@ double ProjectedProfile::half_plane(double x) const {
   if (x <= r_min()) return half_plane_0_ - x * std::exp(log_line_.front());
   if (x >= r_max()) return 0;
   return std::max(0.0, cubic(half_plane_, std::log(x)));
+}
+
+double ProjectedProfile::half_plane_integral(double x) const {
+  if (x <= 0) return 0;
+  if (x <= r_min()) return x * 0.5 * (half_plane_0_ + half_plane(x));
+  if (x >= r_max()) return half_plane_integral_.back();  // half_plane is 0 beyond
+  return cubic(half_plane_integral_, std::log(x));
 }
 
 double ProjectedProfile::radius_for_fraction(double fraction) const {

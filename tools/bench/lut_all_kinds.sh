@@ -18,7 +18,7 @@ median_ms() {  # median of the arguments
 echo "bssrdf lut --all: $("$bin" materials list | wc -l) materials, $(nproc) cores, median of $runs runs (ms)"
 printf '  %-14s %10s %10s\n' kind "1 thread" "all"
 total1=0; totalN=0
-for kind in radial albedo-radius transmission preintegrated separable gaussians; do
+for kind in radial albedo-radius transmission preintegrated penumbra separable gaussians; do
   for threads in 1 0; do
     times=()
     for ((i = 0; i < runs; i++)); do

@@ -7,6 +7,7 @@
 //   half_plane(x) = int_x^inf line(t) dt                 the exitance at signed distance x from the
 //                 = int int_{X > x} R dA                 edge of a lit half-plane X > x (the shadow edge)
 //   strip(a, b)   = int_a^b line(t) dt                   light from the strip a < X < b
+//   half_plane_integral(x) = int_0^x half_plane(t) dt    (x >= 0) for edges that are ramps, not steps
 //   total()       = int 2 pi r R(r) dr                   = 2 half_plane(0) = int line
 //
 // R is tabulated once from the model on 64 points per decade of r (uniform in ln r, from 1e-6 of
@@ -34,6 +35,7 @@ class ProjectedProfile {
   double line(double x) const;            // even in x
   double half_plane(double x) const;      // signed x: total - half_plane(-x) for x < 0
   double strip(double a, double b) const { return half_plane(a) - half_plane(b); }
+  double half_plane_integral(double x) const;  // int_0^x half_plane, x >= 0
   // The radius holding `fraction` of total() (0 < fraction < 1).
   double radius_for_fraction(double fraction) const;
   // The distance x >= 0 at which 2 half_plane(x) / total falls to 1 - fraction: the half-width of
@@ -46,6 +48,7 @@ class ProjectedProfile {
  private:
   double u0_ = 0, h_ = 0;  // nodes u_j = u0 + j h, u = ln r
   std::vector<double> log_R_, log_line_, half_plane_, cumulative_;  // cumulative: int_0^{r_j} 2 pi r R dr
+  std::vector<double> half_plane_integral_;                         // int_0^{x_j} half_plane
   double total_ = 0, half_plane_0_ = 0;
   double cubic(const std::vector<double>& f, double u) const;
 };
