@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <optional>
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/io/bitmap_text.hpp"
@@ -31,14 +30,10 @@ Preview render_material_preview(const Medium& medium, const Model& model, const 
   if (o.width < 16 || o.width > 8192 || o.swatch_height < 1 || o.strip_height < 1 || o.swatch_height + o.strip_height > 8192)
     throw InvalidInput("preview size", std::to_string(o.width) + "x" + std::to_string(o.swatch_height + o.strip_height), "16 to 8192 pixels");
   // A channel that does not scatter (sigma_s = 0) sends no light across the edge: it stays black.
-  std::vector<std::optional<ProjectedProfile>> p(n);
+  const auto p = project_channels(medium, model);
   double half = o.half_width;
-  for (std::size_t c = 0; c < n; ++c)
-    if (medium.sigma_s[c] > 0) {
-      p[c].emplace(model, medium.reduced(c));
-      if (o.half_width <= 0) half = std::max(half, p[c]->line_width_for_fraction(0.99));
-    }
-  if (!(half > 0)) throw InvalidInput("profile", "0 in every channel", "a medium that scatters (sigma_s > 0) in at least one channel");
+  for (const auto& q : p)
+    if (q && o.half_width <= 0) half = std::max(half, q->line_width_for_fraction(0.99));
   const int caption = o.caption ? kCaptionHeight : 0;
   const int height = o.swatch_height + o.strip_height + caption;
   Preview out{RgbImage(o.width, height), half, 0};

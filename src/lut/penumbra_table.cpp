@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/lut/parallel.hpp"
@@ -24,15 +23,11 @@ PenumbraTable build_penumbra_table(const Medium& medium, const Model& model, con
   t.options = options;
   t.channel_names = medium.channel_names;
   const std::size_t channels = medium.channels(), W = options.width, H = options.height;
-  std::vector<std::optional<ProjectedProfile>> profiles(channels);
-  for (std::size_t c = 0; c < channels; ++c) {
-    t.scatters.push_back(medium.sigma_s[c] > 0);
-    if (!t.scatters.back()) continue;
-    profiles[c].emplace(model, medium.reduced(c));
-    t.widest_r50 = std::max(t.widest_r50, profiles[c]->radius_for_fraction(0.5));
+  const auto profiles = project_channels(medium, model);
+  for (const auto& p : profiles) {
+    t.scatters.push_back(p.has_value());
+    if (p) t.widest_r50 = std::max(t.widest_r50, p->radius_for_fraction(0.5));
   }
-  if (t.widest_r50 == 0)
-    throw InvalidInput("profile", "0 in every channel", "a medium that scatters (sigma_s > 0) in at least one channel");
   if (t.options.width_max == 0) t.options.width_max = 8 * t.widest_r50;
   for (std::size_t i = 0; i < W; ++i) t.shadow.push_back((static_cast<double>(i) + 0.5) / static_cast<double>(W));
   for (std::size_t j = 0; j < H; ++j)

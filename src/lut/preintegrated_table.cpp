@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <numbers>
-#include <optional>
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/lut/parallel.hpp"
@@ -28,17 +27,14 @@ PreintegratedTable build_preintegrated_table(const Medium& medium, const Model& 
   t.channel_names = medium.channel_names;
   const std::size_t channels = medium.channels(), W = options.width, H = options.height;
   // A channel that does not scatter (sigma_s = 0) keeps the limit of a vanishing profile: D = max(0, N.L).
-  std::vector<std::optional<ProjectedProfile>> profiles(channels);
+  const auto profiles = project_channels(medium, model);
   double r_min = INFINITY;
-  for (std::size_t c = 0; c < channels; ++c) {
-    t.scatters.push_back(medium.reduced(c).sigma_s > 0);
-    if (!t.scatters.back()) continue;
-    profiles[c].emplace(model, medium.reduced(c));
-    t.widest_r50 = std::max(t.widest_r50, profiles[c]->radius_for_fraction(0.5));
-    r_min = std::min(r_min, profiles[c]->r_min());
+  for (const auto& p : profiles) {
+    t.scatters.push_back(p.has_value());
+    if (!p) continue;
+    t.widest_r50 = std::max(t.widest_r50, p->radius_for_fraction(0.5));
+    r_min = std::min(r_min, p->r_min());
   }
-  if (t.widest_r50 == 0)
-    throw InvalidInput("profile", "0 in every channel", "a medium that scatters (sigma_s > 0) in at least one channel");
   if (t.options.curvature_max == 0) t.options.curvature_max = 1 / t.widest_r50;
   for (std::size_t i = 0; i < W; ++i) t.n_dot_l.push_back(-1 + 2 * (static_cast<double>(i) + 0.5) / static_cast<double>(W));
   for (std::size_t j = 0; j < H; ++j)

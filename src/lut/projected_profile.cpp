@@ -177,4 +177,16 @@ double ProjectedProfile::line_width_for_fraction(double fraction) const {
   return std::exp(hi);
 }
 
+std::vector<std::optional<ProjectedProfile>> project_channels(const Medium& medium, const Model& model) {
+  std::vector<std::optional<ProjectedProfile>> out(medium.channels());
+  bool any = false;
+  for (std::size_t c = 0; c < medium.channels(); ++c)
+    if (medium.sigma_s[c] > 0) {
+      out[c].emplace(model, medium.reduced(c));
+      any = true;
+    }
+  if (!any) throw InvalidInput("profile", "0 in every channel", "a medium that scatters (sigma_s > 0) in at least one channel");
+  return out;
+}
+
 }  // namespace bssrdf

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <cstdio>
 #include <sstream>
 
@@ -26,15 +25,9 @@ SeparableKernel build_separable_kernel(const Medium& medium, const Model& model,
   k.options = options;
   k.range_from_band = options.range == 0;
   k.channel_names = medium.channel_names;
-  std::vector<std::optional<ProjectedProfile>> profiles(medium.channels());
-  for (std::size_t c = 0; c < medium.channels(); ++c) {
-    const auto m = medium.reduced(c);
-    if (m.sigma_s > 0) profiles[c].emplace(model, m);
-    if (options.range == 0 && profiles[c])
-      k.options.range = std::max(k.options.range, profiles[c]->line_width_for_fraction(options.band));
-  }
-  if (k.options.range == 0)
-    throw InvalidInput("profile", "0 in every channel", "a medium that scatters (sigma_s > 0) in at least one channel");
+  const auto profiles = project_channels(medium, model);
+  for (const auto& p : profiles)
+    if (options.range == 0 && p) k.options.range = std::max(k.options.range, p->line_width_for_fraction(options.band));
   const int N = options.taps;
   const double range = k.options.range;
   // Offsets in [-range, range], sorted; then the footprints' edges.

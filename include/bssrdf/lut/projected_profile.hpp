@@ -20,8 +20,10 @@
 //   double edge = p.half_plane(0.5);   // shadowed side, 0.5 mm from the edge
 #pragma once
 
+#include <optional>
 #include <vector>
 
+#include "bssrdf/medium.hpp"
 #include "bssrdf/model.hpp"
 
 namespace bssrdf {
@@ -52,5 +54,9 @@ class ProjectedProfile {
   double total_ = 0, half_plane_0_ = 0;
   double cubic(const std::vector<double>& f, double u) const;
 };
+
+// One projection per channel that scatters (sigma_s > 0) and none for a channel that does not (its
+// profile vanishes: the tables take that limit). Throws InvalidInput when no channel scatters.
+std::vector<std::optional<ProjectedProfile>> project_channels(const Medium& medium, const Model& model);
 
 }  // namespace bssrdf
