@@ -23,24 +23,33 @@ inline std::string slurp(const std::filesystem::path& path) {
   return s.str();
 }
 
+// This process's scratch directory, removed with everything in it when the process exits (ctest
+// runs every test case in a process of its own, so cases never share or leak files).
+struct ScratchDirectory {
+  std::filesystem::path path = std::filesystem::temp_directory_path() / ("bssrdf-test-" + std::to_string(::getpid()));
+  ScratchDirectory() { std::filesystem::create_directories(path); }
+  ~ScratchDirectory() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path, ignored);
+  }
+};
+inline const std::filesystem::path& scratch() {
+  static const ScratchDirectory directory;
+  return directory.path;
+}
+
 // `arguments` is appended to the binary's path as shell words.
 inline Run run(const std::string& arguments) {
   static int counter = 0;
-  const auto dir = std::filesystem::temp_directory_path() / ("bssrdf-cli-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  const auto out = dir / ("out" + std::to_string(counter));
-  const auto err = dir / ("err" + std::to_string(counter++));
+  const auto out = scratch() / ("cli-out" + std::to_string(counter));
+  const auto err = scratch() / ("cli-err" + std::to_string(counter++));
   const std::string command = std::string(BSSRDF_CLI) + " " + arguments + " >" + out.string() + " 2>" + err.string() + " </dev/null";
   const int raw = std::system(command.c_str());
   return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
 }
 
-// A path in this process's own temporary directory (ctest runs test cases in parallel processes).
-inline std::filesystem::path temp(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("bssrdf-test-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir / name;
-}
+// A path in this process's scratch directory.
+inline std::filesystem::path temp(const std::string& name) { return scratch() / name; }
 
 inline int count_lines(const std::string& text) {
   int n = 0;

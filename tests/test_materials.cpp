@@ -11,15 +11,13 @@
 #include "bssrdf/materials.hpp"
 #include "json_schema_subset.hpp"
 #include "reference_data.hpp"
+#include "cli_runner.hpp"
 
 using namespace bssrdf;
 
 namespace {
 std::filesystem::path write_temp(const std::string& name, const std::string& text) {
-  // Per process: ctest runs test cases in parallel processes.
-  const auto dir = std::filesystem::temp_directory_path() / ("bssrdf-materials-test-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  const auto path = dir / name;
+  const auto path = test_cli::temp(name);  // this process's scratch directory, removed at exit
   std::ofstream(path) << text;
   return path;
 }
