@@ -320,6 +320,13 @@ TEST(CliLutRealtime, PenumbraExrReadsBack) {
   o.width_max = 10;  // mm
   const auto t = build_penumbra_table(material("Skin1"), *make_model("pbd"), o);
   for (std::size_t i = 0; i < 256; ++i) EXPECT_FLOAT_EQ(p.channels.at("R")[i], static_cast<float>(t.value[0][i]));
+  // CSV for plots carries both axes: row, column, w (cm), s, then the channels.
+  const auto csv = temp("pen.csv");
+  ASSERT_EQ(test_cli::run("lut --material Skin1 --kind penumbra --size 32x8 --width-max 1 --unit cm -q -o " + csv.string()).status, 0);
+  const auto text = test_cli::slurp(csv);
+  EXPECT_EQ(text.substr(0, text.find('\n')), "row,column,penumbra_width (cm),shadow,R,G,B");
+  EXPECT_EQ(test_cli::count_lines(text), 1 + 256);
+  EXPECT_NE(text.find("\n7,31,0.9375,0.984375,"), std::string::npos);  // w_7 = 1 cm * 7.5/8, s_31 = 31.5/32
 }
 
 TEST(CliLutRealtime, BadInputIsOneLineExitTwoAndNoFile) {

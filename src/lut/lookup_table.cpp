@@ -49,6 +49,8 @@ std::string to_json(const LookupTable& table) {
   auto& attributes = doc["attributes"] = nlohmann::ordered_json::object();
   for (const auto& a : table.attributes)
     std::visit([&](const auto& v) { attributes[a.name] = v; }, a.value);
+  for (const auto* axis : {&table.x_axis, &table.y_axis})
+    if (!axis->values.empty()) doc["axes"][axis == &table.x_axis ? "x" : "y"] = {{"name", axis->name}, {"values", axis->values}};
   doc["channels"] = nlohmann::ordered_json::array();
   for (const auto& c : table.channels) {
     nlohmann::ordered_json values = nlohmann::ordered_json::array();
@@ -61,12 +63,17 @@ std::string to_json(const LookupTable& table) {
 std::string to_csv(const LookupTable& table) {
   std::ostringstream out;
   const bool two_d = table.height > 1;
+  const bool y_axis = two_d && table.y_axis.values.size() == table.height, x_axis = two_d && table.x_axis.values.size() == table.width;
   if (two_d) out << "row,column";
+  if (y_axis) out << ',' << table.y_axis.name;
+  if (x_axis) out << ',' << table.x_axis.name;
   for (std::size_t i = 0; i < table.channels.size(); ++i) out << (i || two_d ? "," : "") << table.channels[i].name;
   out << '\n';
   for (std::size_t y = 0; y < table.height; ++y)
     for (std::size_t x = 0; x < table.width; ++x) {
       if (two_d) out << y << ',' << x;
+      if (y_axis) out << ',' << format_number(table.y_axis.values[y]);
+      if (x_axis) out << ',' << format_number(table.x_axis.values[x]);
       for (std::size_t i = 0; i < table.channels.size(); ++i)
         out << (i || two_d ? "," : "") << format_number(table.channels[i].values[y * table.width + x]);
       out << '\n';

@@ -68,6 +68,9 @@ LookupTable to_lookup_table(const PenumbraTable& t, const TableContext& context)
   out.set("bssrdf:normalization", std::string("per channel, int R_line = 1: D is in [0, 1]; multiply by the diffuse colour"));
   out.set("bssrdf:x_axis", "shadow value s in [0, 1] (0: umbra, 1: lit): column i holds s_i = (i + 0.5) / width");
   out.set("bssrdf:y_axis", "penumbra width w in " + u + ": row j holds w_j = width_max (j + 0.5) / height (texture coordinate w / width_max)");
+  out.x_axis = {"shadow", t.shadow};
+  out.y_axis = {"penumbra_width (" + u + ")", {}};
+  for (double w : t.penumbra_width) out.y_axis.values.push_back(w / mm);
   out.set("bssrdf:width_max", t.options.width_max / mm);
   out.set("bssrdf:widest_r50", t.widest_r50 / mm);
   out.set("bssrdf:size", std::to_string(t.options.width) + "x" + std::to_string(t.options.height));

@@ -119,6 +119,9 @@ LookupTable to_lookup_table(const PreintegratedTable& t, const TableContext& con
   out.set("bssrdf:normalization", std::string("per channel, int R_ring = 1: D is in [0, 1]; multiply by the diffuse colour"));
   out.set("bssrdf:x_axis", std::string("u = N.L in [-1, 1]: column i holds u_i = -1 + 2 (i + 0.5) / width (texture coordinate (u + 1) / 2)"));
   out.set("bssrdf:y_axis", "curvature 1/r in 1/" + u + ": row j holds c_j = curvature_max (j + 0.5) / height (texture coordinate c / curvature_max); row 0 is the flattest");
+  out.x_axis = {"n_dot_l", t.n_dot_l};
+  out.y_axis = {"curvature (1/" + u + ")", {}};
+  for (double c : t.curvature) out.y_axis.values.push_back(c * mm);
   out.set("bssrdf:curvature_max", t.options.curvature_max * mm);
   out.set("bssrdf:curvature_unit", "1/" + u);
   out.set("bssrdf:widest_r50", t.widest_r50 / mm);

@@ -7,7 +7,10 @@ namespace {
 
 std::string join(const std::vector<double>& values, double scale) {
   std::string out;
-  for (double v : values) out += (out.empty() ? "" : ",") + format_number(v * scale);
+  for (double v : values) {
+    if (!out.empty()) out += ',';
+    out += format_number(v * scale);
+  }
   return out;
 }
 

@@ -31,9 +31,17 @@ struct TableAttribute {
   AttributeValue value;
 };
 
+// The coordinate of every column (x) or row (y) of a 2D table, for plots: written by CSV and JSON
+// beside the channels (OpenEXR records the axes as attributes).
+struct TableAxis {
+  std::string name;  // e.g. "n_dot_l", "curvature (1/mm)"
+  std::vector<double> values;  // width (x) or height (y) entries; empty: no axis
+};
+
 struct LookupTable {
   std::string kind;
   std::size_t width = 0, height = 1;
+  TableAxis x_axis, y_axis;
   std::vector<TableChannel> channels;      // in the order written
   std::vector<TableAttribute> attributes;  // in the order written
 
@@ -45,9 +53,11 @@ struct LookupTable {
 };
 
 // {"format": "bssrdf-lut", "version": 1, "kind", "width", "height", "attributes": {...},
-//  "channels": [{"name", "description", "values": [...]}]}; pretty-printed, trailing newline.
+//  "axes": {"x": {"name", "values"}, "y": {...}} (2D tables with axes), "channels": [{"name",
+//  "description", "values": [...]}]}; pretty-printed, trailing newline.
 std::string to_json(const LookupTable& table);
-// One line per cell: "row,column," (2D tables only) then one column per channel; a header line.
+// One line per cell: "row,column," (2D tables only), the y and x axis values where the table has
+// them, then one column per channel; a header line.
 std::string to_csv(const LookupTable& table);
 
 }  // namespace bssrdf
