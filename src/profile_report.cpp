@@ -148,6 +148,7 @@ std::string to_json(const ProfileReport& report) {
   doc["tool"] = std::string("bssrdf ") + BSSRDF_VERSION;
   doc["model"] = report.model;
   doc["model_description"] = report.model_description;
+  if (!report.model_choice.empty()) doc["model_choice"] = report.model_choice;
   doc["includes_single_scattering"] = report.includes_single_scattering;
   doc["unit"] = std::string(symbol(report.unit));
   doc["reflectance_unit"] = "1/" + std::string(symbol(report.unit)) + "^2";
@@ -232,6 +233,7 @@ std::string to_table(const ProfileReport& report) {
   std::ostringstream out;
   const std::string u(symbol(report.unit));
   out << "model     " << report.model << ": " << report.model_description << '\n';
+  if (!report.model_choice.empty()) out << "choice    " << report.model_choice << '\n';
   if (report.material)
     out << "material  " << report.material->name << " (" << report.material->source << ")\n";
   out << "eta       " << format_number(report.eta) << "\n";

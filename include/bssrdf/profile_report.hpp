@@ -41,6 +41,7 @@ struct ChannelProfile {
 
 struct ProfileReport {
   std::string model, model_description;
+  std::string model_choice;  // why this model, when it was chosen for an accuracy (--model auto)
   bool includes_single_scattering = false;
   LengthUnit unit = LengthUnit::millimetre;
   double eta = 1;

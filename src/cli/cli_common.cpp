@@ -11,6 +11,7 @@
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/io/atomic_file.hpp"
+#include "bssrdf/model_choice.hpp"
 
 namespace bssrdf::cli {
 namespace {
@@ -177,6 +178,27 @@ std::function<void(std::uint64_t, std::uint64_t)> progress_bar(const std::string
     if (done >= total) std::fprintf(stderr, "\r%*s\r", width + 16 + static_cast<int>(label.size()), "");
     std::fflush(stderr);
   };
+}
+
+ChosenModel resolve_model(const std::string& name, const std::string& accuracy, const Medium& medium) {
+  if (name != "auto") {
+    if (!accuracy.empty()) throw InvalidInput("--accuracy: only with --model auto (it chooses the model to meet it)");
+    return {name, ""};
+  }
+  const double a = accuracy.empty() ? 0.1 : parse_number(accuracy, "--accuracy");
+  if (!(a > 0 && a < 10)) throw InvalidInput("--accuracy", format_number(a), "0 < accuracy < 10 (relative error, e.g. 0.05)");
+  const auto choice = choose_model(medium, a);
+  std::string rejected;
+  for (const auto& e : choice.estimates) {
+    if (e.model == choice.model) break;
+    rejected += (rejected.empty() ? "" : ", ") + e.model + " " + format_number(std::round(e.error() * 1000) / 10) + " %";
+  }
+  const auto& chosen = *std::find_if(choice.estimates.begin(), choice.estimates.end(), [&](const auto& e) { return e.model == choice.model; });
+  return {choice.model, "auto: " + choice.model + ", the cheapest measured within " + format_number(a * 100) +
+                            " % of Monte Carlo for this medium (worst channel: total " +
+                            format_number(std::round(chosen.total_error * 1000) / 10) + " %, profile L2 " +
+                            format_number(std::round(chosen.profile_error * 1000) / 10) + " %)" +
+                            (rejected.empty() ? "" : "; cheaper but worse: " + rejected)};
 }
 
 }  // namespace bssrdf::cli

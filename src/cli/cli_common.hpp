@@ -34,6 +34,14 @@ struct MediumOptions {
   Resolved resolve() const;
 };
 
+// --model auto: the cheapest model measured within `accuracy` of the Monte Carlo reference for this
+// medium (model_choice.hpp), with a line for people saying why; any other name is returned as given.
+struct ChosenModel {
+  std::string name;
+  std::string note;  // empty unless chosen
+};
+ChosenModel resolve_model(const std::string& name, const std::string& accuracy, const Medium& medium);
+
 enum class Format { table, json, csv };
 
 struct OutputOptions {

@@ -35,7 +35,7 @@ namespace {
 
 struct LutOptions {
   MediumOptions medium;
-  std::string kind = "radial", model = "pbd", tolerance, energy = "0.999", interpolation = "catmull-rom";
+  std::string kind = "radial", model = "pbd", accuracy, tolerance, energy = "0.999", interpolation = "catmull-rom";
   std::string output, format, output_dir, layout = "pbrt", size, table_tolerance;
   bool half = false, all = false, quiet = false;
   unsigned threads = 1;
@@ -338,7 +338,8 @@ struct RenderedPreview {
 RenderedPreview render_preview(const LutOptions& o, const MediumOptions::Resolved& resolved) {
   if (std::filesystem::path(o.preview).extension() != ".png")
     throw InvalidInput("--preview", "'" + o.preview + "'", "a file ending in .png");
-  const auto model = make_model(o.kind == "transmission" || o.kind == "albedo-radius" || !o.model_given ? "pbd" : o.model);
+  const bool own_model = o.kind == "transmission" || o.kind == "albedo-radius" || !o.model_given;
+  const auto model = make_model(own_model ? "pbd" : resolve_model(o.model, o.accuracy, resolved.medium).name);
   PreviewOptions options;
   options.unit = resolved.unit;
   options.label = (resolved.material ? resolved.material->name : std::string("custom medium")) + ", " + model->name();
@@ -350,9 +351,7 @@ RenderedPreview render_preview(const LutOptions& o, const MediumOptions::Resolve
                                          "; " + model->name()};
 }
 
-Built build(const LutOptions& o, const MediumOptions::Resolved& resolved) {
-  if (o.kind == "transmission") return build_transmission(o, resolved);
-  auto model = make_model(o.model);
+Built build_with(const LutOptions& o, const MediumOptions::Resolved& resolved, std::unique_ptr<Model> model) {
   const TableContext table_context{resolved.material, &resolved.medium, model.get(), resolved.unit};
   if (o.kind == "preintegrated") return build_preintegrated(o, resolved, *model, table_context);
   if (o.kind == "penumbra") return build_penumbra(o, resolved, *model, table_context);
@@ -407,6 +406,18 @@ std::string format_for(const LutOptions& o, const std::string& path) {
   throw InvalidInput("-o", "'" + path + "'", "a file ending in .exr, .json, .csv, .glsl or .hlsl (or give --format)");
 }
 
+// The table of --kind for the medium; --model auto is resolved here and says so in the summary.
+Built build(const LutOptions& o, const MediumOptions::Resolved& resolved) {
+  if (o.kind == "transmission") {
+    if (!o.accuracy.empty()) throw InvalidInput("--accuracy: only with --model auto (transmission tables use the multipole)");
+    return build_transmission(o, resolved);
+  }
+  const auto chosen = resolve_model(o.model, o.accuracy, resolved.medium);
+  auto built = build_with(o, resolved, make_model(chosen.name));
+  if (!chosen.note.empty()) built.summary = chosen.note + "\n" + built.summary;
+  return built;
+}
+
 // A material's name as a file-name stem: lower case, anything but letters and digits as '-'.
 std::string file_stem(const std::string& material) {
   std::string name;
@@ -430,7 +441,9 @@ Action register_lut(CLI::App& app) {
   sub->add_option("--table-tolerance", o->table_tolerance,
                   "albedo-radius --layout adaptive: interpolation error allowed, relative to each row's peak [1e-3]");
   sub->add_option("--size", o->size, "albedo-radius with --layout family: ALBEDOSxRADII, e.g. 64x48; preintegrated: N.LxCURVATURES; penumbra: SHADOWSxWIDTHS [256x256]");
-  auto* model_option = sub->add_option("--model", o->model, "Profile model (see 'bssrdf models') [pbd]");
+  auto* model_option = sub->add_option("--model", o->model,
+                                       "Profile model (see 'bssrdf models'), or auto: the cheapest measured within --accuracy of Monte Carlo here [pbd]");
+  sub->add_option("--accuracy", o->accuracy, "With --model auto: relative error allowed in the total and in R(r) (L2) [0.1]");
   sub->add_option("--tolerance", o->tolerance, "radial: relative interpolation error bound [1e-3]; albedo-radius: beam-integral quadrature tolerance [1e-2]");
   sub->add_option("--energy", o->energy, "Fraction of each channel's total inside the checked radius range [0.999]");
   sub->add_option("--interpolation", o->interpolation, "How the consumer interpolates: catmull-rom or linear [catmull-rom]");

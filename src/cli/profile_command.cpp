@@ -42,7 +42,7 @@ Action register_profile(CLI::App& app) {
     double pair_tolerance = 1e-5;
     int samples = 64;
     bool single_scattering = false;
-    std::string surface_albedo;
+    std::string surface_albedo, accuracy;
   };
   auto options = std::make_shared<Options>();
   auto* sub = app.add_subcommand("profile", "Radial diffusion profile R(r) per channel (per unit entered flux)");
@@ -50,8 +50,11 @@ Action register_profile(CLI::App& app) {
   sub->add_option("--model", options->model,
                   "Model: dipole, better-dipole, pbd, quantized, burley, burley-diffuse, burley-dmfp, multipole "
                   "(slabs: needs --thickness or --layers); 'bssrdf models' lists them [better-dipole; multipole "
-                  "with --thickness or --layers]");
+                  "with --thickness or --layers]; auto: the cheapest measured within --accuracy of Monte Carlo here");
   auto* model_option = sub->get_option("--model");
+  sub->add_option("--accuracy", options->accuracy,
+                  "With --model auto: relative error allowed in the total and in R(r) (area-weighted L2) against the Monte Carlo "
+                  "reference, as measured for each model [0.1]");
   auto* thickness = sub->add_option("--thickness", options->thickness,
                                     "Slab thickness in --unit: R(r) and T(r) of a slab under the multipole "
                                     "(ambient index 1 on both sides)");
@@ -77,6 +80,7 @@ Action register_profile(CLI::App& app) {
   auto* unit_option = sub->get_option("--unit");
   return [options, model_option, unit_option] {
     const bool slab = !options->thickness.empty() || !options->layers.empty();
+    if (slab && !options->accuracy.empty()) throw InvalidInput("--accuracy: only with --model auto, not for slabs or layer stacks");
     if (slab && model_option->count() && options->model != "multipole")
       throw InvalidInput("--model", "'" + options->model + "'",
                          "multipole with " + std::string(options->layers.empty() ? "--thickness" : "--layers"));
@@ -99,6 +103,7 @@ Action register_profile(CLI::App& app) {
     }
     const double mm = millimetres_per(resolved.unit);
     std::unique_ptr<Model> model;
+    std::string auto_note;  // --model auto: which model and why
     if (stack_file) {
       for (std::size_t c = 0; c < stack_file->stack.channels(); ++c)
         if (const auto report = layered::Stack(stack_file->stack, c).validity(); const auto* note = breakdown(report))
@@ -118,7 +123,11 @@ Action register_profile(CLI::App& app) {
                                  "' (Monte Carlo) for thin slabs");
       model = std::move(slab_model);
     } else {
-      model = make_model(options->model + (options->single_scattering ? "+ss" : ""));
+      const auto chosen = resolve_model(options->model, options->accuracy, resolved.medium);
+      if (!chosen.note.empty() && options->single_scattering)
+        throw InvalidInput("--single-scattering: not with --model auto (the choice includes NAME+ss models)");
+      auto_note = chosen.note;
+      model = make_model(chosen.name + (options->single_scattering ? "+ss" : ""));
     }
     if (!options->surface_albedo.empty()) {
       const double A = parse_number(options->surface_albedo, "--surface-albedo");
@@ -157,6 +166,7 @@ Action register_profile(CLI::App& app) {
     auto report = stack_file ? compute_stack_report(stack_file->stack, radii_mm, resolved.unit)
                              : compute_profile_report(resolved.medium, *model, radii_mm, resolved.unit);
     report.material = resolved.material;
+    report.model_choice = auto_note;
     // Never print a negative profile: the checks above exclude it; this keeps it so.
     for (const auto& ch : report.channels) {
       for (double v : ch.profile.value)

@@ -53,7 +53,9 @@ int main(int argc, char** argv) {
 
   std::printf("Cost of one R(r) evaluation, median of %d runs (alpha' = 0.9, g = 0, eta = 1.3; r in [0.01, 20] ell)\n", repetitions);
   const auto m = reduce(0.1, 0.9, 0.0, 1.3);
-  for (const auto& name : model_names()) {
+  auto names = model_names();
+  for (const char* with_single : {"dipole+ss", "better-dipole+ss", "quantized+ss"}) names.push_back(with_single);
+  for (const auto& name : names) {
     const auto model = make_model(name);
     model->reflectance(m, 1.0);  // warm caches (quadrature order, mixture, surface albedo)
     std::printf("  %-16s %9.1f ns\n", name.c_str(), median_ns_per_call([&](double r) { return model->reflectance(m, r); }, radii, repetitions));

@@ -1,0 +1,99 @@
+#include "bssrdf/model_choice.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bssrdf/error.hpp"
+#include "model_error_table.hpp"
+
+namespace bssrdf {
+namespace {
+
+// One R(r) evaluation, ns: bench_models medians on the 2-core development machine (alpha' 0.9,
+// g 0, eta 1.3, 64 radii over 0.01-20 ell). Only their order matters to the choice. NAME+ss adds
+// the exact single scattering at 64 Gauss-Legendre points, dearer than photon beam diffusion,
+// which computes its own at the order its tolerance needs.
+double cost_ns(std::string_view model) {
+  if (model == "dipole") return 19;
+  if (model == "better-dipole") return 26;
+  if (model == "burley" || model == "burley-diffuse" || model == "burley-dmfp") return 27;
+  if (model == "pbd") return 1204;
+  if (model == "dipole+ss") return 2462;
+  if (model == "better-dipole+ss") return 2466;
+  if (model == "quantized") return 8518;
+  return 10890;  // quantized+ss
+}
+
+// The measured grid values bracketing v: {lower, upper}, equal on a grid value; nullopt outside.
+std::optional<std::pair<double, double>> bracket(std::vector<double> grid, double v) {
+  std::sort(grid.begin(), grid.end());
+  grid.erase(std::unique(grid.begin(), grid.end()), grid.end());
+  for (double x : grid)  // a measured value computed by another route (alpha' from sigma_a, sigma_s, g) is that value
+    if (std::abs(v - x) <= 1e-9 * std::max(1.0, std::abs(x))) v = x;
+  if (v < grid.front() || v > grid.back()) return std::nullopt;
+  const auto hi = std::lower_bound(grid.begin(), grid.end(), v);
+  return std::pair{*hi == v ? v : *(hi - 1), *hi};
+}
+
+std::vector<double> axis(double detail::MeasuredCase::*field) {
+  std::vector<double> v;
+  for (const auto& c : detail::kMeasuredCases) v.push_back(c.*field);
+  return v;
+}
+
+}  // namespace
+
+std::optional<std::vector<ModelErrorEstimate>> estimate_model_errors(const Reduced<double>& m) {
+  const auto a = bracket(axis(&detail::MeasuredCase::albedo_prime), std::min(m.albedo_prime, 0.999));
+  const auto e = bracket(axis(&detail::MeasuredCase::eta), m.eta);
+  const auto g = bracket(axis(&detail::MeasuredCase::g), m.g);
+  if (!a || !e || !g) return std::nullopt;
+  const auto in = [](double v, std::pair<double, double> r) { return v == r.first || v == r.second; };
+  std::vector<ModelErrorEstimate> out;
+  for (std::size_t k = 0; k < detail::kCandidateModels; ++k) {
+    ModelErrorEstimate est{std::string(detail::kCandidateNames[k]), cost_ns(detail::kCandidateNames[k])};
+    for (const auto& c : detail::kMeasuredCases)
+      if (in(c.albedo_prime, *a) && in(c.eta, *e) && in(c.g, *g)) {
+        est.total_error = std::max(est.total_error, c.error[k].total);
+        est.profile_error = std::max(est.profile_error, c.error[k].profile);
+      }
+    out.push_back(est);
+  }
+  std::stable_sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.cost_ns < y.cost_ns; });
+  return out;
+}
+
+ModelChoice choose_model(const Medium& medium, double accuracy) {
+  medium.validate();
+  if (!(accuracy > 0) || !std::isfinite(accuracy)) throw InvalidInput("accuracy", format_number(accuracy), "> 0 (relative, e.g. 0.05)");
+  ModelChoice choice;
+  for (std::size_t c = 0; c < medium.channels(); ++c) {
+    const auto m = medium.reduced(c);
+    const auto estimates = estimate_model_errors(m);
+    if (!estimates)
+      throw InvalidInput("channel " + medium.channel_names[c] + " (alpha', eta, g)",
+                         format_number(m.albedo_prime) + ", " + format_number(m.eta) + ", " + format_number(m.g),
+                         "alpha' >= 0.5, 1 <= eta <= 1.4 and 0 <= g <= 0.9, where the models were measured against Monte Carlo; "
+                         "outside it choose the model yourself (bssrdf models)");
+    if (choice.estimates.empty()) {
+      choice.estimates = *estimates;
+      continue;
+    }
+    for (std::size_t k = 0; k < estimates->size(); ++k) {  // same order: sorted by a fixed cost
+      choice.estimates[k].total_error = std::max(choice.estimates[k].total_error, (*estimates)[k].total_error);
+      choice.estimates[k].profile_error = std::max(choice.estimates[k].profile_error, (*estimates)[k].profile_error);
+    }
+  }
+  for (const auto& e : choice.estimates)
+    if (e.error() <= accuracy) {
+      choice.model = e.model;
+      return choice;
+    }
+  const auto best = *std::min_element(choice.estimates.begin(), choice.estimates.end(),
+                                      [](const auto& x, const auto& y) { return x.error() < y.error(); });
+  throw InvalidInput("accuracy", format_number(accuracy),
+                     ">= " + format_number(std::ceil(best.error() * 1000) / 1000) + " for this medium: the most accurate model, " + best.model +
+                         ", was measured within that of the Monte Carlo reference here");
+}
+
+}  // namespace bssrdf

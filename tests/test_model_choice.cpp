@@ -1,0 +1,170 @@
+// Choosing the cheapest model that meets an accuracy (model_choice.hpp): the embedded errors are the
+// committed Monte Carlo validation table, the estimate between measured cases is the worst of the
+// cases around it, the choice is the cheapest within the accuracy, and the chosen model does meet
+// it against a fresh Monte Carlo run at coefficients that were never measured.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "bssrdf/error.hpp"
+#include "bssrdf/layers.hpp"
+#include "bssrdf/materials.hpp"
+#include "bssrdf/model.hpp"
+#include "bssrdf/model_choice.hpp"
+#include "bssrdf/montecarlo.hpp"
+#include "cli_runner.hpp"
+#include "reference_data.hpp"
+
+using namespace bssrdf;
+
+namespace {
+
+// tools/validation/models_vs_montecarlo.tsv, the table validate_models writes.
+const std::vector<test_data::Row>& validation_table() {
+  static const auto rows = test_data::read_tsv("../../tools/validation/models_vs_montecarlo.tsv");
+  return rows;
+}
+
+Medium medium_at(double albedo_prime, double eta, double g) {
+  const double albedo = albedo_from_reduced(albedo_prime, g);
+  return Medium::single_channel(1 - albedo, albedo, g, eta);
+}
+
+}  // namespace
+
+TEST(ModelChoice, EstimatesAtMeasuredCasesAreTheValidationTable) {
+  ASSERT_EQ(validation_table().size(), 36u);
+  for (const auto& row : validation_table()) {
+    const auto m = medium_at(row.at("albedo_prime"), row.at("eta"), row.at("g")).reduced(0);
+    const auto estimates = estimate_model_errors(m);
+    ASSERT_TRUE(estimates.has_value());
+    ASSERT_EQ(estimates->size(), 10u);
+    for (const auto& e : *estimates) {
+      EXPECT_NEAR(e.total_error, std::abs(row.at(e.model + "_total")), 1e-12) << e.model;
+      EXPECT_NEAR(e.profile_error, row.at(e.model + "_l2"), 1e-12) << e.model;
+    }
+    for (std::size_t k = 1; k < estimates->size(); ++k) EXPECT_LE((*estimates)[k - 1].cost_ns, (*estimates)[k].cost_ns);
+  }
+}
+
+TEST(ModelChoice, BetweenCasesTheEstimateIsTheWorstAround) {
+  const auto between = estimate_model_errors(medium_at(0.93, 1.35, 0.5).reduced(0));
+  ASSERT_TRUE(between.has_value());
+  for (const auto& e : *between) {
+    double worst_total = 0, worst_l2 = 0;
+    for (const auto& row : validation_table())
+      if ((row.at("albedo_prime") == 0.9 || row.at("albedo_prime") == 0.95) && (row.at("eta") == 1.3 || row.at("eta") == 1.4)) {
+        worst_total = std::max(worst_total, std::abs(row.at(e.model + "_total")));
+        worst_l2 = std::max(worst_l2, row.at(e.model + "_l2"));
+      }
+    EXPECT_EQ(e.total_error, worst_total) << e.model;
+    EXPECT_EQ(e.profile_error, worst_l2) << e.model;
+  }
+  // Above alpha' 0.999 the 0.999 cases stand in; outside the other ranges there is no estimate.
+  EXPECT_TRUE(estimate_model_errors(medium_at(1.0, 1.3, 0).reduced(0)).has_value());
+  EXPECT_FALSE(estimate_model_errors(medium_at(0.4, 1.3, 0).reduced(0)).has_value());
+  EXPECT_FALSE(estimate_model_errors(medium_at(0.9, 1.5, 0).reduced(0)).has_value());
+  EXPECT_FALSE(estimate_model_errors(medium_at(0.9, 0.9, 0).reduced(0)).has_value());
+  EXPECT_FALSE(estimate_model_errors(medium_at(0.9, 1.3, 0.95).reduced(0)).has_value());
+  EXPECT_FALSE(estimate_model_errors(medium_at(0.9, 1.3, -0.3).reduced(0)).has_value());
+}
+
+TEST(ModelChoice, PicksTheCheapestWithinTheAccuracyForEveryChannel) {
+  const auto db = MaterialDatabase::load(default_materials_dir());
+  const auto& skin = db.find("Skin1").medium;
+  std::string previous;
+  double previous_cost = 1e300;
+  for (double accuracy : {0.1, 0.15, 0.3, 1.0}) {
+    const auto choice = choose_model(skin, accuracy);
+    bool found = false;
+    for (const auto& e : choice.estimates) {
+      if (e.model == choice.model) {
+        EXPECT_LE(e.error(), accuracy);
+        EXPECT_LE(e.cost_ns, previous_cost);  // a looser accuracy never costs more
+        previous_cost = e.cost_ns;
+        found = true;
+        break;
+      }
+      EXPECT_GT(e.error(), accuracy) << e.model << " is cheaper and would do";
+    }
+    EXPECT_TRUE(found);
+    // Worst over channels: no channel alone is estimated worse than the combined figure.
+    for (std::size_t c = 0; c < 3; ++c)
+      for (const auto& e : *estimate_model_errors(skin.reduced(c)))
+        if (e.model == choice.model) EXPECT_LE(e.error(), accuracy);
+  }
+  EXPECT_EQ(choose_model(skin, 0.1).model, "pbd");
+  // Too strict: the message names the best achievable; outside the measured ranges: the channel.
+  try {
+    choose_model(skin, 0.01);
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("pbd"), std::string::npos) << e.what();
+  }
+  try {
+    choose_model(db.find("Marble").medium, 0.1);
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("channel R"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(choose_model(skin, 0), InvalidInput);
+}
+
+// At coefficients no validation case has (alpha' 0.93, eta 1.35), the models chosen for 30 %
+// (burley-dmfp) and 10 % (pbd) meet them against a fresh Monte Carlo run (200k photons, its noise
+// allowed), in the total and in the area-weighted L2 of R(r) over the validation's bins.
+TEST(ModelChoice, TheChosenModelMeetsTheAccuracyAgainstMonteCarlo) {
+  const auto medium = medium_at(0.93, 1.35, 0);
+  const auto m = medium.reduced(0);
+  EXPECT_EQ(choose_model(medium, 0.3).model, "burley-dmfp");
+  EXPECT_EQ(choose_model(medium, 0.1).model, "pbd");
+  for (double accuracy : {0.3, 0.1}) {
+    const auto choice = choose_model(medium, accuracy);
+    const auto model = make_model(choice.model);
+    MonteCarloOptions options;
+    options.photons = 200000;
+    options.seed = 5;
+    options.spacing = BinSpacing::log;
+    options.r_min = 0.01 * m.ell;
+    options.r_max = 30 * m.ell;
+    options.bins = 70;
+    const auto run = run_monte_carlo(LayerStack::half_space(medium), options);
+    const auto entered = run.channels[0].per_entered_flux();
+    const double total = entered.diffuse_reflectance.value, noise = entered.diffuse_reflectance.standard_error;
+    EXPECT_LE(std::abs(model->total_reflectance(m) / total - 1), accuracy + 3 * noise / total) << choice.model;
+    double diff = 0, norm = 0, variance = 0;
+    for (std::size_t i = 0; i < entered.reflectance.size(); ++i) {
+      const double inner = run.bin_inner[i], outer = run.bin_outer[i];
+      const double area = std::numbers::pi * (outer * outer - inner * inner);
+      const double average = (model->cumulative_reflectance(m, outer) - model->cumulative_reflectance(m, inner)) / area;
+      diff += area * std::pow(average - entered.reflectance[i], 2);
+      norm += area * std::pow(entered.reflectance[i], 2);
+      variance += area * std::pow(entered.reflectance_stderr[i], 2);
+    }
+    EXPECT_LE(std::sqrt(diff / norm), accuracy + 3 * std::sqrt(variance / norm)) << choice.model;
+    std::printf("[ measured ] accuracy %g: %s, total %+.1f %%, L2 %.1f %% (Monte Carlo noise %.1f %%)\n", accuracy, choice.model.c_str(),
+                100 * (model->total_reflectance(m) / total - 1), 100 * std::sqrt(diff / norm), 100 * std::sqrt(variance / norm));
+  }
+}
+
+TEST(ModelChoice, CommandLineAutoSaysWhichModelAndWhy) {
+  auto r = test_cli::run("profile --material Skin1 --model auto --samples 8");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("choice    auto: pbd, the cheapest measured within 10 %"), std::string::npos) << r.out;
+  r = test_cli::run("models --material Skin1 --accuracy 0.3");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("<- cheapest within 30 %"), std::string::npos) << r.out;
+  const auto file = test_cli::temp("auto.json");
+  r = test_cli::run("lut --material Skin1 --model auto --accuracy 0.3 -f json -o " + file.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("auto: "), std::string::npos) << r.out;
+  for (const std::string args : {"profile --material Skin1 --model auto --accuracy 0.01", "profile --material Marble --model auto",
+                                 "profile --material Skin1 --accuracy 0.1", "lut --material Skin1 --model auto --accuracy -1 -o x.exr",
+                                 "models --accuracy 0.1", "profile --material Skin1 --model auto --single-scattering"}) {
+    r = test_cli::run(args);
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_EQ(test_cli::count_lines(r.err), 1) << args << ": " << r.err;
+  }
+}
