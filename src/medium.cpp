@@ -10,7 +10,7 @@ namespace bssrdf {
 std::vector<std::string> default_channel_names(std::size_t count) {
   if (count == 3) return {"R", "G", "B"};
   std::vector<std::string> names;
-  for (std::size_t i = 0; i < count; ++i) names.push_back("c" + std::to_string(i));
+  for (std::size_t i = 0; i < count; ++i) names.push_back(std::string("c").append(std::to_string(i)));
   return names;
 }
 

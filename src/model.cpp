@@ -124,8 +124,8 @@ std::unique_ptr<Model> make_model(std::string_view name) {
   if (name == "burley-diffuse") return std::make_unique<normalized_diffusion::Model>(normalized_diffusion::Scaling::diffuse_mfp);
   if (name == "burley-dmfp") return std::make_unique<normalized_diffusion::Model>(normalized_diffusion::Scaling::searchlight_dmfp);
   std::string known;
-  for (const auto& n : model_names()) known += (known.empty() ? "" : ", ") + n;
-  throw InvalidInput("model", "'" + std::string(name) + "'", "one of " + known);
+  for (const auto& n : model_names()) known.append(known.empty() ? "" : ", ").append(n);
+  throw InvalidInput("model", std::string("'").append(name).append("'"), std::string("one of ").append(known));
 }
 
 std::vector<std::string> model_names() {

@@ -10,18 +10,16 @@ namespace bssrdf {
 namespace {
 
 // One R(r) evaluation, ns: bench_models medians on the 2-core development machine (alpha' 0.9,
-// g 0, eta 1.3, 64 radii over 0.01-20 ell). Only their order matters to the choice. NAME+ss adds
-// the exact single scattering at 64 Gauss-Legendre points, dearer than photon beam diffusion,
-// which computes its own at the order its tolerance needs.
+// g 0, eta 1.3, 64 radii over 0.01-20 ell). Only their order matters to the choice.
 double cost_ns(std::string_view model) {
   if (model == "dipole") return 19;
   if (model == "better-dipole") return 26;
-  if (model == "burley" || model == "burley-diffuse" || model == "burley-dmfp") return 27;
-  if (model == "pbd") return 1204;
-  if (model == "dipole+ss") return 2462;
-  if (model == "better-dipole+ss") return 2466;
-  if (model == "quantized") return 8518;
-  return 10890;  // quantized+ss
+  if (model == "burley" || model == "burley-diffuse" || model == "burley-dmfp") return 28;
+  if (model == "dipole+ss") return 530;
+  if (model == "better-dipole+ss") return 540;
+  if (model == "pbd") return 1195;
+  if (model == "quantized") return 8285;
+  return 9069;  // quantized+ss
 }
 
 // The measured grid values bracketing v: {lower, upper}, equal on a grid value; nullopt outside.
