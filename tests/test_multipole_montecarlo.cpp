@@ -1,4 +1,5 @@
-// The multipole against the Monte Carlo reference on the same geometry: a slab at 2 and 8 ell and
+// The multipole against the Monte Carlo reference on the same geometry: a slab at 2 and 8 ell (g = 0
+// and, with the same reduced coefficients, g = 0.9) and
 // two- and three-layer stacks (a thin epidermis-like layer over dermis-like ones). Like with like:
 // per ENTERED flux; R is the MC's diffuse reflectance (single scattering included, as in the
 // adding-doubling comparison of the dipoles), T the MC's total transmittance minus its ballistic
@@ -21,12 +22,12 @@ using namespace bssrdf;
 
 namespace {
 
-Layer layer(double sigma_a, double sigma_s, double n, double thickness, const char* name) {
+Layer layer(double sigma_a, double sigma_s, double n, double thickness, const char* name, double g = 0) {
   Layer l;
   l.name = name;
   l.sigma_a = {sigma_a};
   l.sigma_s = {sigma_s};
-  l.g = {0.0};
+  l.g = {g};
   l.n = n;
   l.thickness = thickness;
   return l;
@@ -92,6 +93,16 @@ TEST(MultipoleMonteCarlo, SlabAtTwoTransportMeanFreePaths) {
 
 TEST(MultipoleMonteCarlo, SlabAtEightTransportMeanFreePaths) {
   compare("slab d = 8 ell", {layer(0.01, 0.99, 1.3, 8.0, "slab")}, 8.0, {0.02, 0.01, 0.11, 0.12});
+}
+
+TEST(MultipoleMonteCarlo, ForwardScatteringSlabAtEightTransportMeanFreePaths) {
+  // The same reduced coefficients with g = 0.9 (sigma_s = 9.9): the multipole sees only sigma_s',
+  // the Monte Carlo the true Henyey-Greenstein phase function.
+  compare("slab d = 8 ell, g = 0.9", {layer(0.01, 9.9, 1.3, 8.0, "slab", 0.9)}, 8.0, {0.02, 0.01, 0.20, 0.12});
+}
+
+TEST(MultipoleMonteCarlo, ForwardScatteringSlabAtTwoTransportMeanFreePaths) {
+  compare("slab d = 2 ell, g = 0.9", {layer(0.01, 9.9, 1.3, 2.0, "slab", 0.9)}, 8.0, {0.02, 0.03, 0.22, 0.18});
 }
 
 TEST(MultipoleMonteCarlo, TwoLayers) {
