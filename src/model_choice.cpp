@@ -61,6 +61,20 @@ std::optional<std::vector<ModelErrorEstimate>> estimate_model_errors(const Reduc
   return out;
 }
 
+std::vector<MeasuredModel> measured_models() {
+  std::vector<MeasuredModel> out;
+  for (std::size_t k = 0; k < detail::kCandidateModels; ++k) {
+    MeasuredModel m{std::string(detail::kCandidateNames[k]), cost_ns(detail::kCandidateNames[k]), {}, {}};
+    for (const auto& c : detail::kMeasuredCases) {
+      m.total_error.push_back(c.error[k].total);
+      m.profile_error.push_back(c.error[k].profile);
+    }
+    out.push_back(std::move(m));
+  }
+  std::stable_sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.cost_ns < y.cost_ns; });
+  return out;
+}
+
 ModelChoice choose_model(const Medium& medium, double accuracy) {
   medium.validate();
   if (!(accuracy > 0) || !std::isfinite(accuracy)) throw InvalidInput("accuracy", format_number(accuracy), "> 0 (relative, e.g. 0.05)");

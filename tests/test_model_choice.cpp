@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "bssrdf/error.hpp"
+#include "bssrdf/io/svg_chart.hpp"
 #include "bssrdf/layers.hpp"
 #include "bssrdf/materials.hpp"
 #include "bssrdf/model.hpp"
@@ -168,4 +169,31 @@ TEST(ModelChoice, CommandLineAutoSaysWhichModelAndWhy) {
     EXPECT_EQ(r.status, 2) << args;
     EXPECT_EQ(test_cli::count_lines(r.err), 1) << args << ": " << r.err;
   }
+}
+
+// The speed-against-accuracy chart: an SVG with every model, placed left to right by cost.
+TEST(ModelChoice, SpeedAgainstAccuracyChart) {
+  const auto file = test_cli::temp("chart.svg");
+  auto r = test_cli::run("models --chart " + file.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto svg = test_cli::slurp(file);
+  EXPECT_EQ(svg.rfind("<svg ", 0), 0u);
+  EXPECT_NE(svg.find("</svg>"), std::string::npos);
+  double previous = 0;
+  for (const auto& m : measured_models()) {
+    const auto at = svg.find(">" + m.model + "</text>");
+    ASSERT_NE(at, std::string::npos) << m.model;
+    const auto x_at = svg.rfind("<text x=\"", at);
+    const double x = std::stod(svg.substr(x_at + 9));
+    EXPECT_GE(x, previous - 1) << m.model;  // labels sit right of their points, in cost order
+    previous = x;
+  }
+  r = test_cli::run("models --material Skin1 --chart " + test_cli::temp("skin.svg").string());
+  EXPECT_EQ(r.status, 0) << r.err;
+  r = test_cli::run("models --chart " + test_cli::temp("chart.png").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_FALSE(std::filesystem::exists(test_cli::temp("chart.png")));
+  Chart bad;
+  bad.series.push_back({"s", "#000", false, {{"p", 0, 1, 0, 0}}});
+  EXPECT_THROW(render_svg(bad), InvalidInput);
 }

@@ -33,6 +33,15 @@ struct ModelErrorEstimate {
 // nullopt outside the measured ranges (alpha' < 0.5, eta outside [1, 1.4], g outside [0, 0.9]).
 std::optional<std::vector<ModelErrorEstimate>> estimate_model_errors(const Reduced<double>& m);
 
+// Every candidate with its cost and its errors in all measured cases (the validation table, in its
+// row order), cheapest first: what a speed-against-accuracy chart shows.
+struct MeasuredModel {
+  std::string model;
+  double cost_ns = 0;
+  std::vector<double> total_error, profile_error;
+};
+std::vector<MeasuredModel> measured_models();
+
 struct ModelChoice {
   std::string model;                          // the cheapest whose error() <= accuracy in every channel
   std::vector<ModelErrorEstimate> estimates;  // worst over the channels, cheapest first

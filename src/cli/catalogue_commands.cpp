@@ -1,10 +1,15 @@
 // bssrdf models: the profile models the tool knows (materials: materials_command.cpp).
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <optional>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "bssrdf/error.hpp"
+#include "bssrdf/io/atomic_file.hpp"
+#include "bssrdf/io/svg_chart.hpp"
 #include "bssrdf/model.hpp"
 #include "bssrdf/model_choice.hpp"
 #include "bssrdf/models/diffusion_validity.hpp"
@@ -50,6 +55,41 @@ void print_estimates(const MediumOptions& options, const std::string& accuracy_t
   if (chosen.empty()) std::cout << "no model is measured within " << format_number(100 * accuracy) << " % here\n";
 }
 
+// Cost against accuracy for every model: over all measured cases (median, whiskers from the best to
+// the worst case), or at one medium's coefficients (its estimates, worst channel).
+Chart speed_accuracy_chart(const std::optional<MediumOptions::Resolved>& medium) {
+  Chart chart;
+  chart.x_title = "cost of one R(r) evaluation, ns (bench_models)";
+  chart.y_title = "relative error against Monte Carlo, %";
+  ChartSeries l2{"R(r) L2 error", "#1f77b4", false, {}}, total{"total error", "#ff7f0e", true, {}};
+  const auto percent = [](double v) { return std::max(100 * v, 0.1); };  // below 0.1 % drawn at 0.1 %
+  if (medium) {
+    const std::string name = medium->material ? medium->material->name : std::string("the given medium");
+    chart.title = "Speed against accuracy: " + name;
+    chart.notes = {"each model's error at these coefficients: the worst measured case around them, worst channel",
+                   "(tools/validation/models_vs_montecarlo.tsv, 2M photons per case); errors below 0.1 % drawn at 0.1 %"};
+    for (const auto& e : choose_model(medium->medium, 1e9).estimates) {
+      l2.points.push_back({e.model, e.cost_ns, percent(e.profile_error), 0, 0});
+      total.points.push_back({"", e.cost_ns, percent(e.total_error), 0, 0});
+    }
+  } else {
+    chart.title = "Speed against accuracy of the profile models";
+    chart.notes = {"markers: medians over 36 Monte Carlo cases (alpha' 0.5-0.999, eta 1-1.4, g 0 and 0.9, 2M photons each);",
+                   "bars: best to worst case of R(r)'s L2 error; errors below 0.1 % drawn at 0.1 % (tools/validation/models_vs_montecarlo.tsv)"};
+    const auto median = [](std::vector<double> v) {
+      std::sort(v.begin(), v.end());
+      return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+    };
+    for (const auto& m : measured_models()) {
+      const auto [l2_lo, l2_hi] = std::minmax_element(m.profile_error.begin(), m.profile_error.end());
+      l2.points.push_back({m.model, m.cost_ns, percent(median(m.profile_error)), percent(*l2_lo), percent(*l2_hi)});
+      total.points.push_back({"", m.cost_ns, percent(median(m.total_error)), 0, 0});
+    }
+  }
+  chart.series = {l2, total};
+  return chart;
+}
+
 }  // namespace
 
 Action register_models(CLI::App& app) {
@@ -61,7 +101,17 @@ Action register_models(CLI::App& app) {
   sub->add_flag("--json", *json, "Print JSON");
   medium->add_to(*sub);
   sub->add_option("--accuracy", *accuracy, "With a medium: relative error allowed (total and R(r) L2) [0.1]");
-  return [json, medium, accuracy] {
+  auto chart = std::make_shared<std::string>();
+  sub->add_option("--chart", *chart, "Write an SVG chart of cost against measured error (over all measured cases, or for the medium)");
+  return [json, medium, accuracy, chart] {
+    if (!chart->empty()) {
+      if (std::filesystem::path(*chart).extension() != ".svg") throw InvalidInput("--chart", "'" + *chart + "'", "a file ending in .svg");
+      std::optional<MediumOptions::Resolved> resolved;
+      if (!medium->material.empty() || !medium->sigma_a.empty()) resolved = medium->resolve();
+      write_file_atomically(*chart, render_svg(speed_accuracy_chart(resolved)));
+      std::cout << "chart: " << *chart << '\n';
+      return;
+    }
     if (!medium->material.empty() || !medium->sigma_a.empty()) return print_estimates(*medium, *accuracy, *json);
     if (!accuracy->empty()) throw InvalidInput("--accuracy: give a medium (--material or --sigma-a/--sigma-s) too");
     nlohmann::json list = nlohmann::json::array();
