@@ -47,6 +47,11 @@ std::optional<std::vector<ModelErrorEstimate>> estimate_model_errors(const Reduc
   const auto g = bracket(axis(&detail::MeasuredCase::g), m.g);
   if (!a || !e || !g) return std::nullopt;
   const auto in = [](double v, std::pair<double, double> r) { return v == r.first || v == r.second; };
+  // Every corner around the coefficients must have been measured, or there is no estimate.
+  const auto corners = [](std::pair<double, double> r) { return r.first == r.second ? 1u : 2u; };
+  std::size_t matched = 0;
+  for (const auto& c : detail::kMeasuredCases) matched += in(c.albedo_prime, *a) && in(c.eta, *e) && in(c.g, *g);
+  if (matched != corners(*a) * corners(*e) * corners(*g)) return std::nullopt;
   std::vector<ModelErrorEstimate> out;
   for (std::size_t k = 0; k < detail::kCandidateModels; ++k) {
     ModelErrorEstimate est{std::string(detail::kCandidateNames[k]), cost_ns(detail::kCandidateNames[k])};
@@ -85,7 +90,7 @@ ModelChoice choose_model(const Medium& medium, double accuracy) {
     if (!estimates)
       throw InvalidInput("channel " + medium.channel_names[c] + " (alpha', eta, g)",
                          format_number(m.albedo_prime) + ", " + format_number(m.eta) + ", " + format_number(m.g),
-                         "alpha' >= 0.5, 1 <= eta <= 1.4 and 0 <= g <= 0.9, where the models were measured against Monte Carlo; "
+                         "alpha' >= 0.5, 1 <= eta <= 1.5 and 0 <= g <= 0.95, where the models were measured against Monte Carlo; "
                          "outside it choose the model yourself (bssrdf models)");
     if (choice.estimates.empty()) {
       choice.estimates = *estimates;

@@ -1,9 +1,9 @@
 // Picking a model by accuracy and cost instead of by habit: the cheapest model whose measured error
 // against the Monte Carlo reference meets a stated accuracy at the medium's coefficients.
 //
-// The errors come from tools/validation/models_vs_montecarlo.tsv (validate_models: 36 cases,
-// alpha' 0.5-0.999 x eta 1, 1.3, 1.4 x g 0, 0.9, 2M photons each, Monte Carlo noise about 1.5 % in
-// L2), embedded in the library. At given coefficients a model's error is the worst over the
+// The errors come from tools/validation/models_vs_montecarlo_extended.tsv (validate_models: 72
+// cases, alpha' 0.5-0.999 x eta 1, 1.3, 1.4, 1.5 x g 0, 0.9, 0.95, 2M photons each, Monte Carlo
+// noise about 1.5 % in L2), embedded in the library. At given coefficients a model's error is the worst over the
 // measured cases that bracket them in alpha', eta and g (not interpolated: conservative); alpha'
 // above 0.999 uses the 0.999 cases. Its cost is one R(r) evaluation measured by bench_models.
 // Outside the measured ranges there is no estimate and no choice.
@@ -30,7 +30,7 @@ struct ModelErrorEstimate {
 };
 
 // Every candidate model, cheapest first, with its estimated errors at these coefficients;
-// nullopt outside the measured ranges (alpha' < 0.5, eta outside [1, 1.4], g outside [0, 0.9]).
+// nullopt outside the measured ranges (alpha' < 0.5, eta outside [1, 1.5], g outside [0, 0.95]).
 std::optional<std::vector<ModelErrorEstimate>> estimate_model_errors(const Reduced<double>& m);
 
 // Every candidate with its cost and its errors in all measured cases (the validation table, in its

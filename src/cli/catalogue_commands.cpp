@@ -67,15 +67,16 @@ Chart speed_accuracy_chart(const std::optional<MediumOptions::Resolved>& medium)
     const std::string name = medium->material ? medium->material->name : std::string("the given medium");
     chart.title = "Speed against accuracy: " + name;
     chart.notes = {"each model's error at these coefficients: the worst measured case around them, worst channel",
-                   "(tools/validation/models_vs_montecarlo.tsv, 2M photons per case); errors below 0.1 % drawn at 0.1 %"};
+                   "(tools/validation/models_vs_montecarlo_extended.tsv, 2M photons per case); errors below 0.1 % drawn at 0.1 %"};
     for (const auto& e : choose_model(medium->medium, 1e9).estimates) {
       l2.points.push_back({e.model, e.cost_ns, percent(e.profile_error), 0, 0});
       total.points.push_back({"", e.cost_ns, percent(e.total_error), 0, 0});
     }
   } else {
     chart.title = "Speed against accuracy of the profile models";
-    chart.notes = {"markers: medians over 36 Monte Carlo cases (alpha' 0.5-0.999, eta 1-1.4, g 0 and 0.9, 2M photons each);",
-                   "bars: best to worst case of R(r)'s L2 error; errors below 0.1 % drawn at 0.1 % (tools/validation/models_vs_montecarlo.tsv)"};
+    chart.notes = {"markers: medians over " + std::to_string(measured_models().front().profile_error.size()) +
+                       " Monte Carlo cases (alpha' 0.5-0.999, eta 1-1.5, g 0, 0.9, 0.95, 2M photons each);",
+                   "bars: best to worst case of R(r)'s L2 error; errors below 0.1 % drawn at 0.1 % (models_vs_montecarlo_extended.tsv)"};
     const auto median = [](std::vector<double> v) {
       std::sort(v.begin(), v.end());
       return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);

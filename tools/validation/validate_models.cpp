@@ -10,7 +10,10 @@
 // Model values are bin averages (from cumulative_reflectance), compared with the bin tallies.
 // Also the single-scattering total against the Monte Carlo single-scattering tally.
 //
-//   validate_models [photons=200000] [out.tsv]
+//   validate_models [photons=200000] [out.tsv] [g list=0,0.9] [eta list=1,1.3,1.4] [alpha' list]
+// models_vs_montecarlo.tsv is the default grid (issue 5's table); the table embedded for --model auto
+// by embed_model_errors.py is `validate_models 2000000 models_vs_montecarlo_extended.tsv
+// 0,0.9,0.95 1,1.3,1.4,1.5` (72 cases, about 7 minutes on 2 cores).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -30,6 +33,14 @@ using namespace bssrdf;
 int main(int argc, char** argv) {
   const std::uint64_t photons = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 200000;
   const std::string tsv_path = argc > 2 ? argv[2] : "validation_models.tsv";
+  const auto list = [](const char* text) {
+    std::vector<double> v;
+    for (char* end = nullptr; *text; text = *end ? end + 1 : end) v.push_back(std::strtod(text, &end));
+    return v;
+  };
+  const auto gs = argc > 3 ? list(argv[3]) : std::vector<double>{0.0, 0.9};
+  const auto etas = argc > 4 ? list(argv[4]) : std::vector<double>{1.0, 1.3, 1.4};
+  const auto albedos = argc > 5 ? list(argv[5]) : std::vector<double>{0.5, 0.8, 0.9, 0.95, 0.99, 0.999};
   const std::vector<std::string> models = {"dipole", "dipole+ss", "better-dipole", "better-dipole+ss", "pbd",
                                            "quantized", "quantized+ss", "burley", "burley-diffuse", "burley-dmfp"};
   std::ofstream tsv(tsv_path);
@@ -42,9 +53,9 @@ int main(int argc, char** argv) {
   for (std::size_t i = 0; i < models.size(); ++i) std::printf(" %16s", "tot/near/far %");
   std::printf("\n");
 
-  for (double g : {0.0, 0.9})
-    for (double eta : {1.0, 1.3, 1.4})
-      for (double ap : {0.5, 0.8, 0.9, 0.95, 0.99, 0.999}) {
+  for (double g : gs)
+    for (double eta : etas)
+      for (double ap : albedos) {
         const double albedo = albedo_from_reduced(ap, g);
         const auto medium = Medium::single_channel(1 - albedo, albedo, g, eta);
         const auto m = medium.reduced(0);
@@ -70,7 +81,7 @@ int main(int argc, char** argv) {
           noise += area[i] * mc.reflectance_stderr[i] * mc.reflectance_stderr[i];
           (result.bin_outer[i] <= m.ell ? near_norm : far_norm) += area[i] * mc.reflectance[i] * mc.reflectance[i];
         }
-        std::printf("%-6.3f %-4.1f %-4.1f %.4f±%.4f %+8.1f ", ap, eta, g, mc.diffuse_reflectance.value,
+        std::printf("%-6.3f %-4.2f %-4.2f %.4f±%.4f %+8.1f ", ap, eta, g, mc.diffuse_reflectance.value,
                     mc.diffuse_reflectance.standard_error, ss_dev);
         tsv << ap << '\t' << eta << '\t' << g << '\t' << mc.diffuse_reflectance.value << '\t'
             << mc.diffuse_reflectance.standard_error << '\t' << mc.single_scattering_reflectance.value << '\t'
