@@ -181,14 +181,17 @@ TEST(ModelChoice, SpeedAgainstAccuracyChart) {
   const auto svg = test_cli::slurp(file);
   EXPECT_EQ(svg.rfind("<svg ", 0), 0u);
   EXPECT_NE(svg.find("</svg>"), std::string::npos);
+  for (const auto& m : measured_models()) EXPECT_NE(svg.find(">" + m.model + "</text>"), std::string::npos) << m.model;
+  // The first series' markers come in the models' cost order: left to right.
   double previous = 0;
-  for (const auto& m : measured_models()) {
-    const auto at = svg.find(">" + m.model + "</text>");
-    ASSERT_NE(at, std::string::npos) << m.model;
-    const auto x_at = svg.rfind("<text x=\"", at);
-    const double x = std::stod(svg.substr(x_at + 9));
-    EXPECT_GE(x, previous - 1) << m.model;  // labels sit right of their points, in cost order
+  std::size_t at = 0;
+  for (std::size_t k = 0; k < measured_models().size(); ++k) {
+    at = svg.find("<circle cx=\"", at);
+    ASSERT_NE(at, std::string::npos);
+    const double x = std::stod(svg.substr(at + 12));
+    EXPECT_GE(x, previous) << k;
     previous = x;
+    ++at;
   }
   r = test_cli::run("models --material Skin1 --chart " + test_cli::temp("skin.svg").string());
   EXPECT_EQ(r.status, 0) << r.err;

@@ -95,23 +95,28 @@ std::string render_svg(const Chart& chart) {
       << escape(chart.x_title) << "</text>\n"
       << "<text transform=\"translate(20 " << number(0.5 * (Y.from + Y.to)) << ") rotate(-90)\" text-anchor=\"middle\">" << escape(chart.y_title)
       << "</text>\n";
-  // Labels right of their points, moved down a line at a time until they overlap no earlier label.
+  // Labels beside their points: right, else left, else a line lower on the right, and so on, at the
+  // first place that overlaps no earlier label or marker.
   struct Box {
     double x0, y0, x1, y1;
   };
   std::vector<Box> placed;
+  for (const auto& s : chart.series)
+    for (const auto& p : s.points) placed.push_back({X.at(p.x) - 5, Y.at(p.y) - 5, X.at(p.x) + 5, Y.at(p.y) + 5});
   const auto place = [&](double x, double y, const std::string& text) {
-    Box b{x + 8, y - 8, x + 8 + 6.6 * static_cast<double>(text.size()), y + 5};
-    for (int tries = 0; tries < 12; ++tries) {
-      const bool clear = std::none_of(placed.begin(), placed.end(), [&](const Box& o) {
-        return b.x0 < o.x1 && o.x0 < b.x1 && b.y0 < o.y1 && o.y0 < b.y1;
-      });
-      if (clear) break;
-      b.y0 += 13;
-      b.y1 += 13;
+    const double w = 6.6 * static_cast<double>(text.size());
+    const auto clear = [&](const Box& b) {
+      return std::none_of(placed.begin(), placed.end(), [&](const Box& o) { return b.x0 < o.x1 && o.x0 < b.x1 && b.y0 < o.y1 && o.y0 < b.y1; });
+    };
+    Box chosen{x + 8, y - 8, x + 8 + w, y + 5};
+    for (int line = 0; line < 12; ++line) {
+      const double dy = 13.0 * (line % 2 ? -(line + 1) / 2 : line / 2);
+      const Box right{x + 8, y - 8 + dy, x + 8 + w, y + 5 + dy}, left{x - 8 - w, y - 8 + dy, x - 8, y + 5 + dy};
+      if (clear(right)) { chosen = right; break; }
+      if (left.x0 > kLeft && clear(left)) { chosen = left; break; }
     }
-    placed.push_back(b);
-    return std::pair{b.x0, b.y1 - 1};
+    placed.push_back(chosen);
+    return std::pair{chosen.x0, chosen.y1 - 1};
   };
   for (const auto& s : chart.series)
     for (const auto& p : s.points) {
@@ -125,6 +130,11 @@ std::string render_svg(const Chart& chart) {
         svg << "<circle cx=\"" << number(x) << "\" cy=\"" << number(y) << "\" r=\"4.5\" fill=\"" << s.colour << "\"/>\n";
       if (!p.label.empty()) {
         const auto [lx, ly] = place(x, y, p.label);
+        if (std::abs(ly - 5 - y) > 6) {  // moved away from its point: a leader line back to it
+          const double edge = lx > x ? lx - 2 : lx + 6.6 * static_cast<double>(p.label.size()) + 2;
+          svg << "<line x1=\"" << number(x) << "\" y1=\"" << number(y) << "\" x2=\"" << number(edge) << "\" y2=\"" << number(ly - 5)
+              << "\" stroke=\"#999\" stroke-width=\"0.7\"/>\n";
+        }
         svg << "<text x=\"" << number(lx) << "\" y=\"" << number(ly) << "\" fill=\"#222\">" << escape(p.label) << "</text>\n";
       }
     }
