@@ -110,14 +110,9 @@ GaussianMixtureTable fitted_mixture_table(const Medium& medium, const Model& mod
 }
 
 LookupTable to_lookup_table(const GaussianMixtureTable& t, const TableContext& context) {
-  LookupTable out;
-  out.kind = "gaussians";
-  out.width = t.count();
-  out.height = 1;
+  auto out = described_table("gaussians", t.count(), 1, context);
   const double mm = millimetres_per(context.unit);
   const std::string u(symbol(context.unit));
-  describe(out, context);
-  out.set("bssrdf:unit", u);
   out.set("bssrdf:method", t.method);
   out.set("bssrdf:formula", "R(r) = sum_k w_k G2(v_k, r), G2(v, r) = exp(-r^2 / (2 v)) / (2 pi v); r in " + u + ", v in " + u +
                                 "^2, R per entered flux");

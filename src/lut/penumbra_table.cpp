@@ -54,14 +54,9 @@ PenumbraTable build_penumbra_table(const Medium& medium, const Model& model, con
 }
 
 LookupTable to_lookup_table(const PenumbraTable& t, const TableContext& context) {
-  LookupTable out;
-  out.kind = "penumbra";
-  out.width = t.options.width;
-  out.height = t.options.height;
+  auto out = described_table("penumbra", t.options.width, t.options.height, context);
   const double mm = millimetres_per(context.unit);
   const std::string u(symbol(context.unit));
-  describe(out, context);
-  out.set("bssrdf:unit", u);
   out.set("bssrdf:formula", std::string("D(s, w) = int L(X) R_line(p - X) dX / int R_line, L(X) = clamp(X / w + 1/2, 0, 1), p = (s - 1/2) w: "
                                         "a light ramp across a penumbra of width w convolved with the profile's line projection "
                                         "(Penner 2011's shadow LUT, without his artistic sharpening)"));

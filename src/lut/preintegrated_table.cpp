@@ -105,14 +105,9 @@ PreintegratedTable build_preintegrated_table(const Medium& medium, const Model& 
 }
 
 LookupTable to_lookup_table(const PreintegratedTable& t, const TableContext& context) {
-  LookupTable out;
-  out.kind = "preintegrated";
-  out.width = t.options.width;
-  out.height = t.options.height;
+  auto out = described_table("preintegrated", t.options.width, t.options.height, context);
   const double mm = millimetres_per(context.unit);
   const std::string u(symbol(context.unit));
-  describe(out, context);
-  out.set("bssrdf:unit", u);
   out.set("bssrdf:formula", std::string("D(theta, r) = int max(0, cos(theta + x)) R_ring(2 r sin(x/2)) dx / int R_ring(2 r sin(x/2)) dx "
                                         "over x in [-pi, pi] (Penner 2011); R_ring(d) = int R(sqrt(d^2 + y^2)) dy, the profile's "
                                         "cross-section through the ring"));

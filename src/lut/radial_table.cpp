@@ -391,10 +391,7 @@ RadialTable build_radial_table(const Medium& medium, const Model& model, const R
 }
 
 LookupTable to_lookup_table(const RadialTable& t, const TableContext& context) {
-  LookupTable out;
-  out.kind = "radial";
-  out.width = t.size();
-  out.height = 1;
+  auto out = described_table("radial", t.size(), 1, context);
   const double mm = millimetres_per(context.unit);
   const std::string u(symbol(context.unit));
   const auto scaled = [](const std::vector<double>& v, double s) {
@@ -402,8 +399,6 @@ LookupTable to_lookup_table(const RadialTable& t, const TableContext& context) {
     for (auto& x : o) x *= s;
     return o;
   };
-  describe(out, context);
-  out.set("bssrdf:unit", u);
   out.set("bssrdf:distance", "radius r on the surface from the point of incidence, in " + u);
   out.set("bssrdf:normalization",
           std::string("per_entered_flux: R(r) is the exitance at r from a normally incident pencil beam per unit flux that entered the medium"));

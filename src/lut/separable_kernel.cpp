@@ -73,14 +73,9 @@ SeparableKernel build_separable_kernel(const Medium& medium, const Model& model,
 }
 
 LookupTable to_lookup_table(const SeparableKernel& k, const TableContext& context) {
-  LookupTable out;
-  out.kind = "separable";
-  out.width = k.offset.size();
-  out.height = 1;
+  auto out = described_table("separable", k.offset.size(), 1, context);
   const double mm = millimetres_per(context.unit);
   const std::string u(symbol(context.unit));
-  describe(out, context);
-  out.set("bssrdf:unit", u);
   out.set("bssrdf:taps", static_cast<int>(k.offset.size()));
   out.set("bssrdf:range", k.options.range / mm);
   out.set("bssrdf:range_unit", u);

@@ -44,4 +44,14 @@ void describe(LookupTable& table, const TableContext& context) {
   }
 }
 
+LookupTable described_table(std::string kind, std::size_t width, std::size_t height, const TableContext& context) {
+  LookupTable out;
+  out.kind = std::move(kind);
+  out.width = width;
+  out.height = height;
+  describe(out, context);
+  out.set("bssrdf:unit", std::string(symbol(context.unit)));
+  return out;
+}
+
 }  // namespace bssrdf

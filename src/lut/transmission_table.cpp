@@ -109,16 +109,11 @@ LookupTable to_lookup_table(const TransmissionTable& t, const TableContext& cont
     throw InvalidInput("thickness", "every thickness", "one where the multipole holds (" + why +
                                                            "), or --reference for the Monte Carlo reference there");
   }
-  LookupTable out;
-  out.kind = "transmission";
-  out.width = t.size();
-  out.height = 1;
+  auto out = described_table("transmission", t.size(), 1, context);
   const double mm = millimetres_per(context.unit);
   const std::string u(symbol(context.unit));
-  describe(out, context);
   bool any_mc = false, any_multipole = false;
   for (auto s : t.source) (s == TransmissionSource::monte_carlo ? any_mc : any_multipole) = true;
-  out.set("bssrdf:unit", u);
   out.set("bssrdf:distance", "slab thickness d, in " + u);
   out.set("bssrdf:normalization",
           std::string("per_entered_flux: diffuse total transmittance T(d) = flux leaving the bottom face after at least "

@@ -25,4 +25,7 @@ struct TableContext {
 // 1/unit), and bssrdf:normalization.
 void describe(LookupTable& table, const TableContext& context);
 
+// A width x height table of `kind`, described, with bssrdf:unit naming the context's length unit.
+LookupTable described_table(std::string kind, std::size_t width, std::size_t height, const TableContext& context);
+
 }  // namespace bssrdf
