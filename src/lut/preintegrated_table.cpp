@@ -17,6 +17,9 @@ void PreintegratedOptions::validate() const {
   if (!(curvature_max >= 0) || !std::isfinite(curvature_max))
     throw InvalidInput("curvature_max", format_number(curvature_max), "> 0 (0: default)");
   if (threads > 4096) throw InvalidInput("threads", std::to_string(threads), "0 (all cores) to 4096");
+  if (!(ring_nodes_per_decade >= 4 && ring_nodes_per_decade <= 1024))
+    throw InvalidInput("ring_nodes_per_decade", format_number(ring_nodes_per_decade), "4 to 1024");
+  if (!(ring_step > 0 && ring_step <= 0.1)) throw InvalidInput("ring_step", format_number(ring_step), "0 < step <= 0.1");
 }
 
 PreintegratedTable build_preintegrated_table(const Medium& medium, const Model& model, const PreintegratedOptions& options) {
@@ -47,9 +50,9 @@ PreintegratedTable build_preintegrated_table(const Medium& medium, const Model& 
     const double radius = 1 / t.curvature[j];
     // Nodes in x in (0, pi]: geometric from the profile's smallest scale (chord r x) to 0.1, then uniform.
     std::vector<double> x;
-    const double x_lo = std::min(1e-3, r_min / radius), h = std::log(10.0) / 64;
+    const double x_lo = std::min(1e-3, r_min / radius), h = std::log(10.0) / options.ring_nodes_per_decade;
     for (double v = x_lo; v < 0.1; v *= std::exp(h)) x.push_back(v);
-    const double step = 0.005;
+    const double step = options.ring_step;
     const auto n_uniform = static_cast<std::size_t>(std::ceil((std::numbers::pi - 0.1) / step));
     for (std::size_t k = 0; k <= n_uniform; ++k) x.push_back(0.1 + (std::numbers::pi - 0.1) * static_cast<double>(k) / static_cast<double>(n_uniform));
     const std::size_t K = x.size();
