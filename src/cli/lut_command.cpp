@@ -21,6 +21,8 @@
 #include "bssrdf/lut/material_preview.hpp"
 #include "bssrdf/lut/penumbra_table.hpp"
 #include "bssrdf/lut/preintegrated_table.hpp"
+#include "bssrdf/lut/reference_radial_table.hpp"
+#include "bssrdf/io/layers_json.hpp"
 #include "bssrdf/lut/radial_table.hpp"
 #include "bssrdf/lut/separable_kernel.hpp"
 #include "bssrdf/lut/transmission_table.hpp"
@@ -39,11 +41,13 @@ struct LutOptions {
   std::string output, format, output_dir, layout = "pbrt", size, table_tolerance;
   bool half = false, all = false, quiet = false;
   unsigned threads = 1;
-  bool model_given = false;  // --model appeared on the command line
+  bool model_given = false;    // --model appeared on the command line
+  bool photons_given = false;  // --photons appeared on the command line
   // transmission
   std::string thickness, d_min, d_max;
   int samples = 32;
   bool reference = false, reference_everywhere = false;
+  std::string layers;  // radial --reference: a layer stack file instead of a medium
   std::uint64_t photons = 100'000, seed = 1;
   // preintegrated, penumbra
   std::string curvature_max, width_max;
@@ -406,12 +410,38 @@ std::string format_for(const LutOptions& o, const std::string& path) {
   throw InvalidInput("-o", "'" + path + "'", "a file ending in .exr, .json, .csv, .glsl or .hlsl (or give --format)");
 }
 
+// --kind radial --reference: the Monte Carlo reference tabulated, for a medium or a layer stack.
+Built build_reference_radial(const LutOptions& o, const LayerStack& stack, const TableContext& context) {
+  if (o.model_given || !o.accuracy.empty())
+    throw InvalidInput("--reference: the table is the Monte Carlo reference, not a model (give no --model or --accuracy)");
+  ReferenceRadialOptions options;
+  options.photons = o.photons_given ? o.photons : 1'000'000;
+  options.seed = o.seed;
+  options.threads = o.threads;
+  const auto t = build_reference_radial_table(stack, options);
+  const double mm = millimetres_per(context.unit);
+  const std::string u(symbol(context.unit));
+  std::ostringstream s;
+  s << "radial table from the Monte Carlo reference: " << t.size() << " bins from " << short_number(t.r_outer.front() / mm) << " to "
+    << short_number(t.r_outer.back() / mm) << ' ' << u << " (logarithmic), " << options.photons << " photons per channel, seed " << options.seed
+    << "; values are bin averages with standard errors (stderr.<c>)\n";
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
+    s << "  " << t.channel_names[c] << ": total reflectance " << short_number(t.total_reflectance[c]) << " +- "
+      << short_number(t.total_stderr[c]) << ", " << short_number(100 * (t.total_reflectance[c] > 0 ? t.table_reflectance[c] / t.total_reflectance[c] : 1))
+      << " % of it inside the table\n";
+  auto table = to_lookup_table(t, context);
+  if (!o.layers.empty()) table.set("bssrdf:layers", o.layers + " (" + std::to_string(stack.layers.size()) + " layers)");
+  return {std::move(table), s.str(), {}};
+}
+
 // The table of --kind for the medium; --model auto is resolved here and says so in the summary.
 Built build(const LutOptions& o, const MediumOptions::Resolved& resolved) {
   if (o.kind == "transmission") {
     if (!o.accuracy.empty()) throw InvalidInput("--accuracy: only with --model auto (transmission tables use the multipole)");
     return build_transmission(o, resolved);
   }
+  if (o.kind == "radial" && o.reference)
+    return build_reference_radial(o, LayerStack::half_space(resolved.medium), {resolved.material, &resolved.medium, nullptr, resolved.unit});
   const auto chosen = resolve_model(o.model, o.accuracy, resolved.medium);
   auto built = build_with(o, resolved, make_model(chosen.name));
   if (!chosen.note.empty()) built.summary = chosen.note + "\n" + built.summary;
@@ -458,9 +488,13 @@ Action register_lut(CLI::App& app) {
   sub->add_option("--d-min", o->d_min, "transmission: smallest thickness [half the smallest transport mfp]");
   sub->add_option("--d-max", o->d_max, "transmission: largest thickness [40 of the largest transport mfp]");
   sub->add_option("--samples", o->samples, "transmission: thicknesses, log-spaced from --d-min to --d-max [32]");
-  sub->add_flag("--reference", o->reference, "transmission: Monte Carlo reference where the multipole is invalid (else omitted)");
+  sub->add_flag("--reference", o->reference,
+                "radial: tabulate the Monte Carlo reference instead of a model (bins with standard errors; --photons, default 1e6); "
+                "transmission: Monte Carlo where the multipole is invalid (else omitted)");
+  sub->add_option("--layers", o->layers, "radial --reference: a layer stack file (bssrdf-layers JSON, as for 'bssrdf reference --layers')");
   sub->add_flag("--reference-everywhere", o->reference_everywhere, "transmission: Monte Carlo reference at every thickness");
-  sub->add_option("--photons", o->photons, "transmission: Monte Carlo photons per channel and thickness [100000]");
+  auto* photons_option = sub->add_option("--photons", o->photons,
+                                         "Monte Carlo photons per channel: per thickness for transmission [100000], for radial --reference [1000000]");
   sub->add_option("--seed", o->seed, "transmission: Monte Carlo seed [1]");
   sub->add_option("--preview", o->preview, "Also (or, without -o, only) write a PNG preview of the material: shadow-edge swatch + colour falloff");
   sub->add_option("--taps", o->taps, "separable: number of taps, odd, >= 3 (Jimenez: 11, 17, 25) [17]");
@@ -471,8 +505,9 @@ Action register_lut(CLI::App& app) {
   sub->add_option("--curvature-max", o->curvature_max, "preintegrated: largest curvature 1/r, in 1/--unit [1/r_50 of the widest channel]");
   sub->add_option("--width-max", o->width_max, "penumbra: widest penumbra, in --unit [8 r_50 of the widest channel]");
 
-  return [o, model_option] {
+  return [o, model_option, photons_option] {
     o->model_given = model_option->count() > 0;
+    o->photons_given = photons_option->count() > 0;
     if (o->all) {
       if (!o->medium.material.empty() || !o->medium.sigma_a.empty())
         throw InvalidInput("--all: give no --material or coefficients with --all");
@@ -553,7 +588,16 @@ Action register_lut(CLI::App& app) {
     if (o->output.empty()) throw InvalidInput("-o: give an output file (.exr, .json, .csv), or --preview FILE.png");
     const std::string format = format_for(*o, o->output);
     const auto start = std::chrono::steady_clock::now();
-    const auto built = o->kind == "albedo-radius" ? build_albedo_radius(*o) : build(*o, o->medium.resolve());
+    Built built;
+    if (!o->layers.empty()) {
+      if (o->kind != "radial" || !o->reference) throw InvalidInput("--layers: only with --kind radial --reference (Monte Carlo)");
+      if (!o->medium.material.empty() || !o->medium.sigma_a.empty()) throw InvalidInput("--layers: give no --material or coefficients with it");
+      const auto file = read_layers_json(o->layers);
+      const auto unit = o->medium.unit.empty() || o->medium.unit == "mm" ? file.unit : parse_length_unit(o->medium.unit, "--unit");
+      built = build_reference_radial(*o, file.stack, {std::nullopt, nullptr, nullptr, unit});
+    } else {
+      built = o->kind == "albedo-radius" ? build_albedo_radius(*o) : build(*o, o->medium.resolve());
+    }
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     write_file_atomically(o->output, encode(built, format, o->half));
     if (!o->quiet)

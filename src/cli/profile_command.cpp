@@ -109,7 +109,7 @@ Action register_profile(CLI::App& app) {
         if (const auto report = layered::Stack(stack_file->stack, c).validity(); const auto* note = breakdown(report))
           throw InvalidInput("--layers " + options->layers + ": channel " + stack_file->stack.channel_names[c] + ": " +
                              note->message + "; use 'bssrdf reference --layers " + options->layers +
-                             "' (Monte Carlo) for thin layers");
+                             "' (Monte Carlo) for thin layers, or 'bssrdf lut --layers FILE --kind radial --reference' for a table");
     } else if (slab) {
       const double d = parse_number(options->thickness, "--thickness");
       if (!(d > 0)) throw InvalidInput("--thickness", options->thickness, "> 0");

@@ -1,0 +1,123 @@
+#include "bssrdf/lut/reference_radial_table.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "bssrdf/error.hpp"
+#include "bssrdf/montecarlo.hpp"
+
+namespace bssrdf {
+
+ReferenceRadialTable build_reference_radial_table(const LayerStack& stack, const ReferenceRadialOptions& options) {
+  stack.validate();
+  if (options.bins < 4 || options.bins > 4096) throw InvalidInput("bins", std::to_string(options.bins), "4 to 4096");
+  if (options.photons < 1000) throw InvalidInput("photons", std::to_string(options.photons), ">= 1000");
+  double ell_min = INFINITY, ell_max = 0;
+  for (const auto& layer : stack.layers)
+    for (std::size_t c = 0; c < stack.channels(); ++c) {
+      const double sigma_t_prime = layer.sigma_a[c] + layer.sigma_s[c] * (1 - layer.g[c]);
+      if (!(sigma_t_prime > 0)) continue;
+      ell_min = std::min(ell_min, 1 / sigma_t_prime);
+      ell_max = std::max(ell_max, 1 / sigma_t_prime);
+    }
+  if (!(ell_max > 0)) throw InvalidInput("layers", "no attenuation in any layer or channel", "sigma_a + sigma_s > 0 somewhere");
+  MonteCarloOptions mc;
+  mc.photons = options.photons;
+  mc.seed = options.seed;
+  mc.threads = options.threads;
+  mc.spacing = BinSpacing::log;
+  mc.bins = options.bins;
+  mc.r_min = 1e-3 * ell_min;
+  mc.r_max = std::max(30 * ell_max, 10 * mc.r_min);
+  const auto run = run_monte_carlo(stack, mc);
+
+  ReferenceRadialTable t;
+  t.options = options;
+  t.channel_names = stack.channel_names;
+  t.r_inner = run.bin_inner;
+  t.r_outer = run.bin_outer;
+  t.radius = run.bin_radius;
+  const std::size_t N = t.size();
+  for (std::size_t j = 0; j < N; ++j) t.u.push_back(static_cast<double>(j) / static_cast<double>(N - 1));
+  for (const auto& per_incident : run.channels) {
+    const auto c = per_incident.per_entered_flux();
+    std::vector<double> ring(N), cum(N), cdf(N), inverse(N);
+    double sum = 0;
+    for (std::size_t j = 0; j < N; ++j) {
+      ring[j] = 2 * std::numbers::pi * t.radius[j] * c.reflectance[j];
+      sum += std::numbers::pi * (t.r_outer[j] * t.r_outer[j] - t.r_inner[j] * t.r_inner[j]) * c.reflectance[j];
+      cum[j] = sum;
+    }
+    for (std::size_t j = 0; j < N; ++j) cdf[j] = sum > 0 ? cum[j] / sum : 1.0;
+    // Inverse CDF: linear in (cdf, ln r) between bin edges; inside the first bin linear in r.
+    for (std::size_t j = 0; j < N; ++j) {
+      const double target = t.u[j];
+      if (!(sum > 0)) break;  // no light: inverse_cdf stays 0 (all at r = 0)
+      if (target <= cdf[0]) {
+        inverse[j] = t.r_outer[0] * target / cdf[0];
+        continue;
+      }
+      const auto i = std::min<std::size_t>(N - 1, static_cast<std::size_t>(std::lower_bound(cdf.begin(), cdf.end(), target) - cdf.begin()));
+      const double s = cdf[i] > cdf[i - 1] ? (target - cdf[i - 1]) / (cdf[i] - cdf[i - 1]) : 1.0;
+      inverse[j] = std::exp(std::log(t.r_outer[i - 1]) + s * (std::log(t.r_outer[i]) - std::log(t.r_outer[i - 1])));
+    }
+    if (sum > 0) inverse[N - 1] = t.r_outer[N - 1];
+    t.reflectance.push_back(c.reflectance);
+    t.reflectance_stderr.push_back(c.reflectance_stderr);
+    t.ring.push_back(std::move(ring));
+    t.cdf.push_back(std::move(cdf));
+    t.inverse_cdf.push_back(std::move(inverse));
+    t.total_reflectance.push_back(c.diffuse_reflectance.value);
+    t.total_stderr.push_back(c.diffuse_reflectance.standard_error);
+    t.table_reflectance.push_back(sum);
+  }
+  return t;
+}
+
+LookupTable to_lookup_table(const ReferenceRadialTable& t, const TableContext& context) {
+  auto out = described_table("radial", t.size(), 1, context);
+  const double mm = millimetres_per(context.unit);
+  const std::string u(symbol(context.unit));
+  const auto scaled = [](std::vector<double> v, double s) {
+    for (auto& x : v) x *= s;
+    return v;
+  };
+  out.set("bssrdf:model", std::string("monte carlo"));
+  out.set("bssrdf:model_description", "Monte Carlo reference (radiative transfer, true Henyey-Greenstein phase function, Fresnel boundaries): " +
+                                          std::to_string(t.options.photons) + " photons per channel, seed " + std::to_string(t.options.seed));
+  out.set("bssrdf:includes_single_scattering", std::string("yes"));
+  out.set("bssrdf:distance", "radius r on the surface from the point of incidence, in " + u);
+  out.set("bssrdf:normalization", std::string("per_entered_flux: R is the bin average of the exitance per unit flux that entered the medium"));
+  out.set("bssrdf:grid", "bins: [0, r_outer_0), then geometric; channel radius holds each bin's centre (geometric mean; r_outer_0 / 2 for the first), r_inner and r_outer its edges");
+  out.set("bssrdf:size", static_cast<int>(t.size()));
+  out.set("bssrdf:r_min", t.r_outer.front() / mm);
+  out.set("bssrdf:r_max", t.r_outer.back() / mm);
+  out.set("bssrdf:photons", static_cast<double>(t.options.photons));
+  out.set("bssrdf:seed", static_cast<double>(t.options.seed));
+  out.set("bssrdf:error", std::string("statistical: stderr.<c> is each bin's standard error (no interpolation tolerance)"));
+  out.set("bssrdf:cdf", std::string("cdf.<c> at r_outer: int_0^{r_outer} 2 pi r R dr / the table's total; inverse_cdf.<c> at u_j = j / (N - 1)"));
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c) {
+    const auto& name = t.channel_names[c];
+    out.set("bssrdf:total_reflectance." + name, t.total_reflectance[c]);
+    out.set("bssrdf:total_reflectance_stderr." + name, t.total_stderr[c]);
+    out.set("bssrdf:table_reflectance." + name, t.table_reflectance[c]);
+  }
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
+    out.add_channel(t.channel_names[c], "R(r) bin average, 1/" + u + "^2 per unit entered flux", scaled(t.reflectance[c], mm * mm));
+  out.add_channel("radius", "bin centre, " + u, scaled(t.radius, 1 / mm));
+  out.add_channel("r_inner", "bin inner edge, " + u, scaled(t.r_inner, 1 / mm));
+  out.add_channel("r_outer", "bin outer edge, " + u, scaled(t.r_outer, 1 / mm));
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
+    out.add_channel("stderr." + t.channel_names[c], "standard error of R, 1/" + u + "^2", scaled(t.reflectance_stderr[c], mm * mm));
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
+    out.add_channel("ring." + t.channel_names[c], "2 pi r R(r), 1/" + u, scaled(t.ring[c], mm));
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
+    out.add_channel("cdf." + t.channel_names[c], "CDF of 2 pi r R(r) at r_outer", t.cdf[c]);
+  out.add_channel("u", "CDF value u_j = j / (N - 1) of the inverse_cdf channels", t.u);
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
+    out.add_channel("inverse_cdf." + t.channel_names[c], "radius r with cdf(r) = u_j, " + u, scaled(t.inverse_cdf[c], 1 / mm));
+  return out;
+}
+
+}  // namespace bssrdf
