@@ -418,6 +418,7 @@ Built build_reference_radial(const LutOptions& o, const LayerStack& stack, const
   options.photons = o.photons_given ? o.photons : 1'000'000;
   options.seed = o.seed;
   options.threads = o.threads;
+  if (!o.all) options.progress = progress_bar("lut --reference");  // a terminal only; --all shows materials
   const auto t = build_reference_radial_table(stack, options);
   const double mm = millimetres_per(context.unit);
   const std::string u(symbol(context.unit));

@@ -26,6 +26,7 @@ ReferenceRadialTable build_reference_radial_table(const LayerStack& stack, const
   mc.photons = options.photons;
   mc.seed = options.seed;
   mc.threads = options.threads;
+  mc.progress = options.progress;
   mc.spacing = BinSpacing::log;
   mc.bins = options.bins;
   mc.r_min = 1e-3 * ell_min;
