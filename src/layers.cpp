@@ -61,18 +61,22 @@ void LayerStack::validate() const {
   }
 }
 
-LayerStack LayerStack::slab(const Medium& medium, double thickness_mm) {
-  medium.validate();
-  LayerStack stack;
-  stack.channel_names = medium.channel_names;
+Layer Layer::of(const Medium& medium, double thickness_mm, std::string name) {
   Layer layer;
-  layer.name = "medium";
+  layer.name = std::move(name);
   layer.thickness = thickness_mm;
   layer.n = medium.eta;
   layer.sigma_a = medium.sigma_a;
   layer.sigma_s = medium.sigma_s;
   layer.g = medium.g;
-  stack.layers.push_back(std::move(layer));
+  return layer;
+}
+
+LayerStack LayerStack::slab(const Medium& medium, double thickness_mm) {
+  medium.validate();
+  LayerStack stack;
+  stack.channel_names = medium.channel_names;
+  stack.layers.push_back(Layer::of(medium, thickness_mm));
   stack.validate();
   return stack;
 }

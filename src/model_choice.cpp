@@ -80,10 +80,9 @@ std::vector<MeasuredModel> measured_models() {
   return out;
 }
 
-ModelChoice choose_model(const Medium& medium, double accuracy) {
+std::vector<ModelErrorEstimate> estimate_model_errors(const Medium& medium) {
   medium.validate();
-  if (!(accuracy > 0) || !std::isfinite(accuracy)) throw InvalidInput("accuracy", format_number(accuracy), "> 0 (relative, e.g. 0.05)");
-  ModelChoice choice;
+  std::vector<ModelErrorEstimate> worst;
   for (std::size_t c = 0; c < medium.channels(); ++c) {
     const auto m = medium.reduced(c);
     const auto estimates = estimate_model_errors(m);
@@ -92,20 +91,31 @@ ModelChoice choose_model(const Medium& medium, double accuracy) {
                          format_number(m.albedo_prime) + ", " + format_number(m.eta) + ", " + format_number(m.g),
                          "alpha' >= 0.5, 1 <= eta <= 1.5 and 0 <= g <= 0.95, where the models were measured against Monte Carlo; "
                          "outside it choose the model yourself (bssrdf models)");
-    if (choice.estimates.empty()) {
-      choice.estimates = *estimates;
+    if (worst.empty()) {
+      worst = *estimates;
       continue;
     }
     for (std::size_t k = 0; k < estimates->size(); ++k) {  // same order: sorted by a fixed cost
-      choice.estimates[k].total_error = std::max(choice.estimates[k].total_error, (*estimates)[k].total_error);
-      choice.estimates[k].profile_error = std::max(choice.estimates[k].profile_error, (*estimates)[k].profile_error);
+      worst[k].total_error = std::max(worst[k].total_error, (*estimates)[k].total_error);
+      worst[k].profile_error = std::max(worst[k].profile_error, (*estimates)[k].profile_error);
     }
   }
-  for (const auto& e : choice.estimates)
-    if (e.error() <= accuracy) {
-      choice.model = e.model;
-      return choice;
-    }
+  return worst;
+}
+
+std::optional<std::string> cheapest_within(const std::vector<ModelErrorEstimate>& estimates, double accuracy) {
+  for (const auto& e : estimates)
+    if (e.error() <= accuracy) return e.model;
+  return std::nullopt;
+}
+
+ModelChoice choose_model(const Medium& medium, double accuracy) {
+  if (!(accuracy > 0) || !std::isfinite(accuracy)) throw InvalidInput("accuracy", format_number(accuracy), "> 0 (relative, e.g. 0.05)");
+  ModelChoice choice{"", estimate_model_errors(medium)};
+  if (const auto model = cheapest_within(choice.estimates, accuracy)) {
+    choice.model = *model;
+    return choice;
+  }
   const auto best = *std::min_element(choice.estimates.begin(), choice.estimates.end(),
                                       [](const auto& x, const auto& y) { return x.error() < y.error(); });
   throw InvalidInput("accuracy", format_number(accuracy),

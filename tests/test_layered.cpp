@@ -18,14 +18,7 @@ using namespace bssrdf;
 namespace {
 
 Layer layer(double sigma_a, double sigma_s, double g, double n, double thickness, const char* name = "") {
-  Layer l;
-  l.name = name;
-  l.sigma_a = {sigma_a};
-  l.sigma_s = {sigma_s};
-  l.g = {g};
-  l.n = n;
-  l.thickness = thickness;
-  return l;
+  return Layer::of(Medium::single_channel(sigma_a, sigma_s, g, n), thickness, name);
 }
 
 LayerStack stack_of(std::vector<Layer> layers) {

@@ -32,13 +32,7 @@ void header() { std::printf("  %-52s %10s %9s %10s %7s\n", "case", "value", "std
 LayerStack single(double sigma_a, double sigma_s, double g, double n, double thickness) {
   LayerStack s;
   s.channel_names = {"c0"};
-  Layer l;
-  l.sigma_a = {sigma_a};
-  l.sigma_s = {sigma_s};
-  l.g = {g};
-  l.n = n;
-  l.thickness = thickness;
-  s.layers.push_back(l);
+  s.layers.push_back(Layer::of(Medium::single_channel(sigma_a, sigma_s, g, n), thickness, ""));
   return s;
 }
 

@@ -34,6 +34,9 @@ struct Layer {
   // A layer without absorption or scattering in channel c (e.g. a glass slide): light crosses it
   // in a straight line.
   bool clear(std::size_t c) const { return sigma_t(c) == 0.0; }
+
+  // A layer with `medium`'s coefficients and n = medium.eta (not validated: LayerStack::validate does).
+  static Layer of(const Medium& medium, double thickness_mm, std::string name = "medium");
 };
 
 struct LayerStack {

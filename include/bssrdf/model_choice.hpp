@@ -33,6 +33,10 @@ struct ModelErrorEstimate {
 // nullopt outside the measured ranges (alpha' < 0.5, eta outside [1, 1.5], g outside [0, 0.95]).
 std::optional<std::vector<ModelErrorEstimate>> estimate_model_errors(const Reduced<double>& m);
 
+// The same for a medium: the worst over its channels, cheapest first. Throws InvalidInput naming
+// the channel and the ranges when a channel is outside them.
+std::vector<ModelErrorEstimate> estimate_model_errors(const Medium& medium);
+
 // Every candidate with its cost and its errors in all measured cases (the validation table, in its
 // row order), cheapest first: what a speed-against-accuracy chart shows.
 struct MeasuredModel {
@@ -42,13 +46,16 @@ struct MeasuredModel {
 };
 std::vector<MeasuredModel> measured_models();
 
+// The cheapest of `estimates` (cheapest first) whose error() <= accuracy; nullopt when none is.
+std::optional<std::string> cheapest_within(const std::vector<ModelErrorEstimate>& estimates, double accuracy);
+
 struct ModelChoice {
   std::string model;                          // the cheapest whose error() <= accuracy in every channel
   std::vector<ModelErrorEstimate> estimates;  // worst over the channels, cheapest first
 };
 
-// Throws InvalidInput naming the channel and the range when a channel is outside the measured
-// ranges, or naming the most accurate model and its error when none meets `accuracy`.
+// Throws InvalidInput as estimate_model_errors(medium) does, or naming the most accurate model and
+// its error when none meets `accuracy`.
 ModelChoice choose_model(const Medium& medium, double accuracy);
 
 }  // namespace bssrdf

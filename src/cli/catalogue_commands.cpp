@@ -24,20 +24,9 @@ namespace {
 // --accuracy (what --model auto picks).
 void print_estimates(const MediumOptions& options, const std::string& accuracy_text, bool json) {
   const auto resolved = options.resolve();
-  const double accuracy = accuracy_text.empty() ? 0.1 : parse_number(accuracy_text, "--accuracy");
-  if (!(accuracy > 0 && accuracy < 10)) throw InvalidInput("--accuracy", format_number(accuracy), "0 < accuracy < 10");
-  std::string chosen;
-  std::vector<ModelErrorEstimate> estimates;
-  try {
-    const auto choice = choose_model(resolved.medium, accuracy);
-    chosen = choice.model;
-    estimates = choice.estimates;
-  } catch (const InvalidInput&) {
-    // Outside the measured ranges the message says why; with no model accurate enough, list them all.
-    for (std::size_t c = 0; c < resolved.medium.channels(); ++c)
-      if (!estimate_model_errors(resolved.medium.reduced(c))) throw;
-    estimates = choose_model(resolved.medium, 1e9).estimates;
-  }
+  const double accuracy = parse_accuracy(accuracy_text);
+  const auto estimates = estimate_model_errors(resolved.medium);  // outside the measured ranges: the error says why
+  const std::string chosen = cheapest_within(estimates, accuracy).value_or("");  // what --model auto picks
   if (json) {
     nlohmann::json doc = {{"accuracy", accuracy}, {"chosen", chosen.empty() ? nlohmann::json(nullptr) : nlohmann::json(chosen)}};
     for (const auto& e : estimates)
@@ -68,7 +57,7 @@ Chart speed_accuracy_chart(const std::optional<MediumOptions::Resolved>& medium)
     chart.title = "Speed against accuracy: " + name;
     chart.notes = {"each model's error at these coefficients: the worst measured case around them, worst channel",
                    "(tools/validation/models_vs_montecarlo_extended.tsv, 2M photons per case); errors below 0.1 % drawn at 0.1 %"};
-    for (const auto& e : choose_model(medium->medium, 1e9).estimates) {
+    for (const auto& e : estimate_model_errors(medium->medium)) {
       l2.points.push_back({e.model, e.cost_ns, percent(e.profile_error), 0, 0});
       total.points.push_back({"", e.cost_ns, percent(e.total_error), 0, 0});
     }

@@ -180,13 +180,18 @@ std::function<void(std::uint64_t, std::uint64_t)> progress_bar(const std::string
   };
 }
 
+double parse_accuracy(const std::string& text) {
+  const double a = text.empty() ? 0.1 : parse_number(text, "--accuracy");
+  if (!(a > 0 && a < 10)) throw InvalidInput("--accuracy", format_number(a), "0 < accuracy < 10 (relative error, e.g. 0.05)");
+  return a;
+}
+
 ChosenModel resolve_model(const std::string& name, const std::string& accuracy, const Medium& medium) {
   if (name != "auto") {
     if (!accuracy.empty()) throw InvalidInput("--accuracy: only with --model auto (it chooses the model to meet it)");
     return {name, ""};
   }
-  const double a = accuracy.empty() ? 0.1 : parse_number(accuracy, "--accuracy");
-  if (!(a > 0 && a < 10)) throw InvalidInput("--accuracy", format_number(a), "0 < accuracy < 10 (relative error, e.g. 0.05)");
+  const double a = parse_accuracy(accuracy);
   const auto choice = choose_model(medium, a);
   std::string rejected;
   for (const auto& e : choice.estimates) {

@@ -41,6 +41,8 @@ struct ChosenModel {
   std::string note;  // empty unless chosen
 };
 ChosenModel resolve_model(const std::string& name, const std::string& accuracy, const Medium& medium);
+// --accuracy: a relative error, 0 < value < 10; empty gives the default 0.1.
+double parse_accuracy(const std::string& text);
 
 enum class Format { table, json, csv };
 

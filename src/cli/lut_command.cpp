@@ -496,7 +496,7 @@ Action register_lut(CLI::App& app) {
   sub->add_flag("--reference-everywhere", o->reference_everywhere, "transmission: Monte Carlo reference at every thickness");
   auto* photons_option = sub->add_option("--photons", o->photons,
                                          "Monte Carlo photons per channel: per thickness for transmission [100000], for radial --reference [1000000]");
-  sub->add_option("--seed", o->seed, "transmission: Monte Carlo seed [1]");
+  sub->add_option("--seed", o->seed, "Monte Carlo seed (transmission --reference, radial --reference) [1]");
   sub->add_option("--preview", o->preview, "Also (or, without -o, only) write a PNG preview of the material: shadow-edge swatch + colour falloff");
   sub->add_option("--taps", o->taps, "separable: number of taps, odd, >= 3 (Jimenez: 11, 17, 25) [17]");
   sub->add_option("--range", o->range,

@@ -6,23 +6,12 @@
 #include <sstream>
 
 #include "bssrdf/error.hpp"
+#include "xml_escape.hpp"
 
 namespace bssrdf {
 namespace {
 
 constexpr double kWidth = 820, kHeight = 520, kLeft = 80, kRight = 190, kTop = 70, kBottom = 60;
-
-std::string escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '&') out += "&amp;";
-    else if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
-  }
-  return out;
-}
 
 std::string number(double v) {
   char buffer[32];
@@ -65,9 +54,9 @@ std::string render_svg(const Chart& chart) {
   svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kWidth << "\" height=\"" << kHeight << "\" viewBox=\"0 0 " << kWidth
       << ' ' << kHeight << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      << "<text x=\"" << kLeft << "\" y=\"24\" font-size=\"16\" font-weight=\"bold\">" << escape(chart.title) << "</text>\n";
+      << "<text x=\"" << kLeft << "\" y=\"24\" font-size=\"16\" font-weight=\"bold\">" << xml_escape(chart.title) << "</text>\n";
   for (std::size_t i = 0; i < chart.notes.size(); ++i)
-    svg << "<text x=\"" << kLeft << "\" y=\"" << 42 + 14 * i << "\" font-size=\"11\" fill=\"#555\">" << escape(chart.notes[i]) << "</text>\n";
+    svg << "<text x=\"" << kLeft << "\" y=\"" << 42 + 14 * i << "\" font-size=\"11\" fill=\"#555\">" << xml_escape(chart.notes[i]) << "</text>\n";
   // Grid: decades solid, 2 and 5 dotted; labels at decades.
   for (int e = X.lo; e <= X.hi; ++e)
     for (int m : {1, 2, 5}) {
@@ -92,8 +81,8 @@ std::string render_svg(const Chart& chart) {
   svg << "<rect x=\"" << kLeft << "\" y=\"" << kTop << "\" width=\"" << number(X.to - X.from) << "\" height=\"" << number(Y.from - Y.to)
       << "\" fill=\"none\" stroke=\"#333\"/>\n"
       << "<text x=\"" << number(0.5 * (X.from + X.to)) << "\" y=\"" << number(kHeight - 16) << "\" text-anchor=\"middle\">"
-      << escape(chart.x_title) << "</text>\n"
-      << "<text transform=\"translate(20 " << number(0.5 * (Y.from + Y.to)) << ") rotate(-90)\" text-anchor=\"middle\">" << escape(chart.y_title)
+      << xml_escape(chart.x_title) << "</text>\n"
+      << "<text transform=\"translate(20 " << number(0.5 * (Y.from + Y.to)) << ") rotate(-90)\" text-anchor=\"middle\">" << xml_escape(chart.y_title)
       << "</text>\n";
   // Labels beside their points: right, else left, else a line lower on the right, and so on, at the
   // first place that overlaps no earlier label or marker.
@@ -135,7 +124,7 @@ std::string render_svg(const Chart& chart) {
           svg << "<line x1=\"" << number(x) << "\" y1=\"" << number(y) << "\" x2=\"" << number(edge) << "\" y2=\"" << number(ly - 5)
               << "\" stroke=\"#999\" stroke-width=\"0.7\"/>\n";
         }
-        svg << "<text x=\"" << number(lx) << "\" y=\"" << number(ly) << "\" fill=\"#222\">" << escape(p.label) << "</text>\n";
+        svg << "<text x=\"" << number(lx) << "\" y=\"" << number(ly) << "\" fill=\"#222\">" << xml_escape(p.label) << "</text>\n";
       }
     }
   // Legend, right of the plot.
@@ -144,7 +133,7 @@ std::string render_svg(const Chart& chart) {
     const double y = kTop + 10 + 18 * static_cast<double>(i), x = kWidth - kRight + 14;
     svg << (s.square ? "<rect x=\"" + number(x - 4) + "\" y=\"" + number(y - 4) + "\" width=\"8\" height=\"8\" fill=\"" + s.colour + "\"/>\n"
                      : "<circle cx=\"" + number(x) + "\" cy=\"" + number(y) + "\" r=\"4.5\" fill=\"" + s.colour + "\"/>\n")
-        << "<text x=\"" << number(x + 10) << "\" y=\"" << number(y + 4) << "\" font-size=\"11\">" << escape(s.name) << "</text>\n";
+        << "<text x=\"" << number(x + 10) << "\" y=\"" << number(y + 4) << "\" font-size=\"11\">" << xml_escape(s.name) << "</text>\n";
   }
   svg << "</svg>\n";
   return svg.str();

@@ -86,4 +86,21 @@ double catmull_rom_integral(std::span<const double> nodes, std::span<const doubl
   return sum;
 }
 
+std::vector<double> inverse_cdf(std::span<const double> cdf, std::span<const double> radius, std::span<const double> x,
+                                const std::function<double(double)>& radius_at, std::span<const double> u) {
+  std::vector<double> out;
+  for (double target : u) {
+    if (target >= 1) {
+      out.push_back(radius.back());
+    } else if (target <= cdf[0]) {
+      out.push_back(radius[0] * target / cdf[0]);
+    } else {
+      const auto i = std::min<std::size_t>(cdf.size() - 1, static_cast<std::size_t>(std::lower_bound(cdf.begin(), cdf.end(), target) - cdf.begin()));
+      const double t = cdf[i] > cdf[i - 1] ? (target - cdf[i - 1]) / (cdf[i] - cdf[i - 1]) : 1.0;
+      out.push_back(radius_at(x[i - 1] + t * (x[i] - x[i - 1])));
+    }
+  }
+  return out;
+}
+
 }  // namespace bssrdf

@@ -359,7 +359,7 @@ RadialTable build_radial_table(const Medium& medium, const Model& model, const R
       cum[j + 1] = cum[j] + piece;
     }
     const double in_table = cum.back();
-    std::vector<double> cdf(N), inverse(N);
+    std::vector<double> cdf(N);
     if (!probes[c].scatters()) {  // the limit of a vanishing profile: all of it at r = 0
       table.reflectance.push_back(R);
       table.ring.push_back(std::move(ring));
@@ -369,18 +369,7 @@ RadialTable build_radial_table(const Medium& medium, const Model& model, const R
       continue;
     }
     for (std::size_t j = 0; j < N; ++j) cdf[j] = cum[j] / in_table;
-    // Inverse CDF: linear in (cdf, x) between nodes; below the first node cdf ~ r (R ~ 1/r).
-    for (std::size_t j = 0; j < N; ++j) {
-      const double target = table.u[j];
-      if (target <= cdf[0]) {
-        inverse[j] = table.radius[0] * target / cdf[0];
-        continue;
-      }
-      const std::size_t i = std::min<std::size_t>(N - 1, static_cast<std::size_t>(std::lower_bound(cdf.begin(), cdf.end(), target) - cdf.begin()));
-      const double t = cdf[i] > cdf[i - 1] ? (target - cdf[i - 1]) / (cdf[i] - cdf[i - 1]) : 1.0;
-      inverse[j] = map.r(best.log_r[i - 1] + t * (best.log_r[i] - best.log_r[i - 1]));
-    }
-    inverse[N - 1] = table.radius.back();
+    auto inverse = inverse_cdf(cdf, table.radius, best.log_r, [&](double x) { return map.r(x); }, table.u);
     table.reflectance.push_back(R);
     table.ring.push_back(std::move(ring));
     table.cdf.push_back(std::move(cdf));
@@ -422,14 +411,25 @@ LookupTable to_lookup_table(const RadialTable& t, const TableContext& context) {
   for (std::size_t c = 0; c < t.channel_names.size(); ++c)
     out.add_channel(t.channel_names[c], "R(r), 1/" + u + "^2 per unit entered flux", scaled(t.reflectance[c], mm * mm));
   out.add_channel("radius", "r, " + u, scaled(t.radius, 1 / mm));
-  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
-    out.add_channel("ring." + t.channel_names[c], "2 pi r R(r), 1/" + u, scaled(t.ring[c], mm));
-  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
-    out.add_channel("cdf." + t.channel_names[c], "CDF of 2 pi r R(r) over [0, r_max]", t.cdf[c]);
-  out.add_channel("u", "CDF value u_j = j / (N - 1) of the inverse_cdf channels", t.u);
-  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
-    out.add_channel("inverse_cdf." + t.channel_names[c], "radius r with cdf(r) = u_j, " + u, scaled(t.inverse_cdf[c], 1 / mm));
+  add_sampling_channels(out, t.channel_names, t.ring, t.cdf, t.u, t.inverse_cdf, "CDF of 2 pi r R(r) over [0, r_max]", context.unit);
   return out;
+}
+
+void add_sampling_channels(LookupTable& out, const std::vector<std::string>& channel_names, const std::vector<std::vector<double>>& ring,
+                           const std::vector<std::vector<double>>& cdf, const std::vector<double>& u,
+                           const std::vector<std::vector<double>>& inverse_cdf, const std::string& cdf_description, LengthUnit unit) {
+  const double mm = millimetres_per(unit);
+  const std::string symbol_u(symbol(unit));
+  const auto scaled = [](std::vector<double> v, double s) {
+    for (auto& x : v) x *= s;
+    return v;
+  };
+  for (std::size_t c = 0; c < channel_names.size(); ++c)
+    out.add_channel("ring." + channel_names[c], "2 pi r R(r), 1/" + symbol_u, scaled(ring[c], mm));
+  for (std::size_t c = 0; c < channel_names.size(); ++c) out.add_channel("cdf." + channel_names[c], cdf_description, cdf[c]);
+  out.add_channel("u", "CDF value u_j = j / (N - 1) of the inverse_cdf channels", u);
+  for (std::size_t c = 0; c < channel_names.size(); ++c)
+    out.add_channel("inverse_cdf." + channel_names[c], "radius r with cdf(r) = u_j, " + symbol_u, scaled(inverse_cdf[c], 1 / mm));
 }
 
 }  // namespace bssrdf

@@ -5,6 +5,8 @@
 #include <numbers>
 
 #include "bssrdf/error.hpp"
+#include "bssrdf/lut/interpolation.hpp"
+#include "bssrdf/lut/radial_table.hpp"
 #include "bssrdf/montecarlo.hpp"
 
 namespace bssrdf {
@@ -43,27 +45,19 @@ ReferenceRadialTable build_reference_radial_table(const LayerStack& stack, const
   for (std::size_t j = 0; j < N; ++j) t.u.push_back(static_cast<double>(j) / static_cast<double>(N - 1));
   for (const auto& per_incident : run.channels) {
     const auto c = per_incident.per_entered_flux();
-    std::vector<double> ring(N), cum(N), cdf(N), inverse(N);
+    std::vector<double> ring(N), cum(N), cdf(N), log_r(N);
     double sum = 0;
     for (std::size_t j = 0; j < N; ++j) {
       ring[j] = 2 * std::numbers::pi * t.radius[j] * c.reflectance[j];
       sum += std::numbers::pi * (t.r_outer[j] * t.r_outer[j] - t.r_inner[j] * t.r_inner[j]) * c.reflectance[j];
       cum[j] = sum;
     }
-    for (std::size_t j = 0; j < N; ++j) cdf[j] = sum > 0 ? cum[j] / sum : 1.0;
-    // Inverse CDF: linear in (cdf, ln r) between bin edges; inside the first bin linear in r.
     for (std::size_t j = 0; j < N; ++j) {
-      const double target = t.u[j];
-      if (!(sum > 0)) break;  // no light: inverse_cdf stays 0 (all at r = 0)
-      if (target <= cdf[0]) {
-        inverse[j] = t.r_outer[0] * target / cdf[0];
-        continue;
-      }
-      const auto i = std::min<std::size_t>(N - 1, static_cast<std::size_t>(std::lower_bound(cdf.begin(), cdf.end(), target) - cdf.begin()));
-      const double s = cdf[i] > cdf[i - 1] ? (target - cdf[i - 1]) / (cdf[i] - cdf[i - 1]) : 1.0;
-      inverse[j] = std::exp(std::log(t.r_outer[i - 1]) + s * (std::log(t.r_outer[i]) - std::log(t.r_outer[i - 1])));
+      cdf[j] = sum > 0 ? cum[j] / sum : 1.0;
+      log_r[j] = std::log(t.r_outer[j]);
     }
-    if (sum > 0) inverse[N - 1] = t.r_outer[N - 1];
+    // The CDF is known at the bins' outer edges: interpolated in ln r between them. No light: all at r = 0.
+    auto inverse = sum > 0 ? inverse_cdf(cdf, t.r_outer, log_r, [](double x) { return std::exp(x); }, t.u) : std::vector<double>(N, 0.0);
     t.reflectance.push_back(c.reflectance);
     t.reflectance_stderr.push_back(c.reflectance_stderr);
     t.ring.push_back(std::move(ring));
@@ -111,13 +105,7 @@ LookupTable to_lookup_table(const ReferenceRadialTable& t, const TableContext& c
   out.add_channel("r_outer", "bin outer edge, " + u, scaled(t.r_outer, 1 / mm));
   for (std::size_t c = 0; c < t.channel_names.size(); ++c)
     out.add_channel("stderr." + t.channel_names[c], "standard error of R, 1/" + u + "^2", scaled(t.reflectance_stderr[c], mm * mm));
-  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
-    out.add_channel("ring." + t.channel_names[c], "2 pi r R(r), 1/" + u, scaled(t.ring[c], mm));
-  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
-    out.add_channel("cdf." + t.channel_names[c], "CDF of 2 pi r R(r) at r_outer", t.cdf[c]);
-  out.add_channel("u", "CDF value u_j = j / (N - 1) of the inverse_cdf channels", t.u);
-  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
-    out.add_channel("inverse_cdf." + t.channel_names[c], "radius r with cdf(r) = u_j, " + u, scaled(t.inverse_cdf[c], 1 / mm));
+  add_sampling_channels(out, t.channel_names, t.ring, t.cdf, t.u, t.inverse_cdf, "CDF of 2 pi r R(r) at r_outer", context.unit);
   return out;
 }
 

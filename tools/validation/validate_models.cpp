@@ -19,13 +19,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
-#include <numbers>
 #include <string>
 #include <vector>
 
 #include "bssrdf/layers.hpp"
 #include "bssrdf/model.hpp"
 #include "bssrdf/montecarlo.hpp"
+#include "bssrdf/reference_comparison.hpp"
 #include "bssrdf/single_scattering.hpp"
 
 using namespace bssrdf;
@@ -73,35 +73,17 @@ int main(int argc, char** argv) {
         const double ss_exact = single_scattering_total(albedo, g, eta);
         const double ss_dev = (mc.single_scattering_reflectance.value - ss_exact) /
                               std::max(mc.single_scattering_reflectance.standard_error, 1e-300);
-        double norm = 0, near_norm = 0, far_norm = 0, noise = 0;
-        std::vector<double> area(mc.reflectance.size());
-        for (std::size_t i = 0; i < area.size(); ++i) {
-          area[i] = std::numbers::pi * (result.bin_outer[i] * result.bin_outer[i] - result.bin_inner[i] * result.bin_inner[i]);
-          norm += area[i] * mc.reflectance[i] * mc.reflectance[i];
-          noise += area[i] * mc.reflectance_stderr[i] * mc.reflectance_stderr[i];
-          (result.bin_outer[i] <= m.ell ? near_norm : far_norm) += area[i] * mc.reflectance[i] * mc.reflectance[i];
-        }
         std::printf("%-6.3f %-4.2f %-4.2f %.4f±%.4f %+8.1f ", ap, eta, g, mc.diffuse_reflectance.value,
                     mc.diffuse_reflectance.standard_error, ss_dev);
         tsv << ap << '\t' << eta << '\t' << g << '\t' << mc.diffuse_reflectance.value << '\t'
             << mc.diffuse_reflectance.standard_error << '\t' << mc.single_scattering_reflectance.value << '\t'
-            << mc.single_scattering_reflectance.standard_error << '\t' << ss_exact << '\t' << std::sqrt(noise / norm);
-        for (const auto& name : models) {
-          const auto model = make_model(name);
-          const double total_error = model->total_reflectance(m) / mc.diffuse_reflectance.value - 1;
-          double l2 = 0, near = 0, far = 0;
-          for (std::size_t i = 0; i < area.size(); ++i) {
-            const double average = (model->cumulative_reflectance(m, result.bin_outer[i]) -
-                                    model->cumulative_reflectance(m, result.bin_inner[i])) / area[i];
-            const double d2 = area[i] * (average - mc.reflectance[i]) * (average - mc.reflectance[i]);
-            l2 += d2;
-            (result.bin_outer[i] <= m.ell ? near : far) += d2;
-          }
-          l2 = std::sqrt(l2 / norm);
-          near = std::sqrt(near / near_norm);
-          far = std::sqrt(far / far_norm);
-          std::printf(" %+5.1f/%4.1f/%5.1f", 100 * total_error, 100 * near, 100 * far);
-          tsv << '\t' << total_error << '\t' << l2 << '\t' << near << '\t' << far;
+            << mc.single_scattering_reflectance.standard_error << '\t' << ss_exact;
+        std::vector<ProfileDeviation> deviations;
+        for (const auto& name : models) deviations.push_back(compare_with_monte_carlo(*make_model(name), m, result));
+        tsv << '\t' << deviations[0].l2_noise;  // the run's own: the same for every model
+        for (const auto& d : deviations) {
+          std::printf(" %+5.1f/%4.1f/%5.1f", 100 * d.total, 100 * d.near, 100 * d.far);
+          tsv << '\t' << d.total << '\t' << d.l2 << '\t' << d.near << '\t' << d.far;
         }
         std::printf("   (%.1f s)\n", seconds);
         std::fflush(stdout);

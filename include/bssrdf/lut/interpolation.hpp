@@ -9,7 +9,9 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <span>
+#include <vector>
 #include <string_view>
 
 namespace bssrdf {
@@ -37,5 +39,12 @@ inline constexpr double kCheckPoint[2] = {0.21132486540518713, 0.788675134594812
 // The integral over [a, b] of the Catmull-Rom curve through (nodes, values), exact (two-point
 // Gauss-Legendre on each cubic piece): how a renderer's interpolated table averages over a range.
 double catmull_rom_integral(std::span<const double> nodes, std::span<const double> values, double a, double b);
+
+// The inverse of a non-decreasing radial CDF (last value 1) tabulated at nodes of radius r_j and
+// grid coordinate x_j (increasing with r; radius_at(x) maps back), at each value of u: linear in
+// (cdf, x) between nodes, linear in r from the origin below the first node (where R ~ 1/r makes
+// the CDF ~ r), and the last radius for u >= 1. Importance sampling reads radii from it.
+std::vector<double> inverse_cdf(std::span<const double> cdf, std::span<const double> radius, std::span<const double> x,
+                                const std::function<double(double)>& radius_at, std::span<const double> u);
 
 }  // namespace bssrdf

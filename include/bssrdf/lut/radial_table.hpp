@@ -68,4 +68,11 @@ RadialTable build_radial_table(const Medium& medium, const Model& model, const R
 // "cdf.<c>", "u", "inverse_cdf.<c>" (unit); attributes record the grid, range, tolerance and totals.
 LookupTable to_lookup_table(const RadialTable& table, const TableContext& context);
 
+// The importance-sampling channels every radial table writes, in this order: "ring.<c>" (2 pi r R,
+// 1/unit), "cdf.<c>" (described by cdf_description), "u" and "inverse_cdf.<c>" (unit); lengths
+// given in mm.
+void add_sampling_channels(LookupTable& out, const std::vector<std::string>& channel_names, const std::vector<std::vector<double>>& ring,
+                           const std::vector<std::vector<double>>& cdf, const std::vector<double>& u,
+                           const std::vector<std::vector<double>>& inverse_cdf, const std::string& cdf_description, LengthUnit unit);
+
 }  // namespace bssrdf

@@ -2,6 +2,7 @@
 // sigma_t in 1/scene unit, scale 1, `hg` phase) inside a `dielectric` boundary (int_ior = eta).
 // Mitsuba's hg takes one g: see single_g().
 #include "export_common.hpp"
+#include "../xml_escape.hpp"
 
 namespace bssrdf::export_detail {
 namespace {
@@ -9,20 +10,6 @@ namespace {
 std::string comment(std::string text) {
   for (std::size_t p; (p = text.find("--")) != std::string::npos;) text.replace(p, 2, "- -");
   return "<!-- " + text + " -->";
-}
-std::string attribute(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
-    }
-  }
-  return out;
 }
 }  // namespace
 
@@ -50,13 +37,13 @@ std::string export_mitsuba3(const std::vector<ExportEntry>& entries, LengthUnit 
                        validity_summary(e.derived);
     if (!one.exact) note += "; per-channel g (" + join(m.g, ", ") + ") replaced by their mean, sigma_s rescaled to keep sigma_s'";
     out += "  " + comment(note) + "\n";
-    out += "  <medium type=\"homogeneous\" id=\"" + attribute(id) + "_medium\">\n";
+    out += "  <medium type=\"homogeneous\" id=\"" + xml_escape(id) + "_medium\">\n";
     out += "    <rgb name=\"albedo\" value=\"" + join(albedo, ", ") + "\"/>\n";
     out += "    <rgb name=\"sigma_t\" value=\"" + join(sigma_t, ", ") + "\"/>\n";
     out += "    <float name=\"scale\" value=\"1\"/>\n";
     out += "    <phase type=\"hg\">\n      <float name=\"g\" value=\"" + num(one.g) + "\"/>\n    </phase>\n";
     out += "  </medium>\n";
-    out += "  <bsdf type=\"dielectric\" id=\"" + attribute(id) + "_boundary\">\n";
+    out += "  <bsdf type=\"dielectric\" id=\"" + xml_escape(id) + "_boundary\">\n";
     out += "    <float name=\"int_ior\" value=\"" + num(m.eta) + "\"/>\n";
     out += "    <float name=\"ext_ior\" value=\"1\"/>\n";
     out += "  </bsdf>\n";

@@ -1,0 +1,30 @@
+#include "bssrdf/reference_comparison.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace bssrdf {
+
+ProfileDeviation compare_with_monte_carlo(const Model& model, const Reduced<double>& m, const MonteCarloResult& run,
+                                          std::size_t channel) {
+  const auto mc = run.channels.at(channel).per_entered_flux();
+  // [all, near, far] sums of area * (difference^2, tally^2, stderr^2)
+  double diff[3] = {0, 0, 0}, norm[3] = {0, 0, 0}, noise[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < mc.reflectance.size(); ++i) {
+    const double inner = run.bin_inner[i], outer = run.bin_outer[i];
+    const double area = std::numbers::pi * (outer * outer - inner * inner);
+    const double average = (model.cumulative_reflectance(m, outer) - model.cumulative_reflectance(m, inner)) / area;
+    for (int part : {0, outer <= m.ell ? 1 : 2}) {
+      diff[part] += area * std::pow(average - mc.reflectance[i], 2);
+      norm[part] += area * std::pow(mc.reflectance[i], 2);
+      noise[part] += area * std::pow(mc.reflectance_stderr[i], 2);
+    }
+  }
+  ProfileDeviation d;
+  d.total = model.total_reflectance(m) / mc.diffuse_reflectance.value - 1;
+  d.l2 = std::sqrt(diff[0] / norm[0]), d.near = std::sqrt(diff[1] / norm[1]), d.far = std::sqrt(diff[2] / norm[2]);
+  d.l2_noise = std::sqrt(noise[0] / norm[0]), d.near_noise = std::sqrt(noise[1] / norm[1]), d.far_noise = std::sqrt(noise[2] / norm[2]);
+  return d;
+}
+
+}  // namespace bssrdf
