@@ -52,12 +52,14 @@ TEST(FitAlbedo, UnreachableInputsAreErrorsNotClamps) {
 TEST(FitSlab, RoundTripsAndPropagatedUncertainty) {
   for (const auto& [sa, ssp, d] : {std::tuple{0.05, 1.5, 3.0}, std::tuple{0.01, 2.0, 2.0}, std::tuple{0.2, 1.0, 10.0}}) {
     const auto [R, T] = slab_measurables(sa, ssp, 0.0, 1.4, d);
-    const auto report = fit_slab({{"x", R, T, 0.002, 0.002, 0.0}}, d, LengthUnit::millimetre, 1.4);
+    SlabFitOptions multipole;
+    multipole.model = "multipole";
+    const auto report = fit_slab({{"x", R, T, 0.002, 0.002, 0.0}}, d, LengthUnit::millimetre, 1.4, multipole);
     EXPECT_NEAR(report.find("sigma_a", "x")->value / sa, 1.0, 1e-6) << report.full_report();
     EXPECT_NEAR(report.find("sigma_s_prime", "x")->value / ssp, 1.0, 1e-6);
     EXPECT_GT(report.find("sigma_a", "x")->standard_error, 0.0);
     // Halving the measurement errors halves the parameters' (linear propagation).
-    const auto half = fit_slab({{"x", R, T, 0.001, 0.001, 0.0}}, d, LengthUnit::millimetre, 1.4);
+    const auto half = fit_slab({{"x", R, T, 0.001, 0.001, 0.0}}, d, LengthUnit::millimetre, 1.4, multipole);
     EXPECT_NEAR(half.find("sigma_a", "x")->standard_error / report.find("sigma_a", "x")->standard_error, 0.5, 1e-3);
   }
 }
@@ -68,7 +70,9 @@ TEST(FitSlab, AddingDoublingSlabsRecoverTheAlbedoWithinTheModelError) {
   for (const auto& row : test_data::read_tsv("ad_slab.tsv")) {
     if (row.at("b") < 4) continue;  // the multipole is refused below 2 transport mfp
     const double albedo = row.at("albedo"), b = row.at("b"), n = row.at("n");
-    const auto report = fit_slab({{"x", row.at("R_incident"), row.at("T_total"), 0.002, 0.002, 0.0}}, b, LengthUnit::millimetre, n);
+    SlabFitOptions multipole;
+    multipole.model = "multipole";
+    const auto report = fit_slab({{"x", row.at("R_incident"), row.at("T_total"), 0.002, 0.002, 0.0}}, b, LengthUnit::millimetre, n, multipole);
     const double fitted = report.find("albedo_prime", "x")->value;
     std::printf("  %.2f  %.2f   %4.0f %.5f  %.5f  %.4f         %+.2f %%\n", n, albedo, b, row.at("R_incident"), row.at("T_total"),
                 fitted, 100 * (fitted / albedo - 1));

@@ -16,5 +16,6 @@ Action register_reference(CLI::App& app);
 Action register_fit(CLI::App& app);
 Action register_transmission(CLI::App& app);
 Action register_lut(CLI::App& app);
+Action register_slab(CLI::App& app);
 
 }  // namespace bssrdf::cli

@@ -128,10 +128,11 @@ Action register_fit(CLI::App& app) {
   // fit slab
   struct SlabOptions {
     std::string reflectance, transmittance, r_stderr = "0.002", t_stderr = "0.002", thickness, unit = "mm", eta = "1.4", g, channels;
+    std::string unscattered, u_stderr = "0.002", slides, model = "adding-doubling";
     OutputOptions output;
   };
   auto so = std::make_shared<SlabOptions>();
-  auto* slab = fit->add_subcommand("slab", "Integrating-sphere R and T of a slab -> sigma_a, sigma_s' (multipole)");
+  auto* slab = fit->add_subcommand("slab", "Integrating-sphere R and T (and unscattered U) of a slab -> sigma_a, sigma_s' (and g) by adding-doubling");
   slab->add_option("--reflectance", so->reflectance, "Diffuse reflectance per channel, per incident flux, specular excluded")->required();
   slab->add_option("--transmittance", so->transmittance, "Total transmittance per channel (ballistic included)")->required();
   slab->add_option("--reflectance-stderr", so->r_stderr, "Standard error of the reflectance [0.002]");
@@ -141,6 +142,11 @@ Action register_fit(CLI::App& app) {
   slab->add_option("--eta", so->eta, "Relative index of the slab [1.4]");
   slab->add_option("--g", so->g, "Anisotropy per channel [0]");
   slab->add_option("--channels", so->channels, "Channel names");
+  slab->add_option("--unscattered", so->unscattered, "Unscattered (collimated) transmittance per channel: g is then fitted too");
+  slab->add_option("--unscattered-stderr", so->u_stderr, "Standard error of the unscattered transmittance [0.002]");
+  slab->add_option("--slides", so->slides, "Glass slides on both faces: index,thickness (in --unit), e.g. 1.5,1");
+  slab->add_option("--model", so->model, "adding-doubling (exact) or multipole (for comparison) [adding-doubling]")
+      ->check(CLI::IsMember({"adding-doubling", "multipole"}));
   so->output.add_to(*slab);
 
   // fit gaussians / burley
@@ -193,10 +199,22 @@ Action register_fit(CLI::App& app) {
       const auto g = per_channel(so->g, "--g", n, 0);
       const auto names = so->channels.empty() ? default_channel_names(n) : split_names(so->channels);
       if (names.size() != n) throw InvalidInput("--channels: " + std::to_string(names.size()) + " names for " + std::to_string(n) + " channels");
+      const auto U = per_channel(so->unscattered, "--unscattered", n, -1);
+      const auto us = per_channel(so->u_stderr, "--unscattered-stderr", n, 0.002);
+      for (std::size_t c = 0; c < n; ++c)
+        if (!so->unscattered.empty() && !(U[c] >= 0 && U[c] <= 1)) throw InvalidInput("--unscattered[" + names[c] + "]", format_number(U[c]), "[0, 1]");
       std::vector<SlabMeasurement> data;
-      for (std::size_t c = 0; c < n; ++c) data.push_back({names[c], R[c], T[c], rs[c], ts[c], g[c]});
+      for (std::size_t c = 0; c < n; ++c) data.push_back({names[c], R[c], T[c], rs[c], ts[c], g[c], U[c], us[c]});
+      SlabFitOptions options;
+      options.model = so->model;
+      if (!so->slides.empty()) {
+        const auto v = parse_number_list(so->slides, "--slides");
+        if (v.size() != 2) throw InvalidInput("--slides", so->slides, "two numbers: index,thickness (e.g. 1.5,1)");
+        options.slide_n = v[0];
+        options.slide_thickness = v[1];
+      }
       emit_report(so->output, fit_slab(data, parse_number(so->thickness, "--thickness"), parse_length_unit(so->unit, "--unit"),
-                                       parse_number(so->eta, "--eta")));
+                                       parse_number(so->eta, "--eta"), options));
     } else if (gaussians->parsed()) {
       LengthUnit unit = LengthUnit::millimetre;
       const auto [profiles, source] = go->first.resolve(unit);

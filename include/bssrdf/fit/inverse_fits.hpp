@@ -3,8 +3,11 @@
 //    sigma_s', for any model, solved exactly by root finding on the model's total (no table, no
 //    clamping: unreachable inputs are errors);
 //  - fit_slab: an integrating-sphere measurement (diffuse reflectance and total transmittance of a
-//    slab of known thickness) -> sigma_a, sigma_s' through the multipole, with uncertainties
-//    propagated from the measurement's and a reason when no solution exists;
+//    slab of known thickness, optionally its unscattered transmittance, between optional glass
+//    slides) -> sigma_a, sigma_s' (and g with the unscattered transmittance) through
+//    adding-doubling (exact) or the multipole, with uncertainties propagated from the
+//    measurement's, which measurement constrains which parameter, chi^2, and a reason when no
+//    solution exists;
 //  - fit_gaussians: N shared-variance Gaussians with per-channel non-negative weights fitted to a
 //    profile by minimising int r (R - sum w G)^2 dr (GPU Gems 3 ch. 14);
 //  - fit_burley: Burley's d per channel fitted to a profile (least squares, total fixed).
@@ -45,11 +48,21 @@ struct SlabMeasurement {
   std::string name;
   double reflectance, transmittance;  // per incident flux: diffuse R (specular excluded), total T (ballistic included)
   double reflectance_stderr, transmittance_stderr;
-  double g = 0;
+  double g = 0;                        // held, or the start value when g is fitted
+  double unscattered = -1;             // unscattered transmittance per incident flux; < 0: not measured
+  double unscattered_stderr = 0;
 };
 
-// thickness in `unit`; eta = n_slab / n_outside on both faces.
-FitReport fit_slab(const std::vector<SlabMeasurement>& channels, double thickness, LengthUnit unit, double eta);
+struct SlabFitOptions {
+  std::string model = "adding-doubling";  // or "multipole" (no slides, no unscattered transmittance)
+  double slide_n = 0;                     // glass slides on both faces: index (0: none) and thickness in the fit's unit
+  double slide_thickness = 0;
+};
+
+// thickness in `unit`; eta = n_slab / n_outside on both faces. With an unscattered transmittance
+// g is fitted too (adding-doubling only).
+FitReport fit_slab(const std::vector<SlabMeasurement>& channels, double thickness, LengthUnit unit, double eta,
+                   const SlabFitOptions& options = {});
 
 // The measurable totals of a slab under the multipole plus the exact ballistic beam (both faces,
 // multiple reflections), per incident flux: what fit_slab matches.

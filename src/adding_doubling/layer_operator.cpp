@@ -1,0 +1,128 @@
+// Thin-layer start (diamond initialisation), doubling and adding; see layer_operator.hpp.
+#include "layer_operator.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace bssrdf::adding_doubling {
+
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+// Starting layers are no thicker than the smallest cosine (in optical depth): the diamond scheme's
+// attenuation (1 - t/2mu)/(1 + t/2mu) stays positive and within O(t^3) of exp(-t/mu).
+constexpr double kStartThicknessPerMu = 1.0;
+
+// Azimuthally averaged HG phase function after delta-M truncation to 2N Legendre terms (Wiscombe
+// 1977): chi*_k = (g^k - f)/(1 - f), f = g^2N. p(mu, mu') = sum (2k+1)/2 chi*_k P_k(mu) P_k(mu'),
+// normalised so that int_{-1}^{1} p dmu' = 1. Returns the same- and opposite-hemisphere blocks.
+std::pair<MatrixXd, MatrixXd> phase_blocks(const Angles& angles, double g, double f) {
+  const int n = static_cast<int>(angles.size()), terms = 2 * n;
+  MatrixXd P(terms, n);  // P_k(mu_i)
+  for (int i = 0; i < n; ++i) {
+    const double x = angles.mu[i];
+    P(0, i) = 1;
+    if (terms > 1) P(1, i) = x;
+    for (int k = 2; k < terms; ++k) P(k, i) = ((2 * k - 1) * x * P(k - 1, i) - (k - 1) * P(k - 2, i)) / k;
+  }
+  VectorXd c(terms);
+  for (int k = 0; k < terms; ++k) c(k) = (2 * k + 1) / 2.0 * (f < 1 ? (std::pow(g, k) - f) / (1 - f) : (k == 0));
+  VectorXd c_alternating = c;
+  for (int k = 1; k < terms; k += 2) c_alternating(k) = -c(k);
+  MatrixXd same = P.transpose() * c.asDiagonal() * P;
+  MatrixXd opposite = P.transpose() * c_alternating.asDiagonal() * P;
+  // Exact energy conservation on the discrete angles: put each row's defect on the diagonal
+  // (forward scattering), keeping the matrix symmetric.
+  for (int i = 0; i < n; ++i) {
+    double sum = 0;
+    for (int j = 0; j < n; ++j) sum += angles.weight[j] * (same(i, j) + opposite(i, j));
+    same(i, i) += (1 - sum) / angles.weight[i];
+  }
+  return {same, opposite};
+}
+
+// Diamond initialisation (Wiscombe 1976) of a layer of optical thickness t: the transfer equation
+// with the radiance inside taken as the mean of its values on the two faces. With light entering
+// at the top only, u = L_down(bottom) + L_up(top) and v = their difference solve two N x N systems.
+LayerOperator thin_layer(const Angles& angles, double albedo, const MatrixXd& same, const MatrixXd& opposite, double t) {
+  const int n = static_cast<int>(angles.size());
+  VectorXd w(n), mu(n), flux(n);
+  for (int i = 0; i < n; ++i) {
+    w(i) = angles.weight[i];
+    mu(i) = angles.mu[i];
+    flux(i) = 2 * mu(i) * w(i);
+  }
+  const MatrixXd Sp = albedo / 2 * same * w.asDiagonal();
+  const MatrixXd Sm = albedo / 2 * opposite * w.asDiagonal();
+  MatrixXd D = (mu / t).asDiagonal();
+  const MatrixXd I = MatrixXd::Identity(n, n);
+  const MatrixXd G = D + I / 2 - Sp, H = D - I / 2 + Sp;
+  const MatrixXd U = (G - Sm).partialPivLu().solve(H + Sm);
+  const MatrixXd V = (G + Sm).partialPivLu().solve(H - Sm);
+  // Radiance operators to flux operators: C (.) C^-1 with C = diag(2 mu w).
+  const MatrixXd R = flux.asDiagonal() * ((U - V) / 2) * flux.cwiseInverse().asDiagonal();
+  const MatrixXd T = flux.asDiagonal() * ((U + V) / 2) * flux.cwiseInverse().asDiagonal();
+  return {R, R, T, T};
+}
+
+// Two copies of a homogeneous (up-down symmetric) layer: R2 = R + T R (I - RR)^-1 T,
+// T2 = T (I - RR)^-1 T (R commutes with (I - RR)^-1).
+void double_layer(MatrixXd& R, MatrixXd& T) {
+  const MatrixXd I = MatrixXd::Identity(R.rows(), R.cols());
+  const MatrixXd Y = (I - R * R).partialPivLu().solve(T);
+  const MatrixXd TR = T * R;
+  R += TR * Y;
+  T = T * Y;
+}
+
+}  // namespace
+
+LayerOperator homogeneous_layer(const Angles& angles, double albedo, double g, double optical_thickness) {
+  const int n = static_cast<int>(angles.size());
+  // Delta-M: the forward peak f becomes unscattered light.
+  const double f = std::pow(g, 2 * n);
+  const double albedo_m = albedo * (1 - f) / (1 - albedo * f);
+  const double tau = optical_thickness * (1 - albedo * f);
+  LayerOperator layer;
+  if (albedo_m == 0 || tau == 0) {  // pure absorber (or nothing): straight lines
+    VectorXd e(n);
+    for (int i = 0; i < n; ++i) e(i) = std::isinf(tau) ? 0.0 : std::exp(-tau / angles.mu[i]);
+    const MatrixXd T = e.asDiagonal(), Z = MatrixXd::Zero(n, n);
+    return {Z, Z, T, T};
+  }
+  const auto [same, opposite] = phase_blocks(angles, g, f);
+  const double start_max = kStartThicknessPerMu * angles.mu.front();
+  MatrixXd R, T;
+  if (std::isinf(tau)) {
+    auto thin = thin_layer(angles, albedo_m, same, opposite, start_max);
+    R = thin.R_top;
+    T = thin.T_down;
+    // Double until nothing is transmitted (each doubling squares the transmission far out).
+    for (int k = 0; k < 80 && T.colwise().sum().maxCoeff() > 1e-13; ++k) double_layer(R, T);
+    return {R, R, MatrixXd::Zero(n, n), MatrixXd::Zero(n, n)};
+  }
+  const int doublings = std::max(0, static_cast<int>(std::ceil(std::log2(tau / start_max))));
+  auto thin = thin_layer(angles, albedo_m, same, opposite, std::ldexp(tau, -doublings));
+  R = thin.R_top;
+  T = thin.T_down;
+  for (int k = 0; k < doublings; ++k) double_layer(R, T);
+  return {R, R, T, T};
+}
+
+LayerOperator add(const LayerOperator& upper, const LayerOperator& lower) {
+  const auto n = upper.R_top.rows();
+  const MatrixXd I = MatrixXd::Identity(n, n);
+  // Downward (I - R1b R2t)^-1 and upward (I - R2t R1b)^-1 multiple reflections at the junction.
+  const auto down = (I - upper.R_bottom * lower.R_top).partialPivLu();
+  const auto up = (I - lower.R_top * upper.R_bottom).partialPivLu();
+  LayerOperator out;
+  out.T_down = lower.T_down * down.solve(upper.T_down);
+  out.R_top = upper.R_top + upper.T_up * up.solve(lower.R_top * upper.T_down);
+  out.R_bottom = lower.R_bottom + lower.T_down * down.solve(upper.R_bottom * lower.T_up);
+  out.T_up = upper.T_up * up.solve(lower.T_up);
+  return out;
+}
+
+}  // namespace bssrdf::adding_doubling

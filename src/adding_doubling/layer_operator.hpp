@@ -1,0 +1,30 @@
+// Reflection and transmission operators of scattering layers on the quadrature angles, and the
+// adding equations that combine them (van de Hulst 1980; Prahl 1995, sec. 5.3-5.6).
+//
+// Operators act on flux vectors: component i is the flux 2 mu_i w_i L(mu_i) carried by angle i
+// (normalised so that a unit flux leaving in every direction sums to one). In this form Prahl's
+// "star" product is the ordinary matrix product, and the total reflectance of unit flux arriving
+// in angle j is the column sum of R.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include "angles.hpp"
+
+namespace bssrdf::adding_doubling {
+
+struct LayerOperator {
+  Eigen::MatrixXd R_top;     // light arriving from above, reflected up
+  Eigen::MatrixXd R_bottom;  // light arriving from below, reflected down
+  Eigen::MatrixXd T_down;    // from above, transmitted down
+  Eigen::MatrixXd T_up;      // from below, transmitted up
+};
+
+// A homogeneous Henyey-Greenstein layer of single-scattering albedo `albedo` and optical thickness
+// `optical_thickness` (may be infinite: the semi-infinite medium). Delta-M with 2N Legendre terms.
+LayerOperator homogeneous_layer(const Angles& angles, double albedo, double g, double optical_thickness);
+
+// `upper` on top of `lower`.
+LayerOperator add(const LayerOperator& upper, const LayerOperator& lower);
+
+}  // namespace bssrdf::adding_doubling

@@ -1,0 +1,199 @@
+// Totals of a slab by adding-doubling: layers, boundaries, incidence; angles chosen from the
+// tolerance. See include/bssrdf/adding_doubling/slab.hpp.
+#include "bssrdf/adding_doubling/slab.hpp"
+
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "angles.hpp"
+#include "boundary.hpp"
+#include "bssrdf/error.hpp"
+#include "layer_operator.hpp"
+
+namespace bssrdf::adding_doubling {
+
+std::string_view to_string(Incidence incidence) { return incidence == Incidence::collimated ? "collimated" : "diffuse"; }
+
+Incidence parse_incidence(const std::string& text) {
+  if (text == "collimated") return Incidence::collimated;
+  if (text == "diffuse") return Incidence::diffuse;
+  throw InvalidInput("incidence", text, "collimated or diffuse");
+}
+
+void Slab::validate() const {
+  auto finite_positive = [](double v) { return v > 0 && std::isfinite(v); };
+  if (layers.empty()) throw InvalidInput("layers", "none", "at least one scattering layer");
+  if (!finite_positive(n)) throw InvalidInput("n", format_number(n), "> 0 and finite");
+  if (!finite_positive(ambient_above)) throw InvalidInput("ambient_above", format_number(ambient_above), "> 0 and finite");
+  if (!finite_positive(ambient_below)) throw InvalidInput("ambient_below", format_number(ambient_below), "> 0 and finite");
+  for (std::size_t k = 0; k < layers.size(); ++k) {
+    const auto& l = layers[k];
+    const std::string f = "layers[" + std::to_string(k) + "].";
+    if (!(l.sigma_a >= 0 && std::isfinite(l.sigma_a))) throw InvalidInput(f + "sigma_a", format_number(l.sigma_a), ">= 0 and finite");
+    if (!(l.sigma_s >= 0 && std::isfinite(l.sigma_s))) throw InvalidInput(f + "sigma_s", format_number(l.sigma_s), ">= 0 and finite");
+    if (!(l.g > -1 && l.g < 1)) throw InvalidInput(f + "g", format_number(l.g), "-1 < g < 1");
+    const bool last = k + 1 == layers.size();
+    if (!(finite_positive(l.thickness) || (last && l.thickness == kSemiInfinite)))
+      throw InvalidInput(f + "thickness", format_number(l.thickness), last ? "> 0 (or semi-infinite)" : "> 0 and finite");
+    if (last && l.thickness == kSemiInfinite && !(l.sigma_a + l.sigma_s > 0))
+      throw InvalidInput(f + "sigma_t", "0", "> 0 for a semi-infinite layer");
+  }
+  for (const auto* side : {&above, &below})
+    for (std::size_t k = 0; k < side->size(); ++k) {
+      const auto& c = (*side)[k];
+      const std::string f = std::string(side == &above ? "slides_above[" : "slides_below[") + std::to_string(k) + "].";
+      if (!finite_positive(c.n)) throw InvalidInput(f + "n", format_number(c.n), "> 0 and finite");
+      if (!finite_positive(c.thickness)) throw InvalidInput(f + "thickness", format_number(c.thickness), "> 0 and finite");
+      if (!(c.sigma_a >= 0 && std::isfinite(c.sigma_a))) throw InvalidInput(f + "sigma_a", format_number(c.sigma_a), ">= 0 and finite");
+    }
+}
+
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+// Critical cosine inside the slab for light to reach a medium of index m.
+double critical_cosine(double n, double m) { return m < n ? std::sqrt(1 - (m / n) * (m / n)) : 0.0; }
+
+double min_index(double ambient, const std::vector<ClearLayer>& clear) {
+  double m = ambient;
+  for (const auto& c : clear) m = std::min(m, c.n);
+  return m;
+}
+
+Totals solve_with(const Slab& slab, Incidence incidence, int points) {
+  const Angles angles = make_angles(points, {critical_cosine(slab.n, min_index(slab.ambient_above, slab.above)),
+                                             critical_cosine(slab.n, min_index(slab.ambient_below, slab.below))});
+  const int n = static_cast<int>(angles.size());
+  // The boundaries, as media from top to bottom with the half-spaces at the ends.
+  std::vector<ClearLayer> top{{slab.ambient_above, 0, 0}}, bottom{{slab.n, 0, 0}};
+  top.insert(top.end(), slab.above.begin(), slab.above.end());
+  top.push_back({slab.n, 0, 0});
+  bottom.insert(bottom.end(), slab.below.begin(), slab.below.end());
+  bottom.push_back({slab.ambient_below, 0, 0});
+  const Boundary B_top = make_boundary(angles, slab.n, top);
+  const Boundary B_bottom = make_boundary(angles, slab.n, bottom);
+
+  // The scattering layers, added top to bottom.
+  LayerOperator S;
+  double optical_depth = 0;  // along the normal, true (not delta-M) coefficients
+  for (std::size_t k = 0; k < slab.layers.size(); ++k) {
+    const auto& l = slab.layers[k];
+    const double sigma_t = l.sigma_a + l.sigma_s;
+    const double tau = std::isinf(l.thickness) ? INFINITY : sigma_t * l.thickness;
+    const auto layer = homogeneous_layer(angles, sigma_t > 0 ? l.sigma_s / sigma_t : 0.0, l.g, tau);
+    S = k == 0 ? layer : add(S, layer);
+    optical_depth += tau;
+  }
+
+  // Slab with its bottom boundary: y = (I - R_bottom Rb)^-1 T_down x is the downward flux at the
+  // bottom face; R' = R_top + T_up Rb y, T' = Tb y.
+  VectorXd rb(n), tb(n), rt_out(n), rt_in(n), tt(n);
+  for (int i = 0; i < n; ++i) {
+    rb(i) = B_bottom.r_top[i];
+    tb(i) = B_bottom.t[i];
+    rt_out(i) = B_top.r_top[i];
+    rt_in(i) = B_top.r_bottom[i];
+    tt(i) = B_top.t[i];
+  }
+  const MatrixXd I = MatrixXd::Identity(n, n);
+  MatrixXd R1 = S.R_top, T1 = MatrixXd::Zero(n, n);
+  if (!std::isinf(optical_depth)) {
+    const MatrixXd Y = (I - S.R_bottom * rb.asDiagonal()).partialPivLu().solve(S.T_down);
+    R1 += S.T_up * rb.asDiagonal() * Y;
+    T1 = tb.asDiagonal() * Y;
+  }
+
+  // Incident flux per angle (outside the slab, labelled by the slab angle it refracts into).
+  VectorXd incident = VectorXd::Zero(n);
+  double cannot_enter = 0;  // diffuse light at angles with no counterpart inside (n < ambient)
+  if (incidence == Incidence::collimated) {
+    incident(n - 1) = 1;
+  } else {
+    // Uniform radiance outside: by Snell, n_a^2 nu dnu = n^2 mu dmu, so angle i carries
+    // (n/n_a)^2 2 mu_i w_i of the flux where it connects to the outside.
+    const double ratio = slab.n / slab.ambient_above;
+    double sum = 0;
+    for (int i = 0; i < n; ++i) {
+      const double s = ratio * std::sqrt(std::max(0.0, 1 - angles.mu[i] * angles.mu[i]));
+      if (s < 1) incident(i) = ratio * ratio * 2 * angles.mu[i] * angles.weight[i];
+      sum += incident(i);
+    }
+    cannot_enter = std::max(0.0, 1 - sum);
+  }
+  // Downward flux below the top boundary: x = tt f + rt_in R' x.
+  const VectorXd x = (I - rt_in.asDiagonal() * R1).partialPivLu().solve(tt.cwiseProduct(incident));
+  Totals out;
+  out.points = n;
+  out.specular_reflectance = rt_out.dot(incident) + cannot_enter;
+  out.diffuse_reflectance = tt.dot(R1 * x);
+  out.total_transmittance = (T1 * x).sum();
+  if (!std::isinf(optical_depth))
+    for (int i = 0; i < n; ++i) {
+      const double e = std::exp(-optical_depth / angles.mu[i]);
+      const double bounce = 1 - rt_in(i) * rb(i) * e * e;
+      if (bounce > 0) out.unscattered_transmittance += incident(i) * tt(i) * tb(i) * e / bounce;
+    }
+  return out;
+}
+
+}  // namespace
+
+Totals solve(const Slab& slab, Incidence incidence, const Options& options) {
+  slab.validate();
+  if (options.points > 0) return solve_with(slab, incidence, options.points);
+  if (!(options.tolerance > 0)) throw InvalidInput("tolerance", format_number(options.tolerance), "> 0");
+  // Angles 8, 16, 32, ...: the error of the finest result is estimated from the last two changes
+  // (geometric convergence with ratio rho leaves rho/(1 - rho) of the last change), never less
+  // than a quarter of the last change, and the last change itself when the changes do not shrink
+  // by half. At least three results (32 angles), since one change alone can be small by chance.
+  Totals coarse = solve_with(slab, incidence, 8);
+  double last_change[2] = {-1, -1};
+  for (int points = 16;; points *= 2) {
+    Totals fine = solve_with(slab, incidence, points);
+    const double change[2] = {std::abs(fine.diffuse_reflectance - coarse.diffuse_reflectance),
+                              std::abs(fine.total_transmittance - coarse.total_transmittance)};
+    fine.error_estimate = 0;
+    for (int k = 0; k < 2; ++k) {
+      double estimate = change[k];
+      if (last_change[k] > 0) {
+        const double rho = change[k] / last_change[k];
+        if (rho < 0.5) estimate = change[k] * std::max(0.25, rho / (1 - rho));
+      }
+      fine.error_estimate = std::max(fine.error_estimate, estimate);
+      last_change[k] = change[k];
+    }
+    coarse = fine;
+    if ((points >= 32 && fine.error_estimate <= options.tolerance) || points >= 128) return fine;
+  }
+}
+
+Slab slab_of(const LayerStack& stack, std::size_t c) {
+  stack.validate();
+  Slab slab;
+  slab.ambient_above = stack.ambient_above;
+  slab.ambient_below = stack.ambient_below;
+  std::size_t first = 0, last = stack.layers.size();
+  while (first < last && stack.layers[first].sigma_s[c] == 0 && std::isfinite(stack.layers[first].thickness)) ++first;
+  while (last > first && stack.layers[last - 1].sigma_s[c] == 0 && std::isfinite(stack.layers[last - 1].thickness)) --last;
+  auto clear = [&](const Layer& l) { return ClearLayer{l.n, l.thickness, l.sigma_a[c]}; };
+  for (std::size_t k = 0; k < first; ++k) slab.above.push_back(clear(stack.layers[k]));
+  for (std::size_t k = last; k < stack.layers.size(); ++k) slab.below.push_back(clear(stack.layers[k]));
+  if (first == last) throw InvalidInput("layers", "no scattering layer in channel " + stack.channel_names[c], "at least one");
+  slab.n = stack.layers[first].n;
+  for (std::size_t k = first; k < last; ++k) {
+    const auto& l = stack.layers[k];
+    const std::string field = "layers[" + std::to_string(k) + "]";
+    if (l.n != slab.n)
+      throw InvalidInput(field + ".n", format_number(l.n),
+                         format_number(slab.n) + " (adding-doubling needs one index for all scattering layers)");
+    if (l.sigma_s[c] == 0)
+      throw InvalidInput(field + ".sigma_s[" + stack.channel_names[c] + "]", "0",
+                         "> 0 (adding-doubling takes non-scattering layers only above or below the scattering ones)");
+    slab.layers.push_back({l.sigma_a[c], l.sigma_s[c], l.g[c], l.thickness});
+  }
+  return slab;
+}
+
+}  // namespace bssrdf::adding_doubling

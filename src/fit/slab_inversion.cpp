@@ -1,0 +1,119 @@
+// Weighted least-squares inversion of slab measurements; see slab_inversion.hpp.
+#include "slab_inversion.hpp"
+
+#include <ceres/ceres.h>
+
+#include <cmath>
+
+namespace bssrdf {
+
+namespace {
+
+// x = (ln sigma_a, ln sigma_s' [, atanh g]): positive coefficients and |g| < 1 without bounds.
+SlabParameters from_x(const double* x, bool fit_g, double g) {
+  return {std::exp(x[0]), std::exp(x[1]), fit_g ? std::tanh(x[2]) : g};
+}
+
+struct Residual {
+  const SlabForward* forward;
+  std::array<double, 3> measured, sigma;
+  int count;
+  bool fit_g;
+  double g;
+  bool operator()(double const* const* x, double* residual) const {
+    const auto predicted = (*forward)(from_x(x[0], fit_g, g));
+    for (int m = 0; m < count; ++m) residual[m] = (predicted[m] - measured[m]) / sigma[m];
+    return true;
+  }
+};
+
+}  // namespace
+
+SlabInversion invert_slab(const std::array<double, 3>& measured, const std::array<double, 3>& stderr_, int count, bool fit_g,
+                          double g, double d, const SlabForward& forward, const SlabForward& coarse) {
+  const int p = fit_g ? 3 : 2;
+  // Starting point: the best of a coarse grid of reduced albedo and reduced optical thickness.
+  double best_cost = INFINITY;
+  std::array<double, 3> x{0, 0, fit_g ? std::atanh(g) : 0};
+  for (double a : {0.3, 0.7, 0.9, 0.97, 0.99, 0.997})
+    for (double optical : {0.3, 1.0, 3.0, 10.0, 30.0}) {
+      const SlabParameters trial{(1 - a) * optical / d, a * optical / d, g};
+      const auto predicted = coarse(trial);
+      double cost = 0;
+      for (int m = 0; m < count; ++m) cost += std::pow((predicted[m] - measured[m]) / stderr_[m], 2);
+      if (cost < best_cost) {
+        best_cost = cost;
+        x[0] = std::log(trial.sigma_a);
+        x[1] = std::log(trial.sigma_s_prime);
+      }
+    }
+  Residual residual{&forward, measured, stderr_, count, fit_g, g};
+  auto* cost = new ceres::DynamicNumericDiffCostFunction<Residual, ceres::CENTRAL>(new Residual(residual));
+  cost->AddParameterBlock(p);
+  cost->SetNumResiduals(count);
+  ceres::Problem problem;
+  problem.AddResidualBlock(cost, nullptr, x.data());
+  for (int i = 0; i < 2; ++i) {  // 1e-11 to 1e11 per mm
+    problem.SetParameterLowerBound(x.data(), i, -25);
+    problem.SetParameterUpperBound(x.data(), i, 25);
+  }
+  if (fit_g) {
+    problem.SetParameterLowerBound(x.data(), 2, -3.8);  // |g| < 0.999
+    problem.SetParameterUpperBound(x.data(), 2, 3.8);
+  }
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = 100;
+  options.function_tolerance = 1e-12;
+  options.parameter_tolerance = 1e-10;
+  options.gradient_tolerance = 1e-14;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+
+  SlabInversion out;
+  out.parameters = from_x(x.data(), fit_g, g);
+  out.predicted = forward(out.parameters);
+  for (int m = 0; m < count; ++m) out.chi2 += std::pow((out.predicted[m] - measured[m]) / stderr_[m], 2);
+  out.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  out.converged = summary.termination_type == ceres::CONVERGENCE;
+  out.termination = ceres::TerminationTypeToString(summary.termination_type);
+
+  // Linear propagation: with J the Jacobian of the weighted residuals in x, the parameters move by
+  // K = (J^T J)^-1 J^T per unit of weighted measurement error, so Cov(x) = K K^T and row p of K
+  // says how much each measurement contributes to parameter p's variance.
+  Eigen::MatrixXd J(count, p);
+  {
+    double residual_plus[3], residual_minus[3];
+    for (int j = 0; j < p; ++j) {
+      std::array<double, 3> xp = x, xm = x;
+      const double h = 1e-5;
+      xp[j] += h;
+      xm[j] -= h;
+      const double* bp = xp.data();
+      const double* bm = xm.data();
+      residual(&bp, residual_plus);
+      residual(&bm, residual_minus);
+      for (int m = 0; m < count; ++m) J(m, j) = (residual_plus[m] - residual_minus[m]) / (2 * h);
+    }
+  }
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const auto s = svd.singularValues();
+  out.determined = s.size() == p && s(p - 1) > 1e-9 * s(0);
+  // Pseudo-inverse with singular values floored at 1e-9 of the largest: an undetermined
+  // combination gets a huge (finite) error instead of NaN, and the report says so.
+  Eigen::VectorXd inverse(s.size());
+  for (int k = 0; k < s.size(); ++k) inverse(k) = 1 / std::max(s(k), 1e-9 * std::max(s(0), 1e-300));
+  const Eigen::MatrixXd K = svd.matrixV() * inverse.asDiagonal() * svd.matrixU().transpose();  // p x count
+  for (int j = 0; j < p; ++j) {
+    const double variance = K.row(j).squaredNorm();
+    const double scale = j == 0 ? out.parameters.sigma_a : j == 1 ? out.parameters.sigma_s_prime : 1 - out.parameters.g * out.parameters.g;
+    out.standard_error[j] = scale * std::sqrt(variance);  // d exp(x) = exp(x) dx, d tanh(x) = (1 - tanh^2) dx
+    for (int m = 0; m < count; ++m) out.share[j][m] = variance > 0 ? K(j, m) * K(j, m) / variance : 0;
+  }
+  const double a = out.parameters.sigma_a, sp = out.parameters.sigma_s_prime;
+  const double slope = a * sp / ((a + sp) * (a + sp));  // d alpha'/d ln sigma_s' = -d alpha'/d ln sigma_a
+  out.albedo_prime_stderr = slope * (K.row(1) - K.row(0)).norm();
+  return out;
+}
+
+}  // namespace bssrdf
