@@ -6,6 +6,8 @@
 
 #include <cctype>
 #include <cmath>
+#include <set>
+#include <sstream>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -101,6 +103,11 @@ TEST(CliMaterials, ListFiltersAndPrintsJson) {
   auto r = run("materials list --source narasimhan2006");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(count_lines(r.out), 35);
+  // Columns line up for the longest name ("Head & Shoulders Shampoo"): every source starts at one column.
+  std::istringstream lines(r.out);
+  std::set<std::size_t> source_columns;
+  for (std::string line; std::getline(lines, line);) source_columns.insert(line.find("narasimhan2006"));
+  EXPECT_EQ(source_columns.size(), 1u) << r.out;
   r = run("materials list -f json");
   const auto doc = json::parse(r.out);
   ASSERT_EQ(doc.size(), 47u);
@@ -187,14 +194,13 @@ TEST(CliMaterials, BlenderExportIsPythonForRandomWalk) {
   auto r = run("materials export --all --to blender -o " + path.string());
   ASSERT_EQ(r.status, 0) << r.err;
   const std::string text = test_cli::slurp(path);
-  EXPECT_NE(text.find("RANDOM_WALK"), std::string::npos);
-  EXPECT_NE(text.find("mean free path 1/sigma_t"), std::string::npos);
+  EXPECT_NE(text.find("METHODS = {3: 'RANDOM_WALK_FIXED_RADIUS', 4: 'RANDOM_WALK'}"), std::string::npos);
+  EXPECT_NE(text.find("R / (4 pi) = 1 / (sigma_t (1 - g))"), std::string::npos);
   if (std::system("python3 -c pass >/dev/null 2>&1") == 0)
     EXPECT_EQ(std::system(("python3 -c \"import ast,sys; ast.parse(open(sys.argv[1]).read())\" " + path.string()).c_str()), 0);
-  // Skin1 in metres: scale = the largest mfp 1/0.772 mm; radius R = 1.
+  // Skin1 in mm with the fixed radius: R = 4 pi / sigma_t (g = 0), sigma_t = 0.772 1/mm in red.
   r = run("materials export skin1 --to blender --unit mm");
-  EXPECT_NE(r.out.find("radius=(1, "), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("scale=" + format_number(1 / 0.772)), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("radius=(" + format_number(4 * M_PI / 0.772).substr(0, 6)), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("ior=1.3"), std::string::npos);
 }
 
@@ -319,4 +325,41 @@ TEST(CliMaterials, NameClashWithTheBundledDatabaseIsAnError) {
   EXPECT_EQ(count_lines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("clash.json"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("'Marble' is already defined in"), std::string::npos) << r.err;
+}
+
+// The engine scripts: the numbers of the JSON exports, in the engines' own API names.
+TEST(CliMaterials, EngineScriptsCarryTheProfileNumbers) {
+  const auto unity = json::parse(run("materials export skin1 --to unity-hdrp --unit m").out)["profiles"][0];
+  auto r = run("materials export skin1 --to unity-hdrp-editor --unit m");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("ScriptableObject.CreateInstance<DiffusionProfileSettings>()"), std::string::npos);
+  EXPECT_NE(r.out.find("FindPropertyRelative(\"scatteringDistanceMultiplier\")"), std::string::npos);
+  EXPECT_NE(r.out.find("Make(\"Skin1\", new Color(" + format_number(unity["scatteringDistance"][0].get<double>()) + "f"),
+            std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(format_number(unity["scatteringDistanceMultiplier"].get<double>()) + "f, " +
+                       format_number(unity["worldScale"].get<double>()) + "f"),
+            std::string::npos);
+  const auto unreal = json::parse(run("materials export skin1 --to unreal").out)["profiles"][0];
+  EXPECT_DOUBLE_EQ(unreal["WorldUnitScale"].get<double>(), 1.0);
+  r = run("materials export skin1 --to unreal-python");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("set_editor_property('world_unit_scale', 1.0)"), std::string::npos);
+  EXPECT_NE(r.out.find("make_profile('Skin1', (" + format_number(unreal["SurfaceAlbedo"][0].get<double>())),
+            std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(format_number(unreal["MeanFreePathDistance"].get<double>()) + ", 1.3)"), std::string::npos);
+  if (std::system("python3 -c pass >/dev/null 2>&1") == 0) {
+    const auto path = temp("unreal.py");
+    std::ofstream(path) << run("materials export --all --to unreal-python").out;
+    EXPECT_EQ(std::system(("python3 -c \"import ast,sys; ast.parse(open(sys.argv[1]).read())\" " + path.string()).c_str()), 0);
+  }
+}
+
+TEST(CliMaterials, PbrtNamesItsBuiltInMediumAndMitsubaUsesVolpath) {
+  auto r = run("materials export skin1 --to pbrt-v4 --unit m");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("pbrt-v4 has this medium built in: \"string name\" [ \"Skin1\" ]"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"float scale\" [ 1000 ] for 1/m"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("does not read bssrdf's tables"), std::string::npos);
+  r = run("materials export skin1 --to mitsuba3 --unit mm");
+  EXPECT_NE(r.out.find("<integrator type=\"volpath\">"), std::string::npos) << r.out;
 }

@@ -69,7 +69,7 @@ struct MonteCarloOptions {
 
   // Radial bins for R(r) and T(r), in mm. Linear: `bins` bins of width r_max / bins from 0.
   // Log: the first bin is [0, r_min), then bins - 1 geometric bins from r_min to r_max.
-  // r_max <= 0: 10 transport mean free paths of the top scattering layer (largest over channels);
+  // r_max <= 0: 10 transport mean free paths, the largest over the scattering layers and channels;
   // r_min <= 0: r_max / 1000.
   double r_max = 0;
   double r_min = 0;

@@ -50,7 +50,8 @@ Chart speed_accuracy_chart(const std::optional<MediumOptions::Resolved>& medium)
   Chart chart;
   chart.x_title = "cost of one R(r) evaluation, ns (bench_models)";
   chart.y_title = "relative error against Monte Carlo, %";
-  ChartSeries l2{"R(r) L2 error", "#1f77b4", false, {}}, total{"total error", "#ff7f0e", true, {}};
+  // Legend entries say what each marker is (the total-error squares carry no point labels).
+  ChartSeries l2{"R(r) L2 error", "#1f77b4", false, {}}, total{"total error (model: same x)", "#ff7f0e", true, {}};
   const auto percent = [](double v) { return std::max(100 * v, 0.1); };  // below 0.1 % drawn at 0.1 %
   if (medium) {
     const std::string name = medium->material ? medium->material->name : std::string("the given medium");
@@ -70,6 +71,8 @@ Chart speed_accuracy_chart(const std::optional<MediumOptions::Resolved>& medium)
       std::sort(v.begin(), v.end());
       return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
     };
+    l2.name = "R(r) L2, median; bars: range";
+    total.name = "total error, median (same x)";
     for (const auto& m : measured_models()) {
       const auto [l2_lo, l2_hi] = std::minmax_element(m.profile_error.begin(), m.profile_error.end());
       l2.points.push_back({m.model, m.cost_ns, percent(median(m.profile_error)), percent(*l2_lo), percent(*l2_hi)});

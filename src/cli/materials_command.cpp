@@ -1,6 +1,7 @@
 // bssrdf materials list | show | export | import: the measured-media database, what each entry
 // implies (derived quantities, diffusion validity), renderer exports, and fitted materials saved
 // in the database's own format.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -171,6 +172,7 @@ std::string import_fit(const std::string& fit_file, const std::string& name, con
 Action register_materials(CLI::App& app) {
   struct Options {
     std::string db, source, format = "table", name, to, unit, output, object_size = "10", fit_file, eta, import_source = "fit";
+    std::string blender_method = "fixed-radius", blender_version = "auto";
     bool all = false;
   };
   auto o = std::make_shared<Options>();
@@ -200,10 +202,14 @@ Action register_materials(CLI::App& app) {
   auto* exp_name = exp->add_option("name", o->name, "Material name (case-insensitive)");
   auto* exp_all = exp->add_flag("--all", o->all, "Every material (with --source: every one from that source)");
   exp_name->excludes(exp_all);
-  exp->add_option("--to", o->to, "json, pbrt-v4, mitsuba3, blender, unity-hdrp, unreal")->required();
+  exp->add_option("--to", o->to, "json, pbrt-v4, mitsuba3, blender, unity-hdrp, unity-hdrp-editor, unreal, unreal-python")->required();
   exp->add_option("--unit", o->unit,
                   "Scene unit lengths and coefficients are written in: um, mm, cm, m [m; json: mm; unreal: always cm]");
   exp->add_option("--source", o->source, "With --all: only materials from this source");
+  exp->add_option("--blender-method", o->blender_method,
+                  "blender: Cycles subsurface method: fixed-radius (3.x Random Walk (Fixed Radius), 4.x Random Walk), "
+                  "radius-remap (3.x Random Walk, 4.x Random Walk (Skin)), burley [fixed-radius]");
+  exp->add_option("--blender-version", o->blender_version, "blender: 3, 4, or auto (the script picks when run) [auto]");
   exp->add_option("-o,--output", o->output, "Write to FILE (atomically) instead of stdout");
   add_db(exp);
   add_object_size(exp);
@@ -219,13 +225,16 @@ Action register_materials(CLI::App& app) {
     if (list->parsed()) {
       const auto db = MaterialDatabase::load_with_user(o->db);
       json out = json::array();
+      std::size_t width = 0;  // the longest listed name, so the columns line up
+      for (const auto& m : db.all())
+        if (o->source.empty() || m.source == o->source) width = std::max(width, m.name.size());
       for (const auto& m : db.all()) {
         if (!o->source.empty() && m.source != o->source) continue;
         if (o->format == "json") {
           out.push_back({{"name", m.name}, {"source", m.source}, {"eta", m.medium.eta}, {"channels", m.medium.channel_names},
                          {"file", m.file}});
         } else {
-          std::cout << m.name << std::string(m.name.size() < 24 ? 24 - m.name.size() : 1, ' ') << m.source
+          std::cout << m.name << std::string(width + 2 - m.name.size(), ' ') << m.source
                     << "  eta " << m.medium.eta << '\n';
         }
       }
@@ -257,7 +266,14 @@ Action register_materials(CLI::App& app) {
       } else {
         add(db.find(o->name));
       }
-      const std::string text = export_materials(target, entries, unit);
+      ExportOptions export_options;
+      export_options.blender_method = parse_cycles_mapping(o->blender_method, "--blender-method");
+      if (o->blender_version != "auto") {
+        if (o->blender_version != "3" && o->blender_version != "4")
+          throw InvalidInput("--blender-version", "'" + o->blender_version + "'", "3, 4 or auto");
+        export_options.blender_version = std::stoi(o->blender_version);
+      }
+      const std::string text = export_materials(target, entries, unit, export_options);
       if (o->output.empty()) std::cout << text;
       else write_file_atomically(o->output, text);
     } else if (imp->parsed()) {

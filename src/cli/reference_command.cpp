@@ -7,7 +7,9 @@
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/io/layers_json.hpp"
+#include "bssrdf/io/atomic_file.hpp"
 #include "bssrdf/io/mci.hpp"
+#include "bssrdf/io/mco.hpp"
 #include "bssrdf/montecarlo.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -18,7 +20,7 @@ Action register_reference(CLI::App& app) {
   struct Options {
     MediumOptions medium;
     OutputOptions output;
-    std::string thickness, layers, mci, r_max, r_min, spacing = "linear", absorption = "implicit";
+    std::string thickness, layers, mci, mco_dir = ".", r_max, r_min, spacing = "linear", absorption = "implicit";
     std::uint64_t photons = 1'000'000, seed = 1;
     unsigned threads = 0;
     std::size_t bins = 100, depth_bins = 0;
@@ -31,6 +33,8 @@ Action register_reference(CLI::App& app) {
   auto* thickness = sub->add_option("--thickness", options->thickness, "Slab thickness in --unit [semi-infinite]");
   auto* layers = sub->add_option("--layers", options->layers, "Layer stack file (JSON, format bssrdf-layers)");
   auto* mci = sub->add_option("--mci", options->mci, "Run the cases of an MCML input file (cm, 1/cm; outputs in cm)");
+  sub->add_option("--mco-dir", options->mco_dir,
+                  "--mci: directory for each run's MCML output file (.mco, the name in the .mci) [., as MCML]");
   sub->add_option("--photons,-n", options->photons, "Photons per channel (per run with --mci: default the file's) [1000000]");
   sub->add_option("--seed", options->seed, "Random seed; the result depends only on inputs and seed [1]");
   sub->add_option("--threads,-j", options->threads, "Worker threads, 0 = all cores; never changes the result [0]");
@@ -80,6 +84,8 @@ Action register_reference(CLI::App& app) {
       std::string label;
       LayerStack stack;
       MonteCarloOptions options;
+      std::string mco;  // --mci: the run's MCML output file
+      int angle_bins = 1;
     };
     std::vector<Case> cases;
     LengthUnit unit = LengthUnit::millimetre;
@@ -110,14 +116,14 @@ Action register_reference(CLI::App& app) {
           mc.z_max = run.dz * run.nz;
         }
         lengths(mc, unit);
-        cases.push_back({"run " + std::to_string(k + 1) + " (" + run.output_file + ")", run.stack, mc});
+        cases.push_back({"run " + std::to_string(k + 1) + " (" + run.output_file + ")", run.stack, mc, run.output_file, run.na});
       }
     } else if (!o.layers.empty()) {
       const LayersFile file = read_layers_json(o.layers);
       unit = unit_option->count() ? parse_length_unit(o.medium.unit, "--unit") : file.unit;
       MonteCarloOptions mc = base;
       lengths(mc, unit);
-      cases.push_back({o.layers, file.stack, mc});
+      cases.push_back({o.layers, file.stack, mc, "", 1});
     } else {
       const auto resolved = o.medium.resolve();
       unit = resolved.unit;
@@ -131,7 +137,7 @@ Action register_reference(CLI::App& app) {
       lengths(mc, unit);
       LayerStack stack = LayerStack::slab(resolved.medium, thickness_mm);
       if (resolved.material) stack.layers[0].name = resolved.material->name;
-      cases.push_back({resolved.material ? resolved.material->name : "medium", stack, mc});
+      cases.push_back({resolved.material ? resolved.material->name : "medium", stack, mc, "", 1});
     }
     for (auto& c : cases) c.options.validate();  // every case checked before any photon is traced
 
@@ -171,7 +177,14 @@ Action register_reference(CLI::App& app) {
         break;
       case Format::table: content = table; break;
     }
+    // Every run is formatted before any file is written, so a refusal leaves none behind.
+    std::vector<std::pair<std::filesystem::path, std::string>> mco_files;
+    for (std::size_t k = 0; k < results.size(); ++k)
+      if (!cases[k].mco.empty())
+        mco_files.emplace_back(std::filesystem::path(o.mco_dir) / cases[k].mco,
+                               format_mco(results[k], cases[k].mco, cases[k].angle_bins));
     emit(o.output, content, table);
+    for (const auto& [path, text] : mco_files) write_file_atomically(path, text);
   };
 }
 

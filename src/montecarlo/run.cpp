@@ -59,15 +59,14 @@ ChannelResult ChannelResult::per_entered_flux() const {
 
 namespace {
 
-// Transport mean free path of the first attenuating layer, largest over channels (mm).
-double top_transport_mfp(const LayerStack& stack) {
+// The largest transport mean free path over the attenuating layers and channels (mm): light
+// spreads as far as the most open layer lets it, and that is often a deep one (a thin, dense
+// epidermis over dermis set the top layer's 10 ell at a radius holding only 85 % of the red).
+double largest_transport_mfp(const LayerStack& stack) {
   double ell = 0;
   for (std::size_t c = 0; c < stack.channels(); ++c)
-    for (const Layer& layer : stack.layers) {
-      if (layer.clear(c)) continue;
-      ell = std::max(ell, 1 / (layer.sigma_a[c] + layer.sigma_s[c] * (1 - layer.g[c])));
-      break;
-    }
+    for (const Layer& layer : stack.layers)
+      if (!layer.clear(c)) ell = std::max(ell, 1 / (layer.sigma_a[c] + layer.sigma_s[c] * (1 - layer.g[c])));
   return ell > 0 ? ell : 1.0;
 }
 
@@ -123,12 +122,12 @@ MonteCarloResult run_monte_carlo(const LayerStack& stack, const MonteCarloOption
   MonteCarloOptions& options = result.options;
   options = options_in;
   options.progress = nullptr;
-  if (options.r_max <= 0) options.r_max = 10 * top_transport_mfp(stack);
+  if (options.r_max <= 0) options.r_max = 10 * largest_transport_mfp(stack);
   if (options.r_min <= 0) options.r_min = options.r_max / 1000;
   if (options.spacing == BinSpacing::log && !(options.r_min < options.r_max))
     throw InvalidInput("r_min", format_number(options.r_min), "< r_max = " + format_number(options.r_max));
   if (options.depth_bins > 0 && options.z_max <= 0)
-    options.z_max = stack.semi_infinite() ? 10 * top_transport_mfp(stack) : stack.depth();
+    options.z_max = stack.semi_infinite() ? 10 * largest_transport_mfp(stack) : stack.depth();
 
   const mc::RadialBinning binning(options.spacing, options.bins, options.r_min, options.r_max);
   result.bin_inner = binning.inner;

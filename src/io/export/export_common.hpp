@@ -36,8 +36,10 @@ std::string validity_summary(const DerivedQuantities& derived);
 std::string export_json(const std::vector<ExportEntry>& entries, LengthUnit unit);
 std::string export_pbrt_v4(const std::vector<ExportEntry>& entries, LengthUnit unit);
 std::string export_mitsuba3(const std::vector<ExportEntry>& entries, LengthUnit unit);
-std::string export_blender(const std::vector<ExportEntry>& entries, LengthUnit unit);
+std::string export_blender(const std::vector<ExportEntry>& entries, LengthUnit unit, const ExportOptions& options);
 std::string export_unity_hdrp(const std::vector<ExportEntry>& entries, LengthUnit unit);
 std::string export_unreal(const std::vector<ExportEntry>& entries);
+std::string export_unity_hdrp_editor(const std::vector<ExportEntry>& entries, LengthUnit unit);
+std::string export_unreal_python(const std::vector<ExportEntry>& entries);
 
 }  // namespace bssrdf::export_detail

@@ -20,8 +20,10 @@ std::string export_mitsuba3(const std::vector<ExportEntry>& entries, LengthUnit 
                     comment("Mitsuba 3 media exported by bssrdf " BSSRDF_VERSION ". Units: sigma_t in 1/" + u +
                             " (one scene unit = 1 " + u + "), scale 1; albedo = sigma_s/sigma_t (single-scattering, "
                             "unreduced). Distance convention: mean free path 1/sigma_t. Use: <shape ...><ref id=\"NAME_boundary\"/>"
-                            "<ref name=\"interior\" id=\"NAME_medium\"/></shape>") +
-                    "\n<scene version=\"3.0.0\">\n";
+                            "<ref name=\"interior\" id=\"NAME_medium\"/></shape>. Media render only with a volumetric integrator: "
+                            "volpath (or volpathmis), as set below; the default path integrator ignores them.") +
+                    "\n<scene version=\"3.0.0\">\n"
+                    "  <integrator type=\"volpath\">\n    <integer name=\"max_depth\" value=\"-1\"/>\n  </integrator>\n";
   for (const auto& e : entries) {
     const auto& m = e.material.medium;
     const auto one = single_g(m);

@@ -1,8 +1,28 @@
 // pbrt-v4 `subsurface` materials (sigma_a, sigma_s, g, eta, scale) as MakeNamedMaterial blocks,
 // coefficients in 1/scene unit with scale 1. pbrt-v4 takes one g per material: see single_g().
+#include <algorithm>
+
 #include "export_common.hpp"
 
 namespace bssrdf::export_detail {
+namespace {
+// pbrt-v4's built-in media (src/pbrt/media.cpp, SubsurfaceParameterTable: Jensen et al. 2001 and
+// Narasimhan et al. 2006), selected with "string name"; stored as sigma_s' and sigma_a in 1/mm,
+// with g forced to 0.
+constexpr const char* kPbrtNamedMedia[] = {
+    "Apple", "Chicken1", "Chicken2", "Cream", "Ketchup", "Marble", "Potato", "Skimmilk", "Skin1", "Skin2",
+    "Spectralon", "Wholemilk", "Lowfat Milk", "Reduced Milk", "Regular Milk", "Espresso", "Mint Mocha Coffee",
+    "Lowfat Soy Milk", "Regular Soy Milk", "Lowfat Chocolate Milk", "Regular Chocolate Milk", "Coke", "Pepsi",
+    "Sprite", "Gatorade", "Chardonnay", "White Zinfandel", "Merlot", "Budweiser Beer", "Coors Light Beer",
+    "Clorox", "Apple Juice", "Cranberry Juice", "Grape Juice", "Ruby Grapefruit Juice", "White Grapefruit Juice",
+    "Shampoo", "Strawberry Shampoo", "Head & Shoulders Shampoo", "Lemon Tea Powder", "Orange Powder",
+    "Pink Lemonade Powder", "Cappuccino Powder", "Salt Powder", "Sugar Powder", "Suisse Mocha Powder",
+    "Pacific Ocean Surface Water"};
+
+bool pbrt_names(const std::string& name) {
+  return std::any_of(std::begin(kPbrtNamedMedia), std::end(kPbrtNamedMedia), [&](const char* n) { return name == n; });
+}
+}  // namespace
 
 std::string export_pbrt_v4(const std::vector<ExportEntry>& entries, LengthUnit unit) {
   require_rgb(entries, "pbrt-v4");
@@ -11,7 +31,11 @@ std::string export_pbrt_v4(const std::vector<ExportEntry>& entries, LengthUnit u
                     "# Units: sigma_a and sigma_s in 1/" + u + " (one scene unit = 1 " + u + "), \"scale\" 1.\n"
                     "# Distance convention: extinction coefficients; mean free path 1/(sigma_a + sigma_s) per channel,\n"
                     "# transport mean free path 1/(sigma_a + sigma_s (1 - g)), listed per material below.\n"
-                    "# Use: Material \"<name>\" or NamedMaterial \"<name>\" before the shape.\n";
+                    "# Use: NamedMaterial \"<name>\" before the shape.\n"
+                    "# pbrt-v4 builds its own photon-beam-diffusion table (100 albedos x 64 radii, for this g and eta)\n"
+                    "# from these coefficients: it does not read bssrdf's tables. 'bssrdf lut --kind albedo-radius\n"
+                    "# --layout pbrt' writes the same layout (EXR/JSON, documented in bssrdf's README) for a custom\n"
+                    "# integrator or a patched pbrt (its TabulatedBSSRDF reads rho, radius, profile, rhoEff, cdf).\n";
   for (const auto& e : entries) {
     const auto& m = e.material.medium;
     const auto one = single_g(m);
@@ -27,6 +51,10 @@ std::string export_pbrt_v4(const std::vector<ExportEntry>& entries, LengthUnit u
     if (!one.exact)
       out += "#   per-channel g (" + join(m.g, " ") + ") replaced by their mean; sigma_s rescaled to keep sigma_s' = sigma_s (1 - g)\n";
     out += "#   " + validity_summary(e.derived) + "\n";
+    if (pbrt_names(e.material.name))
+      out += "#   pbrt-v4 has this medium built in: \"string name\" [ \"" + e.material.name +
+             "\" ] (its table: sigma_s' and sigma_a in 1/mm, g forced to 0; \"float scale\" [ " +
+             num(millimetres_per(unit)) + " ] for 1/" + u + ")\n";
     out += "MakeNamedMaterial \"" + e.material.name + "\"\n";
     out += "    \"string type\" [ \"subsurface\" ]\n";
     out += "    \"rgb sigma_a\" [ " + join(a, " ") + " ]\n";

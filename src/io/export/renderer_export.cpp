@@ -10,7 +10,8 @@ namespace {
 const std::pair<RendererTarget, const char*> kTargets[] = {
     {RendererTarget::json, "json"},         {RendererTarget::pbrt_v4, "pbrt-v4"},
     {RendererTarget::mitsuba3, "mitsuba3"}, {RendererTarget::blender, "blender"},
-    {RendererTarget::unity_hdrp, "unity-hdrp"}, {RendererTarget::unreal, "unreal"}};
+    {RendererTarget::unity_hdrp, "unity-hdrp"}, {RendererTarget::unity_hdrp_editor, "unity-hdrp-editor"},
+    {RendererTarget::unreal, "unreal"}, {RendererTarget::unreal_python, "unreal-python"}};
 }  // namespace
 
 std::vector<std::string> renderer_target_names() {
@@ -49,14 +50,10 @@ SingleG single_g(const Medium& medium) {
   return out;
 }
 
-double random_walk_albedo(double A, double g) {
-  const double s = 4.09712 + 4.20863 * A - std::sqrt(9.59217 + 41.6808 * A + 17.7126 * A * A);
-  return (1 - s * s) / (1 - g * s * s);
-}
-
 double burley_searchlight_scaling(double A) { return 1.85 - A + 7 * std::pow(std::abs(A - 0.8), 3); }
 
-std::string export_materials(RendererTarget target, const std::vector<ExportEntry>& entries, LengthUnit unit) {
+std::string export_materials(RendererTarget target, const std::vector<ExportEntry>& entries, LengthUnit unit,
+                             const ExportOptions& options) {
   using namespace export_detail;
   if (entries.empty()) throw InvalidInput("export: no materials given");
   for (const auto& e : entries) {
@@ -70,9 +67,11 @@ std::string export_materials(RendererTarget target, const std::vector<ExportEntr
     case RendererTarget::json: return export_json(entries, unit);
     case RendererTarget::pbrt_v4: return export_pbrt_v4(entries, unit);
     case RendererTarget::mitsuba3: return export_mitsuba3(entries, unit);
-    case RendererTarget::blender: return export_blender(entries, unit);
+    case RendererTarget::blender: return export_blender(entries, unit, options);
     case RendererTarget::unity_hdrp: return export_unity_hdrp(entries, unit);
+    case RendererTarget::unity_hdrp_editor: return export_unity_hdrp_editor(entries, unit);
     case RendererTarget::unreal: return export_unreal(entries);
+    case RendererTarget::unreal_python: return export_unreal_python(entries);
   }
   return "";
 }

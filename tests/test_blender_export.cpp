@@ -1,0 +1,185 @@
+// The Blender export: Cycles' conversions (cycles_subsurface.hpp) invert exactly, and, where
+// Blender is installed, the exported script run inside real Blender holds values from which
+// Cycles' kernel formulas give back our medium, and a Cycles render of a shadow edge bleeds as the
+// tool's half-plane response predicts.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "bssrdf/derived_quantities.hpp"
+#include "bssrdf/error.hpp"
+#include "bssrdf/io/cycles_subsurface.hpp"
+#include "bssrdf/lut/projected_profile.hpp"
+#include "bssrdf/materials.hpp"
+#include "bssrdf/model.hpp"
+#include "cli_runner.hpp"
+
+using namespace bssrdf;
+using json = nlohmann::json;
+
+namespace {
+const Material& material(const std::string& name) {
+  static const auto db = MaterialDatabase::load(default_materials_dir());
+  return db.find(name);
+}
+
+bool have_blender() { return std::system("command -v blender >/dev/null 2>&1") == 0; }
+
+// Runs the exported script in Blender through tests/blender/check_export.py; returns its JSON.
+json run_in_blender(const std::string& material_name, const std::string& export_args, const std::string& extra = "") {
+  const auto script = test_cli::temp("export.py"), out = test_cli::temp("blender.json");
+  const auto r = test_cli::run("materials export \"" + material_name + "\" --to blender " + export_args + " -o " + script.string());
+  EXPECT_EQ(r.status, 0) << r.err;
+  const std::string checker = std::string(BSSRDF_TEST_DATA) + "/../blender/check_export.py";
+  const std::string command = "blender -b --factory-startup --python-exit-code 3 --python " + checker + " -- " +
+                              script.string() + " \"" + material_name + "\" " + out.string() + " " + extra +
+                              " >" + test_cli::temp("blender.log").string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  EXPECT_EQ(status, 0) << test_cli::slurp(test_cli::temp("blender.log"));
+  return json::parse(test_cli::slurp(out));
+}
+}  // namespace
+
+TEST(CyclesSubsurface, InputsGiveBackTheMediumForEveryMethod) {
+  for (const char* name : {"Skin1", "Marble", "Ketchup", "Apple"}) {
+    const auto& m = material(name);
+    const auto derived = derive_quantities(m.medium);
+    for (auto mapping : {CyclesMapping::fixed_radius, CyclesMapping::radius_remap}) {
+      const auto in = cycles_inputs(m.medium, derived, mapping, 1.0);
+      for (std::size_t c = 0; c < 3; ++c) {
+        EXPECT_NEAR(in.simulated.sigma_t[c] / in.target_sigma_t[c], 1.0, 2e-5) << name << " " << to_string(mapping) << c;
+        if (in.target_alpha[c] >= 0.2) EXPECT_NEAR(in.simulated.alpha[c], in.target_alpha[c], 1e-5) << name << c;
+        EXPECT_GE(in.albedo_color[c], 0.0);
+        EXPECT_LE(in.albedo_color[c], 1.0);
+      }
+    }
+    const auto burley = cycles_inputs(m.medium, derived, CyclesMapping::burley, 1.0);
+    for (std::size_t c = 0; c < 3; ++c) {
+      EXPECT_NEAR(burley.simulated.burley_d[c] / derived.channels[c].burley_d, 1.0, 1e-5) << name << c;
+      EXPECT_NEAR(burley.simulated.burley_A[c], derived.channels[c].burley_albedo, 1e-6) << name << c;
+    }
+  }
+}
+
+TEST(CyclesSubsurface, RadiusRemapIsCyclesDipoleInversion) {
+  // alpha'(C) inverts R_d = (alpha'/2)(1 + e^{-(4/3) A s}) e^{-s}, s = sqrt(3 (1 - alpha')), to the
+  // 12-step bisection's resolution 2^-12.
+  for (double alpha_prime : {0.3, 0.7, 0.9, 0.99}) {
+    const double eta = 1.4, F_dr = -1.440 / (eta * eta) + 0.710 / eta + 0.668 + 0.0636 * eta;
+    const double A = (1 + F_dr) / (1 - F_dr), s = std::sqrt(3 * (1 - alpha_prime));
+    const double Rd = 0.5 * alpha_prime * (1 + std::exp(-4.0 / 3.0 * A * s)) * std::exp(-s);
+    EXPECT_NEAR(cycles_dipole_alpha_prime(static_cast<float>(Rd), 1.4f), alpha_prime, 3e-4);
+  }
+  EXPECT_EQ(cycles_dipole_alpha_prime(0.996f, 1.4f), 0.999999f);
+  EXPECT_NEAR(cycles_radius_factor(CyclesMapping::fixed_radius, 0.5f, 1.4f), 1 / (4 * M_PI), 1e-7);
+}
+
+TEST(CyclesSubsurface, SaysWhereCyclesCannotFollow) {
+  // A dark medium (alpha < 0.2 in every channel) and strongly forward scattering (g > 0.9).
+  Medium dark = material("Skin1").medium;
+  dark.sigma_a = {5, 5, 5};
+  const auto in = cycles_inputs(dark, derive_quantities(dark), CyclesMapping::fixed_radius, 1.0);
+  ASSERT_EQ(in.notes.size(), 3u);
+  EXPECT_NE(in.notes[0].find("< 0.2"), std::string::npos) << in.notes[0];
+  Medium forward = material("Skin1").medium;
+  forward.g = {0.95, 0.95, 0.95};
+  forward.sigma_s = {14.8, 17.6, 20.2};  // sigma_s' as Skin1's
+  const auto f = cycles_inputs(forward, derive_quantities(forward), CyclesMapping::fixed_radius, 1.0);
+  ASSERT_FALSE(f.notes.empty());
+  EXPECT_NE(f.notes[0].find("outside Cycles' [0, 0.9]"), std::string::npos) << f.notes[0];
+  EXPECT_DOUBLE_EQ(f.g, 0.9);
+  // sigma_s' kept: sigma_s (1 - 0.9) = 14.8 (1 - 0.95)
+  EXPECT_NEAR(f.target_alpha[0] * f.target_sigma_t[0] * 0.1, 14.8 * 0.05, 1e-9);
+}
+
+TEST(CliBlenderExport, BadMethodOrVersionIsRejected) {
+  auto r = test_cli::run("materials export Skin1 --to blender --blender-method diffusion");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--blender-method"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("fixed-radius"), std::string::npos) << r.err;
+  r = test_cli::run("materials export Skin1 --to blender --blender-version 5 -o " + test_cli::temp("x.py").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--blender-version"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(test_cli::temp("x.py")));
+}
+
+TEST(CliBlenderExport, ScriptStatesMethodAndFormula) {
+  const auto r = test_cli::run("materials export Skin1 --to blender --blender-version 4 --blender-method radius-remap");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("METHODS = {4: 'RANDOM_WALK_SKIN'}"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("sqrt(3 (1 - alpha'(C, IOR)))"), std::string::npos);
+  EXPECT_NE(r.out.find("Cycles simulates: sigma_t"), std::string::npos);
+}
+
+// ---- in real Blender (skipped where the `blender` binary is absent) -------------------------
+
+TEST(BlenderExport, ValuesReadBackGiveOurMediumInEveryMethod) {
+  if (!have_blender()) GTEST_SKIP() << "blender not installed (apt-get install blender)";
+  const auto& m = material("Skin1");
+  const auto derived = derive_quantities(m.medium);
+  for (const char* method : {"fixed-radius", "radius-remap", "burley"}) {
+    const auto j = run_in_blender("Skin1", std::string("--unit mm --blender-method ") + method);
+    const auto& medium = j["medium"];
+    SCOPED_TRACE(method + std::string(" in Blender ") + j["blender_version"].get<std::string>());
+    EXPECT_EQ(medium["method"], blender_method_identifier(parse_cycles_mapping(method), 3));
+    for (std::size_t c = 0; c < 3; ++c) {
+      const auto& d = derived.channels[c];
+      if (std::string(method) == "burley") {
+        EXPECT_NEAR(medium["burley_d"][c].get<double>() / d.burley_d, 1.0, 1e-5);
+        EXPECT_NEAR(medium["burley_A"][c].get<double>(), d.burley_albedo, 1e-6);
+      } else {
+        EXPECT_NEAR(medium["sigma_t"][c].get<double>() / d.sigma_t, 1.0, 1e-4) << c;
+        EXPECT_NEAR(medium["alpha"][c].get<double>(), d.albedo, 1e-4) << c;
+        EXPECT_DOUBLE_EQ(medium["g"].get<double>(), 0.0);
+      }
+    }
+  }
+}
+
+// A 64 x 64 Cycles render (CPU, 128 samples, a few seconds) of a thick slab of exported Skin1 lit
+// straight down by a sun, with a sharp shadow edge at x = 0 (tests/blender/check_export.py). The
+// light that crosses into the shadow, in units of the lit plateau, is compared with the tool's own
+// half-plane response (ProjectedProfile, the preview's) for the medium Cycles walks through:
+// Skin1's coefficients with an index-matched boundary (eta = 1: Cycles' walk has no Fresnel or
+// total internal reflection at the surface), pbd profile.
+TEST(BlenderExport, RenderedShadowEdgeBleedsAsPredicted) {
+  if (!have_blender()) GTEST_SKIP() << "blender not installed (apt-get install blender)";
+  const double width = 24;  // mm shown, shadow edge in the middle
+  const auto j = run_in_blender("Skin1", "--unit mm", "--render " + format_number(width) + " 128");
+  const auto& render = j["render"];
+  const auto& columns = render["columns"];
+  Medium medium = material("Skin1").medium;
+  medium.eta = 1.0;
+  const auto pbd = make_model("pbd");
+  for (std::size_t c = 0; c < 3; ++c) {
+    const ProjectedProfile p(*pbd, medium.reduced(c));
+    // Predicted column means (the box filter averages each pixel's footprint), per unit plateau.
+    std::vector<double> predicted, measured, stderr_;
+    for (const auto& col : columns) {
+      const double x0 = col["x0"], x1 = col["x1"];
+      double sum = 0;
+      for (int k = 0; k < 32; ++k) sum += p.half_plane(-(x0 + (k + 0.5) * (x1 - x0) / 32));
+      predicted.push_back(sum / 32 / p.total());
+      measured.push_back(col["channels"][c]["mean"]);
+      stderr_.push_back(std::max(col["channels"][c]["stderr"].get<double>(), 1e-9));
+    }
+    // The plateau from the lit half (x > 0): least squares K measured ~ K predicted.
+    double num = 0, den = 0;
+    for (std::size_t i = columns.size() / 2; i < columns.size(); ++i)
+      num += measured[i] * predicted[i] / (stderr_[i] * stderr_[i]), den += predicted[i] * predicted[i] / (stderr_[i] * stderr_[i]);
+    const double K = num / den;
+    // Bleed: light in the shadowed half, in units of the plateau x length (mm).
+    const double dx = width / static_cast<double>(columns.size());
+    double bleed = 0, bleed_var = 0, bleed_predicted = 0;
+    for (std::size_t i = 0; i < columns.size() / 2; ++i) {
+      bleed += measured[i] / K * dx;
+      bleed_var += (stderr_[i] / K * dx) * (stderr_[i] / K * dx);
+      bleed_predicted += predicted[i] * dx;
+    }
+    const double sigma = std::sqrt(bleed_var + bleed * bleed / (K * K * den));  // columns' noise and K's
+    std::printf("channel %zu: bleed %.4f +- %.4f mm, predicted %.4f mm (ratio %.3f); render %.1f s\n", c, bleed, sigma,
+                bleed_predicted, bleed / bleed_predicted, render["seconds"].get<double>());
+    EXPECT_NEAR(bleed, bleed_predicted, 3 * sigma) << "channel " << c;
+  }
+}
