@@ -8,6 +8,7 @@ packages=(
   libceres-dev libeigen3-dev libopenexr-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libstb-dev
+  clang libclang-rt-14-dev
 )
 
 missing=()
