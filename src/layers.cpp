@@ -22,7 +22,8 @@ void LayerStack::validate() const {
       throw InvalidInput("channels[" + std::to_string(c) + "]", "'" + channel_names[c] + "'", "a unique name");
   }
   const auto check_index = [](double n, const std::string& field) {
-    if (!(n > 0) || !std::isfinite(n)) throw InvalidInput(field, format_number(n), "> 0 and finite");
+    if (!(n >= kMinRefractiveIndex && n <= kMaxRefractiveIndex))
+      throw InvalidInput(field, format_number(n), format_number(kMinRefractiveIndex) + " to " + format_number(kMaxRefractiveIndex));
   };
   check_index(ambient_above, "ambient_above");
   check_index(ambient_below, "ambient_below");
@@ -48,10 +49,11 @@ void LayerStack::validate() const {
     check_size(layer.g, "g");
     for (std::size_t c = 0; c < nc; ++c) {
       const std::string at = "[" + channel_names[c] + "]";
-      if (!(layer.sigma_a[c] >= 0) || !std::isfinite(layer.sigma_a[c]))
-        throw InvalidInput(prefix + ".sigma_a" + at, format_number(layer.sigma_a[c]), ">= 0 and finite");
-      if (!(layer.sigma_s[c] >= 0) || !std::isfinite(layer.sigma_s[c]))
-        throw InvalidInput(prefix + ".sigma_s" + at, format_number(layer.sigma_s[c]), ">= 0 and finite");
+      const std::string coefficient_range = ">= 0 and finite, at most " + format_number(kMaxCoefficient) + " (a 1 nm mean free path in mm)";
+      if (!(layer.sigma_a[c] >= 0 && layer.sigma_a[c] <= kMaxCoefficient))
+        throw InvalidInput(prefix + ".sigma_a" + at, format_number(layer.sigma_a[c]), coefficient_range);
+      if (!(layer.sigma_s[c] >= 0 && layer.sigma_s[c] <= kMaxCoefficient))
+        throw InvalidInput(prefix + ".sigma_s" + at, format_number(layer.sigma_s[c]), coefficient_range);
       if (!(layer.g[c] > -1 && layer.g[c] < 1))
         throw InvalidInput(prefix + ".g" + at, format_number(layer.g[c]), "-1 < g < 1");
       if (layer.thickness == kSemiInfinite && layer.clear(c))

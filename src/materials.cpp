@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "bssrdf/error.hpp"
+#include "io/data_file.hpp"
 
 namespace bssrdf {
 namespace {
@@ -34,11 +35,6 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
     }
   }
   return row[b.size()];
-}
-
-int line_of_offset(const std::string& text, std::size_t offset) {
-  offset = std::min(offset, text.size());
-  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
 }
 
 // Reads one file's JSON; errors name the file and the JSON path of the offending field.
@@ -165,22 +161,13 @@ void MaterialDatabase::add_path(const std::filesystem::path& path) {
 }
 
 void MaterialDatabase::add_file(const std::filesystem::path& path) {
-  const FileReader reader(path.string());
-  std::ifstream in(path);
-  if (!in) throw FileError(path.string(), 0, "cannot open the materials file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::parse_error& e) {
-    std::string what = e.what();
-    // nlohmann's messages start "[json.exception.parse_error.101] parse error at line L, column C: ..."
-    const auto colon = what.find("]");
-    throw FileError(path.string(), line_of_offset(text, e.byte), "malformed JSON: " +
-                    (colon == std::string::npos ? what : what.substr(colon + 2)));
-  }
+  add_text(read_data_file(path, "the materials file"), path.string());
+}
+
+void MaterialDatabase::add_text(const std::string& text, const std::string& file_name) {
+  const std::filesystem::path path = file_name;
+  const FileReader reader(file_name);
+  const json root = parse_json_document(text, file_name);
 
   if (reader.string(reader.member(root, "format", "$"), "$.format") != "bssrdf-materials")
     reader.fail("$.format", "expected \"bssrdf-materials\"");

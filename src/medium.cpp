@@ -34,18 +34,20 @@ void Medium::validate() const {
   }
   for (std::size_t i = 0; i < n; ++i) {
     const std::string tag = "[" + channel_names[i] + "]";
-    if (!std::isfinite(sigma_a[i]) || sigma_a[i] < 0)
-      throw InvalidInput("sigma_a" + tag, format_number(sigma_a[i]), ">= 0 and finite");
-    if (!std::isfinite(sigma_s[i]) || sigma_s[i] < 0)
-      throw InvalidInput("sigma_s" + tag, format_number(sigma_s[i]), ">= 0 and finite");
+    const std::string coefficient_range = ">= 0 and finite, at most " + format_number(kMaxCoefficient) + " (a 1 nm mean free path in mm)";
+    if (!(sigma_a[i] >= 0 && sigma_a[i] <= kMaxCoefficient))
+      throw InvalidInput("sigma_a" + tag, format_number(sigma_a[i]), coefficient_range);
+    if (!(sigma_s[i] >= 0 && sigma_s[i] <= kMaxCoefficient))
+      throw InvalidInput("sigma_s" + tag, format_number(sigma_s[i]), coefficient_range);
     if (sigma_a[i] + sigma_s[i] <= 0)
       throw InvalidInput("sigma_a" + tag + " + sigma_s" + tag, "0",
                          "> 0 (the medium must absorb or scatter)");
     if (!(g[i] > -1 && g[i] < 1))
       throw InvalidInput("g" + tag, format_number(g[i]), "-1 < g < 1");
   }
-  if (!std::isfinite(eta) || eta <= 0)
-    throw InvalidInput("eta", format_number(eta), "> 0 and finite (n_medium / n_outside)");
+  if (!(eta >= kMinRefractiveIndex && eta <= kMaxRefractiveIndex))
+    throw InvalidInput("eta", format_number(eta),
+                       format_number(kMinRefractiveIndex) + " to " + format_number(kMaxRefractiveIndex) + " (n_medium / n_outside)");
 }
 
 Medium Medium::single_channel(double sigma_a, double sigma_s, double g, double eta) {

@@ -60,7 +60,7 @@ TEST(CliFit, BadDataGivesOneLineAndStatusTwo) {
   const auto bad = temp("bad.csv");
   const auto out = temp("out.json");
   const std::pair<std::string, std::string> cases[] = {
-      {"radius_mm,R\n0.1,1\n0.2,-3\n0.3,1\n0.4,1\n", "bad.csv:3: R = -3: accepted range is >= 0"},
+      {"radius_mm,R\n0.1,1\n0.2,-3\n0.3,1\n0.4,1\n", "bad.csv:3: R = -3: accepted range is 0 to 1e+30"},
       {"radius_mm,R\n0.1,1\n0.2,nan\n0.3,1\n0.4,1\n", "bad.csv:3: R = 'nan'"},
       {"radius_mm,R\n0.3,1\n0.2,1\n0.3,1\n0.4,1\n", "bad.csv:3: radius_mm = 0.2"},
       {"radius_mm,R\n0.1,1\n", "1 data rows: accepted range is at least 4"},
@@ -82,7 +82,7 @@ TEST(CliFit, BadDataGivesOneLineAndStatusTwo) {
            {"fit slab --reflectance 0.6 --transmittance 0.5 --thickness 2", "more light out than in"},
            {"fit slab --reflectance 0.3 --transmittance 0.5 --thickness 0", "thickness = 0"},
            {"fit profile /nonexistent.csv", "cannot open"},
-           {"fit gaussians --material Skin1 -n 0", "gaussians = 0"},
+           {"fit gaussians --material Skin1 -n 0", "--count = '0': accepted range is a whole number from 1 to 32"},
            {"fit profile x.csv --loss weird", "--loss"},
        }) {
     const auto r = run(args);

@@ -207,7 +207,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"profile --sigma-a 0.1 --sigma-s 1 --radii 0.5,0.1", "--radii: radius[1] = 0.1"},
         BadInput{"profile --sigma-a 0.1 --sigma-s 1 --radii 0.5,x", "--radii = '0.5,x'"},
         BadInput{"profile --sigma-a 0.1 --sigma-s 1 --unit inch", "--unit = 'inch'"},
-        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --samples 1", "--samples = 1"},
+        BadInput{"profile --sigma-a 0.1 --sigma-s 1 --samples 1", "--samples = '1': accepted range is a whole number from 2 to 1000000"},
         BadInput{"profile --sigma-a 0.1 --sigma-s 1 --r-min 5 --r-max 1", "--r-max = 1"},
         BadInput{"profile --sigma-a 0.1 --sigma-s 1 --format xml", "--format"},
         BadInput{"profile --sigma-a 0.1 --sigma-s 1 --model burley --surface-albedo 1.5", "--surface-albedo = 1.5"},

@@ -8,6 +8,7 @@ packages=(
   libceres-dev libeigen3-dev libopenexr-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libstb-dev
+  clang libclang-rt-14-dev
 )
 # Blender (Cycles) for the export checks that run in the real renderer (tests/test_blender_export.cpp;
 # skipped when absent). About 3 minutes and 170 MB; BSSRDF_SKIP_BLENDER=1 leaves it out.

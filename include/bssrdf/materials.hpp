@@ -47,6 +47,8 @@ class MaterialDatabase {
   static MaterialDatabase load_with_user(const std::filesystem::path& user);
   void add_path(const std::filesystem::path& path);  // a directory of *.json, or one file
   void add_file(const std::filesystem::path& file);
+  // The text of a materials file; errors name `file_name` (e.g. a file about to be written).
+  void add_text(const std::string& text, const std::string& file_name);
 
   // Case-insensitive lookup; throws InvalidInput listing the closest names when unknown.
   const Material& find(std::string_view name) const;

@@ -12,6 +12,13 @@
 
 namespace bssrdf {
 
+// Refractive indices, absolute or relative, that a physicist would accept: real media lie between 1
+// and about 4 (germanium), so any ratio of two lies within [1/5, 5]. Beyond, total internal
+// reflection traps light for unbounded times.
+inline constexpr double kMinRefractiveIndex = 0.2, kMaxRefractiveIndex = 5;
+// Largest coefficient, in 1/unit of whichever unit it is given in: 1e6/mm is a mean free path of 1 nm.
+inline constexpr double kMaxCoefficient = 1e6;
+
 struct Medium {
   std::vector<std::string> channel_names;  // e.g. {"R", "G", "B"}
   std::vector<double> sigma_a;             // 1/mm
@@ -22,8 +29,9 @@ struct Medium {
   std::size_t channels() const { return sigma_a.size(); }
 
   // Throws InvalidInput naming the first offending field, e.g. "sigma_a[G] = -1: accepted range
-  // is >= 0 and finite". Checks: equal channel counts (>= 1), sigma_a >= 0, sigma_s >= 0,
-  // sigma_a + sigma_s > 0, -1 < g < 1, eta > 0, all finite, channel names unique and non-empty.
+  // is >= 0 and finite". Checks: equal channel counts (>= 1), 0 <= sigma_a, sigma_s <= kMaxCoefficient,
+  // sigma_a + sigma_s > 0, -1 < g < 1, eta within [kMinRefractiveIndex, kMaxRefractiveIndex],
+  // channel names unique and non-empty.
   void validate() const;
 
   // The similarity-reduced coefficients of one channel, used by every diffusion model.

@@ -43,6 +43,26 @@ double parse_number(const std::string& text, const std::string& field) {
   return value;
 }
 
+std::string count_range(std::int64_t min, std::int64_t max) { return std::to_string(min) + " to " + std::to_string(max); }
+
+std::int64_t parse_count(const std::string& text, const std::string& field, std::int64_t min, std::int64_t max) {
+  const std::string t = trim(text);
+  const auto refuse = [&] { return InvalidInput(field, "'" + text + "'", "a whole number from " + count_range(min, max)); };
+  std::int64_t value = 0;
+  const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
+  if (!t.empty() && ec == std::errc() && ptr == t.data() + t.size()) {
+    if (value < min || value > max) throw refuse();
+    return value;
+  }
+  // "1e6": a whole number written as a decimal; range-checked as a double before conversion.
+  double d = 0;
+  const auto [dptr, dec] = std::from_chars(t.data(), t.data() + t.size(), d);
+  if (t.empty() || dec != std::errc() || dptr != t.data() + t.size() || !(d >= static_cast<double>(min)) ||
+      !(d <= static_cast<double>(max)) || d != std::floor(d))
+    throw refuse();
+  return static_cast<std::int64_t>(d);
+}
+
 std::vector<double> parse_number_list(const std::string& text, const std::string& field) {
   std::vector<double> values;
   std::size_t start = 0;
@@ -135,10 +155,20 @@ MediumOptions::Resolved MediumOptions::resolve() const {
   return out;
 }
 
+CLI::Validator file_name(const std::string& field) {
+  return CLI::Validator(
+      [field](std::string& text) {
+        if (text.empty()) throw InvalidInput(field, "''", "a file name");
+        return std::string();
+      },
+      "FILE");
+}
+
 void OutputOptions::add_to(CLI::App& app) {
   app.add_option("--format,-f", format, "Output format: table, json, csv [table on screen; by extension for -o]")
       ->check(CLI::IsMember({"table", "json", "csv"}));
-  app.add_option("-o,--output", output, "Write the result to FILE (atomically); the table still goes to stdout");
+  app.add_option("-o,--output", output, "Write the result to FILE (atomically); the table still goes to stdout")
+      ->check(file_name("-o"));
   app.add_flag("-q,--quiet", quiet, "With -o: print nothing on stdout");
 }
 

@@ -16,8 +16,29 @@
 namespace bssrdf::cli {
 
 // "1,2.5,3" -> {1, 2.5, 3}; throws InvalidInput naming `field` for anything that is not a number.
+// Ranges shared by the count options. 1e10 photons is hours of tracing per channel.
+constexpr std::int64_t kMaxPhotons = 10'000'000'000, kMaxSeed = INT64_MAX, kMaxThreads = 4096, kMaxBins = 10'000'000;
+
+// "1 to 10000000000", the accepted range of a count.
+std::string count_range(std::int64_t min, std::int64_t max);
 std::vector<double> parse_number_list(const std::string& text, const std::string& field);
 double parse_number(const std::string& text, const std::string& field);
+// A whole number in [min, max] ("1000000" or "1e6"); parsed as signed and range-checked before any
+// conversion, so "-1" is refused instead of wrapping to 2^64 - 1. Throws InvalidInput naming `field`.
+std::int64_t parse_count(const std::string& text, const std::string& field, std::int64_t min, std::int64_t max);
+
+// A count option (photons, bins, samples, seed, threads) bound to `value` through parse_count; the
+// accepted range is appended to the help text and quoted by the error.
+template <class Integer>
+CLI::Option* add_count_option(CLI::App& app, const std::string& names, Integer& value, std::int64_t min, std::int64_t max,
+                              const std::string& help) {
+  const auto long_name = names.find("--");  // errors quote the long name when there is one
+  const std::string field = long_name == std::string::npos ? names.substr(0, names.find(','))
+                                                           : names.substr(long_name, names.find(',', long_name) - long_name);
+  return app.add_option_function<std::string>(
+      names, [&value, field, min, max](const std::string& text) { value = static_cast<Integer>(parse_count(text, field, min, max)); },
+      help + " (" + count_range(min, max) + ")");
+}
 
 // --material NAME | --sigma-a/--sigma-s [--g] [--channels], with --eta, --unit and --db.
 struct MediumOptions {
@@ -43,6 +64,9 @@ struct ChosenModel {
 ChosenModel resolve_model(const std::string& name, const std::string& accuracy, const Medium& medium);
 // --accuracy: a relative error, 0 < value < 10; empty gives the default 0.1.
 double parse_accuracy(const std::string& text);
+
+// For -o and other file options: refuses an empty name, which would otherwise silently mean "no file".
+CLI::Validator file_name(const std::string& field);
 
 enum class Format { table, json, csv };
 

@@ -51,7 +51,7 @@ struct ProfileSource {
     auto* d = app.add_option("--data", data, "Profile CSV (radius, one column per channel), e.g. from 'bssrdf profile -f csv'");
     medium.add_to(app);
     app.add_option("--model", model, "Model whose profile is fitted when no --data is given [better-dipole]");
-    app.add_option("--samples", samples, "Radii sampled from the model [128]");
+    add_count_option(app, "--samples", samples, 8, 100000, "Radii sampled from the model [128]");
     d->excludes(app.get_option("--material"))->excludes(app.get_option("--sigma-a"));
   }
 
@@ -154,7 +154,7 @@ Action register_fit(CLI::App& app) {
   auto gcount = std::make_shared<int>(6);
   auto* gaussians = fit->add_subcommand("gaussians", "Sum of N Gaussians (shared variances, per-channel weights) fitted to a profile");
   go->first.add_to(*gaussians);
-  gaussians->add_option("-n,--count", *gcount, "Number of Gaussians [6]");
+  add_count_option(*gaussians, "-n,--count", *gcount, 1, 32, "Number of Gaussians [6]");
   go->second.add_to(*gaussians);
   auto bo = std::make_shared<std::pair<ProfileSource, OutputOptions>>();
   auto* burley = fit->add_subcommand("burley", "Burley's d per channel fitted to a profile");

@@ -114,7 +114,9 @@ Built build_albedo_radius(const LutOptions& o) {
     layout = AlbedoRadiusLayout::family(a, r);
   } else if (o.layout == "adaptive") {
     const double table_tolerance = o.table_tolerance.empty() ? 1e-3 : positive_fraction(o.table_tolerance, "--table-tolerance");
-    const auto adaptive = adaptive_albedo_radius_layout(g, eta, table_tolerance, options);
+    AlbedoRadiusOptions search = options;
+    search.progress = progress_bar("adaptive albedo-radius layout");  // on a terminal: minutes at 1e-3
+    const auto adaptive = adaptive_albedo_radius_layout(g, eta, table_tolerance, search);
     layout = adaptive.layout;
     adaptive_note = "adaptive layout for interpolation tolerance " + format_number(table_tolerance) + ": worst midpoint error " +
                     format_number(std::round(adaptive.albedo_error * 1e6) / 1e6) + " (albedo), " +
@@ -470,7 +472,8 @@ Action register_lut(CLI::App& app) {
   sub->add_option("--layout", o->layout,
                   "albedo-radius: pbrt (100 x 64, pbrt's spacing), family (--size) or adaptive (--table-tolerance) [pbrt]");
   sub->add_option("--table-tolerance", o->table_tolerance,
-                  "albedo-radius --layout adaptive: interpolation error allowed, relative to each row's peak [1e-3]");
+                  "albedo-radius --layout adaptive: interpolation error allowed, relative to each row's peak [1e-3]; "
+                  "cost grows as 1/tolerance (each axis refined up to 2048 points; minutes at 1e-3, progress shown on a terminal)");
   sub->add_option("--size", o->size, "albedo-radius with --layout family: ALBEDOSxRADII, e.g. 64x48; preintegrated: N.LxCURVATURES; penumbra: SHADOWSxWIDTHS [256x256]");
   auto* model_option = sub->add_option("--model", o->model,
                                        "Profile model (see 'bssrdf models'), or auto: the cheapest measured within --accuracy of Monte Carlo here [pbd]");
@@ -478,31 +481,32 @@ Action register_lut(CLI::App& app) {
   sub->add_option("--tolerance", o->tolerance, "radial: relative interpolation error bound [1e-3]; albedo-radius: beam-integral quadrature tolerance [1e-2]");
   sub->add_option("--energy", o->energy, "Fraction of each channel's total inside the checked radius range [0.999]");
   sub->add_option("--interpolation", o->interpolation, "How the consumer interpolates: catmull-rom or linear [catmull-rom]");
-  sub->add_option("-o,--output", o->output, "Output file: .exr, .json or .csv");
+  sub->add_option("-o,--output", o->output, "Output file: .exr, .json or .csv")->check(file_name("-o"));
   sub->add_option("--format,-f", o->format, "exr, json, csv; glsl or hlsl for separable [from the file's extension]");
   sub->add_flag("--half", o->half, "OpenEXR: half-float channels instead of float32");
   sub->add_flag("--all", o->all, "Every material of the database, one file per material in --output-dir");
-  sub->add_option("--output-dir", o->output_dir, "Directory for --all [.]");
-  sub->add_option("--threads", o->threads, "Threads (0: all) [1]; results never depend on it");
+  sub->add_option("--output-dir", o->output_dir, "Directory for --all [.]")->check(file_name("--output-dir"));
+  add_count_option(*sub, "--threads", o->threads, 0, kMaxThreads, "Threads (0: all) [1]; results never depend on it");
   sub->add_flag("-q,--quiet", o->quiet, "Print nothing on stdout");
   sub->add_option("--thickness", o->thickness, "transmission: slab thicknesses in --unit, comma-separated");
   sub->add_option("--d-min", o->d_min, "transmission: smallest thickness [half the smallest transport mfp]");
   sub->add_option("--d-max", o->d_max, "transmission: largest thickness [40 of the largest transport mfp]");
-  sub->add_option("--samples", o->samples, "transmission: thicknesses, log-spaced from --d-min to --d-max [32]");
+  add_count_option(*sub, "--samples", o->samples, 2, 4096, "transmission: thicknesses, log-spaced from --d-min to --d-max [32]");
   sub->add_flag("--reference", o->reference,
                 "radial: tabulate the Monte Carlo reference instead of a model (bins with standard errors; --photons, default 1e6); "
                 "transmission: Monte Carlo where the multipole is invalid (else omitted)");
   sub->add_option("--layers", o->layers, "radial --reference: a layer stack file (bssrdf-layers JSON, as for 'bssrdf reference --layers')");
   sub->add_flag("--reference-everywhere", o->reference_everywhere, "transmission: Monte Carlo reference at every thickness");
-  auto* photons_option = sub->add_option("--photons", o->photons,
+  auto* photons_option = add_count_option(*sub, "--photons", o->photons, 1, kMaxPhotons,
                                          "Monte Carlo photons per channel: per thickness for transmission [100000], for radial --reference [1000000]");
-  sub->add_option("--seed", o->seed, "Monte Carlo seed (transmission --reference, radial --reference) [1]");
-  sub->add_option("--preview", o->preview, "Also (or, without -o, only) write a PNG preview of the material: shadow-edge swatch + colour falloff");
-  sub->add_option("--taps", o->taps, "separable: number of taps, odd, >= 3 (Jimenez: 11, 17, 25) [17]");
+  add_count_option(*sub, "--seed", o->seed, 0, kMaxSeed, "Monte Carlo seed (transmission --reference, radial --reference) [1]");
+  sub->add_option("--preview", o->preview, "Also (or, without -o, only) write a PNG preview of the material: shadow-edge swatch + colour falloff")
+      ->check(file_name("--preview"));
+  add_count_option(*sub, "--taps", o->taps, 3, 255, "separable: number of taps, odd, >= 3 (Jimenez: 11, 17, 25) [17]");
   sub->add_option("--range", o->range,
                   "separable: kernel half-width in --unit, or jimenez (3 mm if taps > 20 else 2 mm) [the band holding --band of the widest channel's light]");
   sub->add_option("--band", o->band, "separable: fraction of the widest channel's light inside +-range when --range is not given [0.95]");
-  sub->add_option("--count,-n", o->count, "gaussians: number of shared-variance Gaussians fitted [6; with --model quantized and no --count: its own mixture]");
+  add_count_option(*sub, "--count,-n", o->count, 1, 32, "gaussians: number of shared-variance Gaussians fitted [6; with --model quantized and no --count: its own mixture]");
   sub->add_option("--curvature-max", o->curvature_max, "preintegrated: largest curvature 1/r, in 1/--unit [1/r_50 of the widest channel]");
   sub->add_option("--width-max", o->width_max, "penumbra: widest penumbra, in --unit [8 r_50 of the widest channel]");
 

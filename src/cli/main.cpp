@@ -2,13 +2,35 @@
 // scattering. A thin shell over the library: parse, validate at the edge, call, print.
 #include <CLI/CLI.hpp>
 #include <glog/logging.h>
+#include <cstdio>
 #include <exception>
+#include <string>
 #include <iostream>
 #include <algorithm>
 #include <map>
 
 #include "bssrdf/error.hpp"
 #include "commands.hpp"
+
+namespace {
+
+// A message for the terminal: control bytes from input files (a CR in a CSV field, an escape
+// sequence) are shown as \xHH instead of acting on the terminal, so errors stay one visible line.
+std::string printable(const std::string& message) {
+  std::string out;
+  for (const unsigned char c : message) {
+    if (c >= 0x20 && c != 0x7f) {
+      out += static_cast<char>(c);
+    } else {
+      char hex[5];
+      std::snprintf(hex, sizeof hex, "\\x%02x", c);
+      out += hex;
+    }
+  }
+  return out;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   // Ceres logs through glog; the tool reports solver outcomes itself, so keep glog quiet.
@@ -40,7 +62,7 @@ int main(int argc, char** argv) {
       names += (names.empty() ? "" : ", ") + sub->get_name();
     }
     if (!known) {
-      std::cerr << "bssrdf: error: unknown command '" << argv[1] << "'; commands: " << names << "\n";
+      std::cerr << "bssrdf: error: unknown command '" << printable(argv[1]) << "'; commands: " << names << "\n";
       return 2;
     }
   }
@@ -49,7 +71,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::Success& e) {
     return app.exit(e);  // --help, --version
   } catch (const CLI::ParseError& e) {
-    std::cerr << "bssrdf: error: " << e.what() << "\n";
+    std::cerr << "bssrdf: error: " << printable(e.what()) << "\n";
+    return 2;
+  } catch (const bssrdf::InvalidInput& e) {  // a count option's range check (add_count_option)
+    std::cerr << "bssrdf: error: " << printable(e.what()) << "\n";
     return 2;
   }
   try {
@@ -59,10 +84,10 @@ int main(int argc, char** argv) {
       if (it != actions.end()) it->second();
     }
   } catch (const bssrdf::InvalidInput& e) {
-    std::cerr << "bssrdf: error: " << e.what() << "\n";
+    std::cerr << "bssrdf: error: " << printable(e.what()) << "\n";
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "bssrdf: internal error: " << e.what() << "\n";
+    std::cerr << "bssrdf: internal error: " << printable(e.what()) << "\n";
     return 1;
   }
   return 0;

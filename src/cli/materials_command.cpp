@@ -14,7 +14,9 @@
 #include "bssrdf/derived_quantities.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/io/atomic_file.hpp"
+#include "bssrdf/fit/fit_import.hpp"
 #include "bssrdf/io/renderer_export.hpp"
+#include "../io/data_file.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -118,54 +120,6 @@ double object_size_mm(const std::string& text) {
   return v;
 }
 
-// `bssrdf fit ... -f json` output -> a materials file with one entry (sigma_a, sigma_s' per channel).
-std::string import_fit(const std::string& fit_file, const std::string& name, const std::string& eta_text,
-                       const std::string& source) {
-  std::ifstream in(fit_file);
-  if (!in) throw FileError(fit_file, 0, "cannot open the fit result");
-  nlohmann::json fit;
-  try {
-    fit = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw FileError(fit_file, 0, "malformed JSON (expected 'bssrdf fit ... -f json' output)");
-  }
-  if (!fit.is_object() || fit.value("source", "") != "fit")
-    throw FileError(fit_file, 0, "$.source: expected \"fit\" (the output of 'bssrdf fit ... -f json')");
-  if (!fit.contains("channels") || !fit["channels"].is_array() || fit["channels"].empty())
-    throw FileError(fit_file, 0, "$.channels: expected a non-empty array");
-  double eta = 0;
-  if (!eta_text.empty()) eta = parse_number(eta_text, "--eta");
-  else if (fit.contains("shared") && fit["shared"].contains("eta")) eta = fit["shared"]["eta"]["value"].get<double>();
-  else throw InvalidInput("--eta: the fit result has no eta; give the one the fit assumed");
-  std::vector<std::string> channels;
-  std::vector<double> sigma_a, sigma_s_prime;
-  std::string unit;
-  for (std::size_t i = 0; i < fit["channels"].size(); ++i) {
-    const auto& c = fit["channels"][i];
-    const std::string where = "$.channels[" + std::to_string(i) + "]";
-    for (const char* key : {"sigma_a", "sigma_s_prime"})
-      if (!c.contains(key) || !c[key].contains("value") || !c[key]["value"].is_number())
-        throw FileError(fit_file, 0, where + "." + key + ": missing (only fits of sigma_a and sigma_s' - profile, albedo, "
-                                                          "slab - give a material)");
-    channels.push_back(c.value("name", "c" + std::to_string(i)));
-    sigma_a.push_back(c["sigma_a"]["value"].get<double>());
-    sigma_s_prime.push_back(c["sigma_s_prime"]["value"].get<double>());
-    const std::string u = c["sigma_a"].value("unit", "1/mm");
-    if (u.rfind("1/", 0) != 0) throw FileError(fit_file, 0, where + ".sigma_a.unit: '" + u + "' is not 1/LENGTH");
-    unit = u.substr(2);
-  }
-  json doc = {{"format", "bssrdf-materials"},
-              {"version", 1},
-              {"source", source},
-              {"citation", "bssrdf fit " + fit.value("kind", std::string("?")) + " (" + fit.value("model", std::string("?")) +
-                               ") of " + fit.value("data", std::string("?")) + ", " + fit.value("tool", std::string(""))},
-              {"unit", unit},
-              {"channels", channels},
-              {"notes", {"Imported from " + fit_file + " by 'bssrdf materials import'; g was not fitted, so the entry "
-                         "gives sigma_s_prime (used with g = 0)."}},
-              {"materials", {{{"name", name}, {"eta", eta}, {"sigma_a", sigma_a}, {"sigma_s_prime", sigma_s_prime}}}}};
-  return doc.dump(2) + "\n";
-}
 
 }  // namespace
 
@@ -210,7 +164,7 @@ Action register_materials(CLI::App& app) {
                   "blender: Cycles subsurface method: fixed-radius (3.x Random Walk (Fixed Radius), 4.x Random Walk), "
                   "radius-remap (3.x Random Walk, 4.x Random Walk (Skin)), burley [fixed-radius]");
   exp->add_option("--blender-version", o->blender_version, "blender: 3, 4, or auto (the script picks when run) [auto]");
-  exp->add_option("-o,--output", o->output, "Write to FILE (atomically) instead of stdout");
+  exp->add_option("-o,--output", o->output, "Write to FILE (atomically) instead of stdout")->check(file_name("-o"));
   add_db(exp);
   add_object_size(exp);
 
@@ -219,7 +173,7 @@ Action register_materials(CLI::App& app) {
   imp->add_option("--name", o->name, "Name of the new material")->required();
   imp->add_option("--eta", o->eta, "Relative index [the fit's, if it fitted or recorded one]");
   imp->add_option("--source", o->import_source, "Source key of the new file [fit]");
-  imp->add_option("-o,--output", o->output, "The materials file to write")->required();
+  imp->add_option("-o,--output", o->output, "The materials file to write")->required()->check(file_name("-o"));
 
   return [o, list, show, exp, imp] {
     if (list->parsed()) {
@@ -277,18 +231,10 @@ Action register_materials(CLI::App& app) {
       if (o->output.empty()) std::cout << text;
       else write_file_atomically(o->output, text);
     } else if (imp->parsed()) {
-      const std::string text = import_fit(o->fit_file, o->name, o->eta, o->import_source);
-      // Validate by loading it, before it replaces anything.
-      const auto check = std::filesystem::path(o->output).parent_path() /
-                         (".bssrdf-import-check-" + std::to_string(::getpid()) + ".json");
-      write_file_atomically(check, text);
-      try {
-        MaterialDatabase::load(check);
-      } catch (...) {
-        std::filesystem::remove(check);
-        throw;
-      }
-      std::filesystem::remove(check);
+      const std::optional<double> eta = o->eta.empty() ? std::nullopt : std::optional<double>(parse_number(o->eta, "--eta"));
+      const std::string text = materials_file_from_fit(read_data_file(o->fit_file, "the fit result"), o->fit_file, o->name, eta,
+                                                       o->import_source);
+      MaterialDatabase().add_text(text, o->output);  // validate it as the file it becomes, before anything is written
       write_file_atomically(o->output, text);
       std::cout << "written: " << o->output << " (load it with --db " << o->output << ")\n";
     }

@@ -5,6 +5,8 @@
 // the real source outside the slab, negative transmittance) the command refuses, exit status 2,
 // with one line naming the channel and layer and pointing to the Monte Carlo reference
 // (`bssrdf reference --thickness D` / `--layers FILE`), which is exact there.
+#include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <memory>
 
@@ -71,7 +73,7 @@ Action register_profile(CLI::App& app) {
   auto* radii = sub->add_option("--radii", options->radii, "Explicit radii in --unit, comma-separated, increasing");
   auto* rmin = sub->add_option("--r-min", options->r_min, "Smallest radius [1e-3 of the smallest transport mfp]");
   auto* rmax = sub->add_option("--r-max", options->r_max, "Largest radius [the largest 99.9 %-energy radius]");
-  auto* samples = sub->add_option("--samples", options->samples, "Number of radii [64]");
+  auto* samples = add_count_option(*sub, "--samples", options->samples, 2, 1000000, "Number of radii [64]");
   auto* spacing = sub->add_option("--spacing", options->spacing, "Radius spacing: log or linear [log]")
                       ->check(CLI::IsMember({"log", "linear"}));
   radii->excludes(rmin)->excludes(rmax)->excludes(samples)->excludes(spacing);
@@ -167,12 +169,32 @@ Action register_profile(CLI::App& app) {
                              : compute_profile_report(resolved.medium, *model, radii_mm, resolved.unit);
     report.material = resolved.material;
     report.model_choice = auto_note;
-    // Never print a negative profile: the checks above exclude it; this keeps it so.
-    for (const auto& ch : report.channels) {
-      for (double v : ch.profile.value)
-        if (v < 0) throw std::logic_error("negative reflectance in channel " + ch.name);
-      for (double v : ch.transmittance)
-        if (v < 0) throw std::logic_error("negative transmittance in channel " + ch.name);
+    // Never print a negative or infinite profile. Far in the tail the multipole's dipole pairs cancel
+    // to rounding noise of either sign: that is 0, and the note says so. Anything else is refused.
+    for (auto& ch : report.channels) {
+      const auto settle = [&](std::vector<double>& values, const char* what) {
+        double peak = 0;
+        for (double v : values) peak = std::isfinite(v) ? std::max(peak, std::abs(v)) : peak;
+        double first_rounded = -1;
+        for (std::size_t i = 0; i < values.size(); ++i) {
+          const double r = ch.profile.radius[i];
+          if (!std::isfinite(values[i]))
+            throw InvalidInput("--radii", format_number(r), std::string("> 0 for ") + report.model + ": its " + what +
+                                                                 " is infinite at r = " + format_number(r));
+          if (values[i] >= 0) continue;
+          if (-values[i] > 1e-9 * peak)
+            throw InvalidInput(std::string(what) + "[" + ch.name + "] at r = " + format_number(r) + ": the model gives " +
+                               format_number(values[i]) + " here; use 'bssrdf reference' (Monte Carlo)");
+          if (first_rounded < 0) first_rounded = r;
+          values[i] = 0;
+        }
+        if (first_rounded >= 0)
+          ch.validity.push_back({Severity::note, "rounding_tail",
+                                 std::string(what) + " below 1e-9 of its peak from r = " + format_number(first_rounded) +
+                                     " is the rounding noise of the dipole-pair sum: written as 0"});
+      };
+      settle(ch.profile.value, "R(r)");
+      settle(ch.transmittance, "T(r)");
     }
     std::string content;
     switch (options->output.file_format()) {

@@ -35,15 +35,16 @@ Action register_reference(CLI::App& app) {
   auto* mci = sub->add_option("--mci", options->mci, "Run the cases of an MCML input file (cm, 1/cm; outputs in cm)");
   sub->add_option("--mco-dir", options->mco_dir,
                   "--mci: directory for each run's MCML output file (.mco, the name in the .mci) [., as MCML]");
-  sub->add_option("--photons,-n", options->photons, "Photons per channel (per run with --mci: default the file's) [1000000]");
-  sub->add_option("--seed", options->seed, "Random seed; the result depends only on inputs and seed [1]");
-  sub->add_option("--threads,-j", options->threads, "Worker threads, 0 = all cores; never changes the result [0]");
+  add_count_option(*sub, "--photons,-n", options->photons, 1, kMaxPhotons,
+                   "Photons per channel (per run with --mci: default the file's) [1000000]; cost grows linearly, and as 1/sigma_a' for near-conservative media");
+  add_count_option(*sub, "--seed", options->seed, 0, kMaxSeed, "Random seed; the result depends only on inputs and seed [1]");
+  add_count_option(*sub, "--threads,-j", options->threads, 0, kMaxThreads, "Worker threads, 0 = all cores; never changes the result [0]");
   sub->add_option("--r-max", options->r_max, "Largest radius of R(r) in --unit [10 transport mfp; --mci: nr*dr]");
   sub->add_option("--r-min", options->r_min, "Log spacing: outer radius of the first bin [r_max/1000]");
-  sub->add_option("--bins", options->bins, "Radial bins [100; --mci: nr]");
+  add_count_option(*sub, "--bins", options->bins, 2, kMaxBins, "Radial bins [100; --mci: nr]");
   sub->add_option("--bin-spacing", options->spacing, "Radial bins: linear or log [linear]")
       ->check(CLI::IsMember({"linear", "log"}));
-  sub->add_option("--depth-bins", options->depth_bins, "Absorbed fraction by depth in this many bins [0: off; --mci: nz]");
+  add_count_option(*sub, "--depth-bins", options->depth_bins, 0, kMaxBins, "Absorbed fraction by depth in this many bins [0: off; --mci: nz]");
   sub->add_option("--absorption", options->absorption, "Absorption estimator: implicit (weights + roulette) or analog [implicit]")
       ->check(CLI::IsMember({"implicit", "analog"}));
   sub->add_option("--roulette-threshold", options->roulette_threshold,
@@ -78,7 +79,6 @@ Action register_reference(CLI::App& app) {
     base.absorption = o.absorption == "analog" ? AbsorptionEstimator::analog : AbsorptionEstimator::implicit_capture;
     base.roulette_threshold = o.roulette_threshold;
     base.roulette_survival = o.roulette_survival;
-    if (o.photons < 1) throw InvalidInput("--photons", std::to_string(o.photons), ">= 1");
 
     struct Case {
       std::string label;

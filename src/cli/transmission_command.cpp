@@ -28,7 +28,7 @@ Action register_transmission(CLI::App& app) {
   auto* list = sub->add_option("--thickness", options->thickness, "Thicknesses in --unit, comma-separated");
   auto* lo = sub->add_option("--d-min", options->d_min, "Smallest thickness [2 transport mfp of the clearest channel]");
   auto* hi = sub->add_option("--d-max", options->d_max, "Largest thickness [40 transport mfp of the most scattering-sparse channel]");
-  auto* n = sub->add_option("--samples", options->samples, "Number of thicknesses, log-spaced [24]");
+  auto* n = add_count_option(*sub, "--samples", options->samples, 2, 100000, "Number of thicknesses, log-spaced [24]");
   list->excludes(lo)->excludes(hi)->excludes(n);
   options->output.add_to(*sub);
   return [options] {

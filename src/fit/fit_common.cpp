@@ -7,6 +7,14 @@
 namespace bssrdf {
 
 std::optional<Eigen::MatrixXd> parameter_covariance(ceres::Problem& problem, const std::vector<const double*>& blocks) {
+  // Eigen's SVD does not survive an infinite or NaN Jacobian (it crashed on data of 1e308): such a
+  // fit has no covariance.
+  double cost = 0;
+  ceres::CRSMatrix jacobian;
+  if (!problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, &jacobian) || !std::isfinite(cost))
+    return std::nullopt;
+  for (const double v : jacobian.values)
+    if (!std::isfinite(v)) return std::nullopt;
   ceres::Covariance::Options options;
   options.algorithm_type = ceres::DENSE_SVD;
   options.null_space_rank = -1;  // refuse rank-deficient problems instead of pseudo-inverting them

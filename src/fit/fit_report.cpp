@@ -19,7 +19,7 @@ const FitParameter* FitReport::find(const std::string& name, const std::string& 
 namespace {
 nlohmann::json estimate(const FitParameter& p) {
   nlohmann::json e = {{"value", p.value}};
-  e["stderr"] = std::isfinite(p.standard_error) ? nlohmann::json(p.standard_error) : nlohmann::json(nullptr);
+  e["stderr"] = std::isfinite(p.standard_error) && p.standard_error > 0 ? nlohmann::json(p.standard_error) : nlohmann::json(nullptr);
   if (!p.unit.empty()) e["unit"] = p.unit;
   return e;
 }
@@ -73,9 +73,12 @@ std::string FitReport::full_report() const {
       << ", relative RMS " << format_number(std::round(relative_rms * 1e6) / 1e4) << " %\n\n";
   out << "parameter          channel   value          1-sigma        unit\n";
   for (const auto& p : parameters) {
+    // An uncertainty that could not be computed (or an exact inversion) is "n/a", never nan or 0.
+    char sigma[32] = "n/a";
+    if (std::isfinite(p.standard_error) && p.standard_error > 0) std::snprintf(sigma, sizeof sigma, "%.3g", p.standard_error);
     char line[160];
-    std::snprintf(line, sizeof line, "%-18s %-9s %-14.6g %-14.3g %s\n", p.name.c_str(), p.channel.empty() ? "-" : p.channel.c_str(),
-                  p.value, p.standard_error, p.unit.c_str());
+    std::snprintf(line, sizeof line, "%-18s %-9s %-14.6g %-14s %s\n", p.name.c_str(), p.channel.empty() ? "-" : p.channel.c_str(),
+                  p.value, sigma, p.unit.c_str());
     out << line;
   }
   if (!warnings.empty()) {

@@ -230,23 +230,30 @@ FitReport fit_profile(const MeasuredProfile& data, const ProfileFitOptions& opti
   const std::size_t free = 2 * channels.size() + options.fit_eta + options.fit_scale;
   const bool have_errors = !data.channels.empty() && !data.channels[0].standard_error.empty();
   const double chi2_dof = points > free ? 2 * summary.final_cost / static_cast<double>(points - free) : NAN;
-  const double variance_scale = have_errors ? 1.0 : chi2_dof;
+  // With standard errors, a chi^2/dof above 1 means the model cannot explain the data within them:
+  // the 1-sigma are widened by sqrt(chi^2/dof) (the Particle Data Group's scale factor), never
+  // narrowed. Without standard errors, the residual scatter is the only noise estimate.
+  const double variance_scale = have_errors ? std::max(1.0, chi2_dof) : chi2_dof;
   const auto covariance = parameter_covariance(problem, blocks);
 
   const std::string per_unit = "1/" + std::string(symbol(data.unit));
   for (std::size_t c = 0; c < channels.size(); ++c) {
     const std::string& name = data.channels[c].name;
     const double sa = std::exp(x[c][0]), ssp = std::exp(x[c][1]);
-    double se_a = NAN, se_s = NAN, rho = NAN;
+    double se_a = NAN, se_s = NAN, se_albedo = NAN, rho = NAN;
     if (covariance) {
       const auto& cov = *covariance;
       se_a = sa * std::sqrt(cov(2 * c, 2 * c) * variance_scale);
       se_s = ssp * std::sqrt(cov(2 * c + 1, 2 * c + 1) * variance_scale);
       rho = cov(2 * c, 2 * c + 1) / std::sqrt(cov(2 * c, 2 * c) * cov(2 * c + 1, 2 * c + 1));
+      // alpha' = s / (a + s) in the fitted logs: d alpha' / d ln s = -d alpha' / d ln a = a s / (a + s)^2.
+      const double slope = sa * ssp / ((sa + ssp) * (sa + ssp));
+      se_albedo = slope * std::sqrt(std::max(0.0, cov(2 * c, 2 * c) + cov(2 * c + 1, 2 * c + 1) - 2 * cov(2 * c, 2 * c + 1)) *
+                                    variance_scale);
     }
     report.parameters.push_back({"sigma_a", name, sa * mm, se_a * mm, per_unit});
     report.parameters.push_back({"sigma_s_prime", name, ssp * mm, se_s * mm, per_unit});
-    report.parameters.push_back({"albedo_prime", name, ssp / (sa + ssp), NAN, ""});
+    report.parameters.push_back({"albedo_prime", name, ssp / (sa + ssp), se_albedo, ""});
     if (std::abs(rho) > 0.99)
       report.warnings.push_back("channel " + name + ": sigma_a and sigma_s' are strongly correlated (rho = " +
                                 format_number(std::round(rho * 1000) / 1000) +
@@ -264,9 +271,11 @@ FitReport fit_profile(const MeasuredProfile& data, const ProfileFitOptions& opti
   if (!covariance)
     report.warnings.push_back("the covariance could not be computed (rank-deficient Jacobian): the parameters are not "
                               "all identifiable from these data");
-  if (have_errors && chi2_dof > 4)
+  if (have_errors && chi2_dof > 1)
     report.warnings.push_back("chi-square per degree of freedom " + format_number(std::round(chi2_dof * 100) / 100) +
-                              ": the model does not explain the data within their standard errors");
+                              (chi2_dof > 4 ? ": the model does not explain the data within their standard errors" : "") +
+                              "; the 1-sigma are widened by sqrt(chi^2/dof) = " +
+                              format_number(std::round(std::sqrt(chi2_dof) * 100) / 100));
   if (!report.converged) report.warnings.push_back("the solver did not converge: " + summary.message);
 
   // Residuals per point.

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "bssrdf/error.hpp"
+#include "data_file.hpp"
 
 namespace bssrdf {
 namespace {
@@ -110,16 +111,7 @@ class Locator : public json::json_sax_t {
 class Parser {
  public:
   Parser(const std::string& text, std::string name) : name_(std::move(name)) {
-    try {
-      doc_ = json::parse(text);
-    } catch (const json::parse_error& e) {
-      int line = 1;
-      for (std::size_t i = 0; i < std::min(e.byte, text.size()); ++i)
-        if (text[i] == '\n') ++line;
-      std::string what = e.what();
-      const auto colon = what.find(": ");
-      throw FileError(name_, line, "invalid JSON: " + (colon == std::string::npos ? what : what.substr(colon + 2)));
-    }
+    doc_ = parse_json_document(text, name_);  // bounded depth, so the locator below stays cheap
     LineCounter counter;
     Locator locator(counter);
     CountingIterator first{text.data(), &counter}, last{text.data() + text.size(), &counter};
@@ -159,7 +151,7 @@ class Parser {
   }
 
   double number(const json& v, const std::string& pointer) const {
-    if (!v.is_number()) fail(pointer, field(pointer) + " = " + v.dump() + ": expected a number");
+    if (!v.is_number()) fail(pointer, field(pointer) + " = " + json_excerpt(v) + ": expected a number");
     return v.get<double>();
   }
 
@@ -312,11 +304,7 @@ LayersFile parse_layers_json(const std::string& text, const std::string& name) {
 }
 
 LayersFile read_layers_json(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FileError(path.string(), 0, "cannot open the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_layers_json(text.str(), path.string());
+  return parse_layers_json(read_data_file(path, "the layers file"), path.string());
 }
 
 }  // namespace bssrdf

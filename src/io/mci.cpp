@@ -7,9 +7,15 @@
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/units.hpp"
+#include "data_file.hpp"
 
 namespace bssrdf {
 namespace {
+
+// Physical bounds of an MCML run: lengths from 1 nm to 10 m (cm), bins and photons within what a
+// run can store and trace.
+constexpr double kMinMciLength = 1e-7, kMaxMciLength = 1e3;
+constexpr long long kMaxMciBins = 10'000'000, kMaxMciPhotons = 10'000'000'000;
 
 struct Record {
   int line;
@@ -60,15 +66,20 @@ class Reader {
       throw FileError(name_, r.line, field + " = '" + t + "': not a finite number");
     return v;
   }
-  long long integer(const Record& r, std::size_t i, const std::string& field, long long min) const {
+  // Range-checked as a double before the conversion, so 3e9 bins cannot wrap.
+  long long integer(const Record& r, std::size_t i, const std::string& field, long long min, long long max) const {
     const double v = number(r, i, field);
-    if (v != std::floor(v) || v < static_cast<double>(min) || v > 9e18)
-      throw FileError(name_, r.line, field + " = " + r.tokens[i] + ": accepted range is an integer >= " + std::to_string(min));
+    if (v != std::floor(v) || v < static_cast<double>(min) || v > static_cast<double>(max))
+      throw FileError(name_, r.line, field + " = " + r.tokens[i] + ": accepted range is a whole number from " +
+                                         std::to_string(min) + " to " + std::to_string(max));
     return static_cast<long long>(v);
   }
-  double positive(const Record& r, std::size_t i, const std::string& field) const {
+  // A length or index within [min, max] (cm for lengths), so every derived bin width stays a normal number.
+  double within(const Record& r, std::size_t i, const std::string& field, double min, double max) const {
     const double v = number(r, i, field);
-    if (!(v > 0)) throw FileError(name_, r.line, field + " = " + r.tokens[i] + ": accepted range is > 0");
+    if (!(v >= min && v <= max))
+      throw FileError(name_, r.line, field + " = " + r.tokens[i] + ": accepted range is " + format_number(min) + " to " +
+                                         format_number(max));
     return v;
   }
   bool done() const { return index_ >= records_.size(); }
@@ -89,7 +100,7 @@ MciFile parse_mci(const std::string& text, const std::string& name) {
   const Record& version = in.next("the file version", 1, 1);
   file.version = in.number(version, 0, "file version");
   const Record& count = in.next("the number of runs", 1, 1);
-  const auto runs = in.integer(count, 0, "number of runs", 1);
+  const auto runs = in.integer(count, 0, "number of runs", 1, 10'000);
   const double cm = millimetres_per(LengthUnit::centimetre);
   for (long long k = 0; k < runs; ++k) {
     MciRun run;
@@ -104,38 +115,42 @@ MciFile parse_mci(const std::string& text, const std::string& name) {
       run.output_format = static_cast<char>(std::toupper(static_cast<unsigned char>(f[0])));
     }
     const Record& photons = in.next(prefix + "the number of photons", 1, 1);
-    run.photons = static_cast<std::uint64_t>(in.integer(photons, 0, "number of photons", 1));
+    run.photons = static_cast<std::uint64_t>(in.integer(photons, 0, "number of photons", 1, kMaxMciPhotons));
     const Record& grid = in.next(prefix + "dz and dr [cm]", 2, 2);
-    run.dz = in.positive(grid, 0, "dz") * cm;
-    run.dr = in.positive(grid, 1, "dr") * cm;
+    run.dz = in.within(grid, 0, "dz", kMinMciLength, kMaxMciLength) * cm;
+    run.dr = in.within(grid, 1, "dr", kMinMciLength, kMaxMciLength) * cm;
     const Record& sizes = in.next(prefix + "the numbers of dz, dr and da bins", 3, 3);
-    run.nz = static_cast<int>(in.integer(sizes, 0, "number of dz bins", 1));
-    run.nr = static_cast<int>(in.integer(sizes, 1, "number of dr bins", 1));
-    run.na = static_cast<int>(in.integer(sizes, 2, "number of da bins", 1));
+    run.nz = static_cast<int>(in.integer(sizes, 0, "number of dz bins", 1, kMaxMciBins));
+    run.nr = static_cast<int>(in.integer(sizes, 1, "number of dr bins", 1, kMaxMciBins));
+    run.na = static_cast<int>(in.integer(sizes, 2, "number of da bins", 1, kMaxMciBins));
+    if (run.nz * run.dz > kMaxMciLength * cm || run.nr * run.dr > kMaxMciLength * cm)
+      throw FileError(name, sizes.line, "nz*dz and nr*dr (the grid's depth and radius) = " + format_number(run.nz * run.dz / cm) + ", " +
+                                            format_number(run.nr * run.dr / cm) + " cm: accepted range is up to " +
+                                            format_number(kMaxMciLength) + " cm each");
     const Record& layers = in.next(prefix + "the number of layers", 1, 1);
-    const auto layer_count = in.integer(layers, 0, "number of layers", 1);
+    const auto layer_count = in.integer(layers, 0, "number of layers", 1, 1000);
     run.stack.channel_names = {"mcml"};
     const Record& above = in.next(prefix + "the refractive index above", 1, 1);
-    run.stack.ambient_above = in.positive(above, 0, "n above");
+    run.stack.ambient_above = in.within(above, 0, "n above", kMinRefractiveIndex, kMaxRefractiveIndex);
     for (long long i = 0; i < layer_count; ++i) {
       const std::string field = "layer " + std::to_string(i + 1);
       const Record& r = in.next(prefix + field + ": n mua mus g d", 5, 5);
       Layer layer;
       layer.name = "layer " + std::to_string(i + 1);
-      layer.n = in.positive(r, 0, field + " n");
+      layer.n = in.within(r, 0, field + " n", kMinRefractiveIndex, kMaxRefractiveIndex);
       const double mua = in.number(r, 1, field + " mua"), mus = in.number(r, 2, field + " mus");
       const double g = in.number(r, 3, field + " g");
       if (mua < 0) throw FileError(name, r.line, field + " mua = " + r.tokens[1] + ": accepted range is >= 0");
       if (mus < 0) throw FileError(name, r.line, field + " mus = " + r.tokens[2] + ": accepted range is >= 0");
       if (!(g > -1 && g < 1)) throw FileError(name, r.line, field + " g = " + r.tokens[3] + ": accepted range is -1 < g < 1");
-      layer.thickness = in.positive(r, 4, field + " d") * cm;
+      layer.thickness = in.within(r, 4, field + " d", kMinMciLength, kMaxMciLength) * cm;
       layer.sigma_a = {mua / cm};
       layer.sigma_s = {mus / cm};
       layer.g = {g};
       run.stack.layers.push_back(std::move(layer));
     }
     const Record& below = in.next(prefix + "the refractive index below", 1, 1);
-    run.stack.ambient_below = in.positive(below, 0, "n below");
+    run.stack.ambient_below = in.within(below, 0, "n below", kMinRefractiveIndex, kMaxRefractiveIndex);
     try {
       run.stack.validate();
     } catch (const InvalidInput& e) {
@@ -149,11 +164,7 @@ MciFile parse_mci(const std::string& text, const std::string& name) {
 }
 
 MciFile read_mci(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FileError(path.string(), 0, "cannot open the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_mci(text.str(), path.string());
+  return parse_mci(read_data_file(path, "the MCML input file"), path.string());
 }
 
 }  // namespace bssrdf

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "bssrdf/error.hpp"
+#include "data_file.hpp"
 
 namespace bssrdf {
 namespace {
@@ -28,6 +29,11 @@ bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+constexpr const char* kMonteCarloChannel = "_R_entered";
+// Bounds on R(r) and its standard error (1/unit^2): far beyond any real profile (1e12/mm^2 is the
+// peak of a medium with a 1 um mean free path), yet squares and inverse squares stay finite.
+constexpr double kMaxProfileValue = 1e30, kMinProfileStderr = 1e-30;
+
 }  // namespace
 
 MeasuredProfile parse_profile_csv(const std::string& text, const std::string& name, std::optional<LengthUnit> unit) {
@@ -40,6 +46,7 @@ MeasuredProfile parse_profile_csv(const std::string& text, const std::string& na
   std::vector<int> value_column, stderr_column;  // per channel
   std::map<std::string, std::size_t> channel_index;
   std::vector<double> raw_radius;
+  bool monte_carlo = false;
   while (std::getline(in, line)) {
     ++line_number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -60,11 +67,20 @@ MeasuredProfile parse_profile_csv(const std::string& text, const std::string& na
       } else {
         out.unit = unit.value_or(LengthUnit::millimetre);
       }
+      // 'bssrdf reference -f csv' output: the channels are the "<channel>_R_entered" columns (per
+      // entered flux, the models' normalisation); bin edges, per-incident and T(r) columns are not fitted.
+      for (const auto& h : header) monte_carlo |= ends_with(h, kMonteCarloChannel);
       // Channels first, then their standard errors.
       for (std::size_t i = 1; i < header.size(); ++i) {
         std::string h = header[i];
         if (h.empty()) throw FileError(name, line_number, "column " + std::to_string(i + 1) + " has no name");
         if (ends_with(h, "_stderr") || ends_with(h, "_se")) continue;
+        if (monte_carlo) {
+          if (!ends_with(h, kMonteCarloChannel)) continue;
+          h = h.substr(0, h.size() - std::string(kMonteCarloChannel).size());
+        } else if (h.rfind("radius", 0) == 0) {
+          throw FileError(name, line_number, "column '" + h + "': only the first column may be a radius");
+        }
         const auto per = h.find("_per_");
         if (per != std::string::npos) h = h.substr(0, per);
         channel_index[h] = out.channels.size();
@@ -78,6 +94,10 @@ MeasuredProfile parse_profile_csv(const std::string& text, const std::string& na
         if (ends_with(h, "_stderr")) base = h.substr(0, h.size() - 7);
         else if (ends_with(h, "_se")) base = h.substr(0, h.size() - 3);
         else continue;
+        if (monte_carlo) {
+          if (!ends_with(base, kMonteCarloChannel)) continue;
+          base = base.substr(0, base.size() - std::string(kMonteCarloChannel).size());
+        }
         const auto it = channel_index.find(base);
         if (it == channel_index.end())
           throw FileError(name, line_number, "standard-error column '" + h + "' has no channel column '" + base + "'");
@@ -101,15 +121,28 @@ MeasuredProfile parse_profile_csv(const std::string& text, const std::string& na
     if (!raw_radius.empty() && !(r > raw_radius.back()))
       throw FileError(name, line_number, header[0] + " = " + format_number(r) + ": accepted range is > " +
                                              format_number(raw_radius.back()) + " (radii must increase)");
+    // A Monte Carlo bin no photon reached (value and standard error 0) carries no information.
+    bool empty_bin = false;
+    for (std::size_t c = 0; c < out.channels.size() && monte_carlo; ++c)
+      empty_bin |= number(static_cast<std::size_t>(value_column[c])) == 0 && stderr_column[c] >= 0 &&
+                   number(static_cast<std::size_t>(stderr_column[c])) == 0;
+    if (empty_bin) {
+      ++out.empty_bins;
+      continue;
+    }
     raw_radius.push_back(r);
     for (std::size_t c = 0; c < out.channels.size(); ++c) {
       const double v = number(static_cast<std::size_t>(value_column[c]));
-      if (v < 0) throw FileError(name, line_number, header[value_column[c]] + " = " + format_number(v) + ": accepted range is >= 0");
+      if (!(v >= 0 && v <= kMaxProfileValue))
+        throw FileError(name, line_number, header[value_column[c]] + " = " + format_number(v) + ": accepted range is 0 to " +
+                                               format_number(kMaxProfileValue));
       out.channels[c].value.push_back(v);
       if (stderr_column[c] >= 0) {
         const double s = number(static_cast<std::size_t>(stderr_column[c]));
-        if (!(s > 0))
-          throw FileError(name, line_number, header[stderr_column[c]] + " = " + format_number(s) + ": accepted range is > 0");
+        // Relative to the largest value a profile may hold, so weights 1/s^2 and chi^2 stay finite.
+        if (!(s >= kMinProfileStderr && s <= kMaxProfileValue))
+          throw FileError(name, line_number, header[stderr_column[c]] + " = " + format_number(s) + ": accepted range is " +
+                                                 format_number(kMinProfileStderr) + " to " + format_number(kMaxProfileValue));
         out.channels[c].standard_error.push_back(s);
       }
     }
@@ -127,11 +160,7 @@ MeasuredProfile parse_profile_csv(const std::string& text, const std::string& na
 }
 
 MeasuredProfile read_profile_csv(const std::filesystem::path& path, std::optional<LengthUnit> unit) {
-  std::ifstream in(path);
-  if (!in) throw FileError(path.string(), 0, "cannot open the profile file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return parse_profile_csv(buffer.str(), path.string(), unit);
+  return parse_profile_csv(read_data_file(path, "the profile file"), path.string(), unit);
 }
 
 }  // namespace bssrdf

@@ -139,6 +139,13 @@ AdaptiveAlbedoRadiusLayout adaptive_albedo_radius_layout(double g, double eta, d
   // Each axis's midpoint error is held to a third of the tolerance: errors off the grid in both
   // axes add, and the midpoint is not always the worst point of an interval (measured: 2x).
   const double target = tolerance / 3;
+  AlbedoRadiusOptions table_options = options;
+  table_options.progress = nullptr;
+  constexpr std::uint64_t kMostSteps = 48;  // 12 * 1.25^24 > 2048 on each axis
+  std::uint64_t step = 0;
+  const auto stepped = [&] {
+    if (options.progress) options.progress(std::min(++step, kMostSteps), kMostSteps);
+  };
   // Radii first, on a few albedo rows spread over the range.
   const auto probe_rows = AlbedoRadiusLayout::family(9, 4).albedo;
   std::size_t radii = 12;
@@ -147,8 +154,9 @@ AdaptiveAlbedoRadiusLayout adaptive_albedo_radius_layout(double g, double eta, d
     grid.albedo = probe_rows;
     AlbedoRadiusLayout mid = grid;
     mid.radius = midpoints(grid.radius, true);
-    out.radius_error = midpoint_error(build_albedo_radius_table(grid, g, eta, options),
-                                      build_albedo_radius_table(mid, g, eta, options));
+    out.radius_error = midpoint_error(build_albedo_radius_table(grid, g, eta, table_options),
+                                      build_albedo_radius_table(mid, g, eta, table_options));
+    stepped();
     if (out.radius_error <= target || radii >= kLargest) break;
   }
   // Then albedos, on the chosen radii.
@@ -157,10 +165,12 @@ AdaptiveAlbedoRadiusLayout adaptive_albedo_radius_layout(double g, double eta, d
     AlbedoRadiusLayout grid = AlbedoRadiusLayout::family(albedos, radii);
     AlbedoRadiusLayout mid = grid;
     mid.albedo = midpoints(grid.albedo, false);
-    out.albedo_error = midpoint_error(build_albedo_radius_table(grid, g, eta, options),
-                                      build_albedo_radius_table(mid, g, eta, options));
+    out.albedo_error = midpoint_error(build_albedo_radius_table(grid, g, eta, table_options),
+                                      build_albedo_radius_table(mid, g, eta, table_options));
+    stepped();
     if (out.albedo_error <= target || albedos >= kLargest) break;
   }
+  if (options.progress) options.progress(kMostSteps, kMostSteps);
   out.layout = AlbedoRadiusLayout::family(albedos, radii);
   return out;
 }

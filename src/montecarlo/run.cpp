@@ -23,7 +23,7 @@ std::string_view to_string(AbsorptionEstimator estimator) {
 }
 
 void MonteCarloOptions::validate() const {
-  if (photons < 1) throw InvalidInput("photons", std::to_string(photons), ">= 1");
+  if (photons < 1 || photons > 10'000'000'000) throw InvalidInput("photons", std::to_string(photons), "1 to 10000000000");
   if (batch_size < 1) throw InvalidInput("batch_size", std::to_string(batch_size), ">= 1");
   if (threads > 4096) throw InvalidInput("threads", std::to_string(threads), "0 (all cores) to 4096");
   if (bins < 2 || bins > 10'000'000) throw InvalidInput("bins", std::to_string(bins), "2 to 10000000");

@@ -30,6 +30,9 @@ struct MeasuredProfile {
     std::vector<double> standard_error;  // 1/mm^2; empty when not given
   };
   std::vector<Channel> channels;
+  // 'bssrdf reference -f csv' output is read as its "<channel>_R_entered" columns with their
+  // standard errors; bins no photon reached are skipped and counted here.
+  std::size_t empty_bins = 0;
 };
 
 // `unit`: the unit when the header does not state one (default mm).

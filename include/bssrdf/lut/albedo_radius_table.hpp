@@ -15,6 +15,9 @@
 // midpoint samples; rows run in parallel (deterministically).
 #pragma once
 
+#include <cstdint>
+#include <functional>
+
 #include <cstddef>
 #include <vector>
 
@@ -36,6 +39,9 @@ struct AlbedoRadiusLayout {
 struct AlbedoRadiusOptions {
   double tolerance = 1e-2;  // quadrature tolerance of the beam integral (relative): 8 points
   unsigned threads = 0;     // 0: all hardware threads; results never depend on it
+  // adaptive_albedo_radius_layout: called after each refinement step with (steps done, most steps
+  // possible); each axis grows by 25 % a step from 12 to at most 2048 points, so at most 2 x 24 steps.
+  std::function<void(std::uint64_t done, std::uint64_t total)> progress;
 };
 
 struct AlbedoRadiusTable {

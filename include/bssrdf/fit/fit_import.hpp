@@ -1,0 +1,18 @@
+// A fit result ('bssrdf fit profile|albedo|slab ... -f json') as a bssrdf materials file with one
+// entry: sigma_a and sigma_s' per channel (g was not fitted, so the entry gives sigma_s').
+//
+//   const std::string text = bssrdf::materials_file_from_fit(json_text, "fit.json", "My wax", std::nullopt, "fit");
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace bssrdf {
+
+// `eta`: the relative index to record; nullopt takes the fit's own (fitted or recorded). Throws
+// FileError naming `fit_file` for anything that is not such a result (malformed JSON, wrong types,
+// missing coefficients), InvalidInput when no eta is known.
+std::string materials_file_from_fit(const std::string& fit_text, const std::string& fit_file, const std::string& name,
+                                    std::optional<double> eta, const std::string& source);
+
+}  // namespace bssrdf
