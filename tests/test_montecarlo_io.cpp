@@ -117,6 +117,17 @@ TEST(MonteCarloLayersJson, ReadsAStackAndConvertsUnits) {
   EXPECT_TRUE(s.semi_infinite());
 }
 
+// A layer without "n" gets soft tissue's index, not air's: a scattering layer at n = 1 would be
+// index-matched to the ambient and reflect nothing at its surface.
+TEST(MonteCarloLayersJson, IndexDefaultsToTissue) {
+  const auto file = parse_layers_json(R"({"format": "bssrdf-layers", "version": 1, "unit": "mm",
+    "layers": [{"thickness": 0.1, "sigma_a": 0.1, "sigma_s": 10}, {"n": 1.33, "sigma_a": 0.1, "sigma_s": 5}]})",
+                                      "default.json");
+  EXPECT_DOUBLE_EQ(file.stack.layers[0].n, 1.4);
+  EXPECT_DOUBLE_EQ(file.stack.layers[1].n, 1.33);
+  EXPECT_DOUBLE_EQ(file.stack.ambient_above, 1.0);
+}
+
 TEST(MonteCarloLayersJson, SyntaxErrorsNameFileAndLine) {
   std::string text = kGoodLayers;
   text.replace(text.find("\"sigma_s\": 100,"), 15, "\"sigma_s\": 100 ");  // missing comma, line 10

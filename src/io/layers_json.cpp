@@ -14,6 +14,9 @@
 
 namespace bssrdf {
 namespace {
+// A layer's index when the file gives none: soft tissue's (water 1.33, fat and dermis 1.4-1.46), not
+// 1, which would make a scattering layer index-matched to air.
+constexpr double kDefaultLayerIndex = 1.4;
 
 using json = nlohmann::json;
 
@@ -232,6 +235,7 @@ LayersFile parse_layers_json(const std::string& text, const std::string& name) {
     if (!l.is_object()) parser.fail(at, Parser::field(at) + ": expected an object");
     parser.check_keys(l, at, {"name", "thickness", "n", "eta", "sigma_a", "sigma_s", "g", "description", "notes"});
     Layer layer;
+    layer.n = kDefaultLayerIndex;
     if (l.contains("name")) {
       if (!l["name"].is_string()) parser.fail(at + "/name", Parser::field(at + "/name") + ": expected a string");
       layer.name = l["name"].get<std::string>();

@@ -128,8 +128,9 @@ def render_edge(mat, width, samples, pixels=64):
     occluder.visible_camera = False
     black = bpy.data.materials.new("occluder")
     black.use_nodes = True
-    black.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (0, 0, 0, 1)
-    black.node_tree.nodes["Principled BSDF"].inputs["Specular"].default_value = 0.0
+    black_inputs = black.node_tree.nodes["Principled BSDF"].inputs
+    black_inputs["Base Color"].default_value = (0, 0, 0, 1)
+    black_inputs["Specular IOR Level" if bpy.app.version[0] >= 4 else "Specular"].default_value = 0.0
     occluder.data.materials.append(black)
     bpy.ops.object.light_add(type="SUN", location=(0, 0, 50))
     sun = bpy.context.active_object

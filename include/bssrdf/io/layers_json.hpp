@@ -14,7 +14,8 @@
 //     ]
 //   }
 //
-// "n" (or its synonym "eta") is the layer's absolute index; default 1. "g" defaults to 0.
+// "n" (or its synonym "eta") is the layer's absolute index; default 1.4 (soft tissue; 1 would make a
+// scattering layer index-matched to air). "g" defaults to 0.
 // Unknown keys are errors (they are usually typos). Errors are FileError with the file and the
 // line of the offending value: "skin.json:7: layers[0].sigma_a[G] = -1: accepted range is ...".
 #pragma once

@@ -9,7 +9,8 @@
 namespace bssrdf {
 namespace {
 constexpr float kPi = 3.14159265358979323846f;
-constexpr double kMinAlpha = 0.2;  // Cycles raises lower single-scattering albedos to this
+constexpr double kMinAlpha = 0.2;     // Cycles raises lower single-scattering albedos to this
+constexpr double kMaxBounces = 256;  // BSSRDF_MAX_BOUNCES: Cycles ends a walk after this many events
 const std::pair<CyclesMapping, const char*> kMappings[] = {
     {CyclesMapping::fixed_radius, "fixed-radius"},
     {CyclesMapping::radius_remap, "radius-remap"},
@@ -158,7 +159,12 @@ CyclesInputs cycles_inputs(const Medium& medium, const DerivedQuantities& derive
       in.notes.push_back(name + ": alpha " + format_number(alpha) +
                          " < 0.2: Cycles walks with alpha 0.2 and scales the throughput by alpha / 0.2 instead "
                          "(total roughly kept, halo too wide)");
-    else if (std::abs(reached - alpha) > 1e-4)
+    else if (alpha > 1 - 1.0 / kMaxBounces)
+      in.notes.push_back(name + ": alpha " + format_number(alpha) + ": walks last up to 1/(1 - alpha) = " +
+                         format_number(std::round(1 / (1 - alpha))) +
+                         " scattering events before absorption, beyond Cycles' 256-event walk limit: the light that "
+                         "travels farthest is lost (less bleed and a lower total than the medium's)");
+    if (alpha >= kMinAlpha && std::abs(reached - alpha) > 1e-4)
       in.notes.push_back(name + ": alpha " + format_number(alpha) + " beyond Cycles' range; it simulates " +
                          format_number(reached));
   }
