@@ -21,12 +21,14 @@ std::array<double, 3> predicted_measurements(const RxtFile& f, const SlabParamet
   if (f.has_slides()) slab.above = slab.below = {{f.slide_n, f.slide_thickness, 0.0}};
   adding_doubling::Options ad;
   ad.points = points;
-  const auto c = adding_doubling::solve(slab, adding_doubling::Incidence::collimated, ad);
+  using adding_doubling::Incidence;
+  const auto both = adding_doubling::solve(
+      slab, f.spheres > 0 ? std::vector{Incidence::collimated, Incidence::diffuse} : std::vector{Incidence::collimated}, ad);
+  const auto& c = both[0];
   SampleTotals t{c.specular_reflectance + c.diffuse_reflectance, c.total_transmittance, 0, 0};
   if (f.spheres > 0) {
-    const auto d = adding_doubling::solve(slab, adding_doubling::Incidence::diffuse, ad);
-    t.uru = d.specular_reflectance + d.diffuse_reflectance;
-    t.utu = d.total_transmittance;
+    t.uru = both[1].specular_reflectance + both[1].diffuse_reflectance;
+    t.utu = both[1].total_transmittance;
   }
   const auto [m_r, m_t] = sphere_measurements(f, t);
   return {m_r, m_t, c.unscattered_transmittance};
@@ -46,9 +48,10 @@ RxtFit fit_rxt(const RxtFile& file, const RxtFitOptions& options) {
   for (const auto& row : file.rows) {
     const SlabForward forward = [&](const SlabParameters& p) { return predicted_measurements(file, p, 32); };
     const SlabForward coarse = [&](const SlabParameters& p) { return predicted_measurements(file, p, 8); };
+    const SlabForward search = [&](const SlabParameters& p) { return predicted_measurements(file, p, 16); };
     const auto r = invert_slab({row.m_r, row.m_t, with_u ? row.m_u : 0.0},
                                {options.reflectance_stderr, options.transmittance_stderr, options.unscattered_stderr}, with_u ? 3 : 2,
-                               with_u, options.g, file.sample_thickness, forward, coarse);
+                               with_u, options.g, file.sample_thickness, forward, coarse, &search);
     RxtRowFit fit;
     fit.row = row;
     fit.mu_a = r.parameters.sigma_a;
