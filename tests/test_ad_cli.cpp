@@ -88,3 +88,13 @@ TEST(CliTransmissionAddingDoubling, NoThinSlabRefusalAndTheMultipoleForCompariso
   EXPECT_EQ(t.width, 3);  // nothing omitted
   EXPECT_EQ(t.strings.at("bssrdf:sources"), "adding_doubling");
 }
+
+TEST(CliSlab, LayerFiles) {
+  const auto r = run(std::string("slab --layers ") + BSSRDF_TEST_DATA + "/two_layer_skin.json -f json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto doc = json::parse(r.out);
+  EXPECT_EQ(doc["channels"][0]["total_transmittance"], 0.0);  // semi-infinite dermis
+  EXPECT_GT(doc["channels"][0]["diffuse_reflectance"].get<double>(), 0.3);
+  const auto bad = run(std::string("slab --layers ") + BSSRDF_TEST_DATA + "/two_layer_skin.json --sigma-a 1");
+  EXPECT_EQ(bad.status, 2);
+}

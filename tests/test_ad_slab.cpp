@@ -154,3 +154,36 @@ TEST(AddingDoubling, BadSlabsNameTheField) {
   EXPECT_THROW(solve(s, Incidence::collimated), InvalidInput);
   EXPECT_THROW(parse_incidence("sideways"), InvalidInput);
 }
+
+TEST(AddingDoubling, StackedLayersAddUpAndMatchMonteCarlo) {
+  // Two layers of one medium are one layer of their summed thickness (the adding equations).
+  Slab two = one_layer(0.95, 0.7, 1.4, 0.7);
+  two.layers.push_back({0.05, 0.95, 0.7, 1.8});
+  const auto a = solve(two, Incidence::collimated);
+  const auto b = solve(one_layer(0.95, 0.7, 1.4, 2.5), Incidence::collimated);
+  EXPECT_NEAR(a.diffuse_reflectance, b.diffuse_reflectance, 1e-6);
+  EXPECT_NEAR(a.total_transmittance, b.total_transmittance, 1e-6);
+  EXPECT_NEAR(a.unscattered_transmittance, b.unscattered_transmittance, 1e-12);
+  // A thin epidermis over a semi-infinite dermis (tests/data/two_layer_skin.json's media, 0.1 mm):
+  // against the Monte Carlo reference.
+  LayerStack stack;
+  stack.channel_names = {"c0"};
+  Layer top, bottom;
+  top.n = bottom.n = 1.4;
+  top.thickness = 0.1;
+  top.sigma_a = {0.05}, top.sigma_s = {5}, top.g = {0.8};
+  bottom.sigma_a = {0.02}, bottom.sigma_s = {2}, bottom.g = {0.0};
+  stack.layers = {top, bottom};
+  const auto ad = solve(slab_of(stack, 0), Incidence::collimated);
+  MonteCarloOptions options;
+  options.photons = 100000;
+  options.seed = 9;
+  options.bins = 2;
+  const auto mc = run_monte_carlo(stack, options).channels[0];
+  std::printf("  two layers: AD %.5f, MC %.5f +- %.5f\n", ad.diffuse_reflectance, mc.diffuse_reflectance.value,
+              mc.diffuse_reflectance.standard_error);
+  EXPECT_LE(std::abs(ad.diffuse_reflectance - mc.diffuse_reflectance.value), 4 * mc.diffuse_reflectance.standard_error + 1e-4);
+  // Layers of different index cannot share the angles: refused, naming the layer.
+  stack.layers[1].n = 1.33;
+  EXPECT_THROW(slab_of(stack, 0), InvalidInput);
+}
