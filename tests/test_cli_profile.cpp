@@ -157,7 +157,7 @@ TEST(CliProfile, LayerStackFromTheFileSharedWithTheReference) {
 }
 
 TEST(CliTransmission, TotalTransmittanceAgainstThickness) {
-  const auto r = run("transmission --sigma-a 0.01 --sigma-s 0.99 --eta 1.3 --thickness 0.5,2,8 -f json");
+  const auto r = run("transmission --model multipole --sigma-a 0.01 --sigma-s 0.99 --eta 1.3 --thickness 0.5,2,8 -f json");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto doc = json::parse(r.out);
   ASSERT_EQ(doc["rows"].size(), 3u);

@@ -415,7 +415,7 @@ TEST(CliLutRealtime, BatchSkipsWhatCannotBeTabulatedAndWritesTheRest) {
   // refuses: the batch names it on stderr, one line, and still writes every other material.
   const auto dir = temp("batch-t");
   std::filesystem::create_directories(dir);
-  const auto r = test_cli::run("lut --all --kind transmission --samples 8 -f json -q --threads 2 --output-dir " + dir.string());
+  const auto r = test_cli::run("lut --all --kind transmission --model multipole --samples 8 -f json -q --threads 2 --output-dir " + dir.string());
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("bssrdf: skipped Spectralon: "), std::string::npos) << r.err;
   std::size_t files = 0;

@@ -62,7 +62,7 @@ TEST(TransmissionTable, ReferenceFillsInvalidThicknesses) {
 TEST(TransmissionTable, ExrJsonCsvCarryValuesAndAttributes) {
   const auto exr = temp("t.exr"), json = temp("t.json"), csv = temp("t.csv");
   for (const auto& path : {exr, json, csv}) {
-    const auto r = test_cli::run("lut --material Skin1 --kind transmission --thickness 0.5,3,6,12 -q -o " + path.string());
+    const auto r = test_cli::run("lut --material Skin1 --kind transmission --model multipole --thickness 0.5,3,6,12 -q -o " + path.string());
     ASSERT_EQ(r.status, 0) << r.err;
   }
   const auto t = test_exr::read_exr(exr);
@@ -100,7 +100,7 @@ TEST(TransmissionTable, BadInputIsOneLineExitTwoAndNoFile) {
        {"--thickness 0,1", "--thickness -1", "--thickness 0.1,0.2", "--d-min 2 --d-max 1", "--samples 1",
         "--model pbd", "--thickness 1 --d-min 1", "--reference --photons 10 --thickness 0.2"}) {
     std::filesystem::remove(out);
-    const auto r = test_cli::run("lut --material Skin1 --kind transmission " + args + " -o " + out.string());
+    const auto r = test_cli::run("lut --material Skin1 --kind transmission --model multipole " + args + " -o " + out.string());
     EXPECT_EQ(r.status, 2) << args << ": " << r.err;
     EXPECT_EQ(test_cli::count_lines(r.err), 1) << args << ": " << r.err;
     EXPECT_FALSE(std::filesystem::exists(out)) << args;

@@ -62,7 +62,7 @@ double min_index(double ambient, const std::vector<ClearLayer>& clear) {
   return m;
 }
 
-Totals solve_with(const Slab& slab, Incidence incidence, int points) {
+std::vector<Totals> solve_with(const Slab& slab, const std::vector<Incidence>& incidences, int points) {
   const Angles angles = make_angles(points, {critical_cosine(slab.n, min_index(slab.ambient_above, slab.above)),
                                              critical_cosine(slab.n, min_index(slab.ambient_below, slab.below))});
   const int n = static_cast<int>(angles.size());
@@ -105,69 +105,81 @@ Totals solve_with(const Slab& slab, Incidence incidence, int points) {
     T1 = tb.asDiagonal() * Y;
   }
 
-  // Incident flux per angle (outside the slab, labelled by the slab angle it refracts into).
-  VectorXd incident = VectorXd::Zero(n);
-  double cannot_enter = 0;  // diffuse light at angles with no counterpart inside (n < ambient)
-  if (incidence == Incidence::collimated) {
-    incident(n - 1) = 1;
-  } else {
-    // Uniform radiance outside: by Snell, n_a^2 nu dnu = n^2 mu dmu, so angle i carries
-    // (n/n_a)^2 2 mu_i w_i of the flux where it connects to the outside.
-    const double ratio = slab.n / slab.ambient_above;
-    double sum = 0;
-    for (int i = 0; i < n; ++i) {
-      const double s = ratio * std::sqrt(std::max(0.0, 1 - angles.mu[i] * angles.mu[i]));
-      if (s < 1) incident(i) = ratio * ratio * 2 * angles.mu[i] * angles.weight[i];
-      sum += incident(i);
+  std::vector<Totals> results;
+  for (const auto incidence : incidences) {
+    // Incident flux per angle (outside the slab, labelled by the slab angle it refracts into).
+    VectorXd incident = VectorXd::Zero(n);
+    double cannot_enter = 0;  // diffuse light at angles with no counterpart inside (n < ambient)
+    if (incidence == Incidence::collimated) {
+      incident(n - 1) = 1;
+    } else {
+      // Uniform radiance outside: by Snell, n_a^2 nu dnu = n^2 mu dmu, so angle i carries
+      // (n/n_a)^2 2 mu_i w_i of the flux where it connects to the outside.
+      const double ratio = slab.n / slab.ambient_above;
+      double sum = 0;
+      for (int i = 0; i < n; ++i) {
+        const double s = ratio * std::sqrt(std::max(0.0, 1 - angles.mu[i] * angles.mu[i]));
+        if (s < 1) incident(i) = ratio * ratio * 2 * angles.mu[i] * angles.weight[i];
+        sum += incident(i);
+      }
+      cannot_enter = std::max(0.0, 1 - sum);
     }
-    cannot_enter = std::max(0.0, 1 - sum);
+    // Downward flux below the top boundary: x = tt f + rt_in R' x.
+    const VectorXd x = (I - rt_in.asDiagonal() * R1).partialPivLu().solve(tt.cwiseProduct(incident));
+    Totals out;
+    out.points = n;
+    out.specular_reflectance = rt_out.dot(incident) + cannot_enter;
+    out.diffuse_reflectance = tt.dot(R1 * x);
+    out.total_transmittance = (T1 * x).sum();
+    if (!std::isinf(optical_depth))
+      for (int i = 0; i < n; ++i) {
+        const double e = std::exp(-optical_depth / angles.mu[i]);
+        const double bounce = 1 - rt_in(i) * rb(i) * e * e;
+        if (bounce > 0) out.unscattered_transmittance += incident(i) * tt(i) * tb(i) * e / bounce;
+      }
+    results.push_back(out);
   }
-  // Downward flux below the top boundary: x = tt f + rt_in R' x.
-  const VectorXd x = (I - rt_in.asDiagonal() * R1).partialPivLu().solve(tt.cwiseProduct(incident));
-  Totals out;
-  out.points = n;
-  out.specular_reflectance = rt_out.dot(incident) + cannot_enter;
-  out.diffuse_reflectance = tt.dot(R1 * x);
-  out.total_transmittance = (T1 * x).sum();
-  if (!std::isinf(optical_depth))
-    for (int i = 0; i < n; ++i) {
-      const double e = std::exp(-optical_depth / angles.mu[i]);
-      const double bounce = 1 - rt_in(i) * rb(i) * e * e;
-      if (bounce > 0) out.unscattered_transmittance += incident(i) * tt(i) * tb(i) * e / bounce;
-    }
-  return out;
+  return results;
 }
 
 }  // namespace
 
-Totals solve(const Slab& slab, Incidence incidence, const Options& options) {
+std::vector<Totals> solve(const Slab& slab, const std::vector<Incidence>& incidences, const Options& options) {
   slab.validate();
-  if (options.points > 0) return solve_with(slab, incidence, options.points);
+  if (options.points > 0) return solve_with(slab, incidences, options.points);
   if (!(options.tolerance > 0)) throw InvalidInput("tolerance", format_number(options.tolerance), "> 0");
   // Angles 8, 16, 32, ...: the error of the finest result is estimated from the last two changes
   // (geometric convergence with ratio rho leaves rho/(1 - rho) of the last change), never less
   // than a quarter of the last change, and the last change itself when the changes do not shrink
   // by half. At least three results (32 angles), since one change alone can be small by chance.
-  Totals coarse = solve_with(slab, incidence, 8);
-  double last_change[2] = {-1, -1};
+  // With several incidences the largest estimate decides for all.
+  auto coarse = solve_with(slab, incidences, 8);
+  std::vector<double> last_change(2 * incidences.size(), -1);
   for (int points = 16;; points *= 2) {
-    Totals fine = solve_with(slab, incidence, points);
-    const double change[2] = {std::abs(fine.diffuse_reflectance - coarse.diffuse_reflectance),
-                              std::abs(fine.total_transmittance - coarse.total_transmittance)};
-    fine.error_estimate = 0;
-    for (int k = 0; k < 2; ++k) {
-      double estimate = change[k];
-      if (last_change[k] > 0) {
-        const double rho = change[k] / last_change[k];
-        if (rho < 0.5) estimate = change[k] * std::max(0.25, rho / (1 - rho));
+    auto fine = solve_with(slab, incidences, points);
+    double estimate_all = 0;
+    for (std::size_t i = 0; i < incidences.size(); ++i) {
+      const double change[2] = {std::abs(fine[i].diffuse_reflectance - coarse[i].diffuse_reflectance),
+                                std::abs(fine[i].total_transmittance - coarse[i].total_transmittance)};
+      fine[i].error_estimate = 0;
+      for (int k = 0; k < 2; ++k) {
+        double estimate = change[k];
+        double& last = last_change[2 * i + k];
+        if (last > 0) {
+          const double rho = change[k] / last;
+          if (rho < 0.5) estimate = change[k] * std::max(0.25, rho / (1 - rho));
+        }
+        fine[i].error_estimate = std::max(fine[i].error_estimate, estimate);
+        last = change[k];
       }
-      fine.error_estimate = std::max(fine.error_estimate, estimate);
-      last_change[k] = change[k];
+      estimate_all = std::max(estimate_all, fine[i].error_estimate);
     }
     coarse = fine;
-    if ((points >= 32 && fine.error_estimate <= options.tolerance) || points >= 128) return fine;
+    if ((points >= 32 && estimate_all <= options.tolerance) || points >= 128) return fine;
   }
 }
+
+Totals solve(const Slab& slab, Incidence incidence, const Options& options) { return solve(slab, std::vector{incidence}, options)[0]; }
 
 Slab slab_of(const LayerStack& stack, std::size_t c) {
   stack.validate();

@@ -6,6 +6,8 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/fit/inverse_fits.hpp"
 #include "bssrdf/fit/profile_fit.hpp"
+#include "bssrdf/fit/rxt_fit.hpp"
+#include "rxt_output.hpp"
 #include "bssrdf/io/profile_csv.hpp"
 #include "bssrdf/model.hpp"
 #include "bssrdf/profile_report.hpp"
@@ -128,16 +130,17 @@ Action register_fit(CLI::App& app) {
   // fit slab
   struct SlabOptions {
     std::string reflectance, transmittance, r_stderr = "0.002", t_stderr = "0.002", thickness, unit = "mm", eta = "1.4", g, channels;
-    std::string unscattered, u_stderr = "0.002", slides, model = "adding-doubling";
+    std::string unscattered, u_stderr = "0.002", slides, model = "adding-doubling", rxt;
     OutputOptions output;
   };
   auto so = std::make_shared<SlabOptions>();
   auto* slab = fit->add_subcommand("slab", "Integrating-sphere R and T (and unscattered U) of a slab -> sigma_a, sigma_s' (and g) by adding-doubling");
-  slab->add_option("--reflectance", so->reflectance, "Diffuse reflectance per channel, per incident flux, specular excluded")->required();
-  slab->add_option("--transmittance", so->transmittance, "Total transmittance per channel (ballistic included)")->required();
+  slab->add_option("--reflectance", so->reflectance, "Diffuse reflectance per channel, per incident flux, specular excluded");
+  slab->add_option("--transmittance", so->transmittance, "Total transmittance per channel (ballistic included)");
+  slab->add_option("--rxt", so->rxt, "Integrating-sphere file of Prahl's iad (.rxt): fit every row (g held at --g or 0 unless M_U is given)");
   slab->add_option("--reflectance-stderr", so->r_stderr, "Standard error of the reflectance [0.002]");
   slab->add_option("--transmittance-stderr", so->t_stderr, "Standard error of the transmittance [0.002]");
-  slab->add_option("--thickness", so->thickness, "Slab thickness in --unit")->required();
+  slab->add_option("--thickness", so->thickness, "Slab thickness in --unit (not with --rxt)");
   slab->add_option("--unit", so->unit, "Length unit [mm]");
   slab->add_option("--eta", so->eta, "Relative index of the slab [1.4]");
   slab->add_option("--g", so->g, "Anisotropy per channel [0]");
@@ -190,7 +193,30 @@ Action register_fit(CLI::App& app) {
       }
       emit_report(ao->output, fit_albedo(inputs, parse_distance_convention(ao->convention), parse_length_unit(ao->unit, "--unit"),
                                          ao->model, parse_number(ao->eta, "--eta")));
+    } else if (slab->parsed() && !so->rxt.empty()) {
+      if (!so->reflectance.empty() || !so->transmittance.empty() || !so->thickness.empty() || !so->unscattered.empty() || !so->slides.empty())
+        throw InvalidInput("--rxt: the file gives the measurements, thickness and slides; do not combine it with --reflectance, "
+                           "--transmittance, --unscattered, --thickness or --slides");
+      if (so->model != "adding-doubling") throw InvalidInput("--model", so->model, "adding-doubling with --rxt");
+      RxtFitOptions options;
+      if (!so->g.empty()) options.g = parse_number(so->g, "--g");
+      options.reflectance_stderr = parse_number(so->r_stderr, "--reflectance-stderr");
+      options.transmittance_stderr = parse_number(so->t_stderr, "--transmittance-stderr");
+      options.unscattered_stderr = parse_number(so->u_stderr, "--unscattered-stderr");
+      const auto file = read_rxt(so->rxt);
+      const auto fit = fit_rxt(file, options);
+      const auto table = rxt_fit_table(fit);
+      std::string content;
+      switch (so->output.file_format()) {
+        case Format::json: content = rxt_fit_json(fit); break;
+        case Format::csv: content = rxt_fit_csv(fit); break;
+        case Format::table: content = table; break;
+      }
+      emit(so->output, content, table);
     } else if (slab->parsed()) {
+      if (so->reflectance.empty()) throw InvalidInput("--reflectance is required (or --rxt FILE)");
+      if (so->transmittance.empty()) throw InvalidInput("--transmittance is required (or --rxt FILE)");
+      if (so->thickness.empty()) throw InvalidInput("--thickness is required (or --rxt FILE)");
       const auto R = parse_number_list(so->reflectance, "--reflectance");
       const auto n = R.size();
       const auto T = per_channel(so->transmittance, "--transmittance", n, 0);

@@ -170,9 +170,12 @@ std::vector<double> thicknesses_mm(const LutOptions& o, const MediumOptions::Res
 }
 
 Built build_transmission(const LutOptions& o, const MediumOptions::Resolved& resolved) {
-  if (o.model_given && o.model != "multipole")
-    throw InvalidInput("--model", "'" + o.model + "'", "multipole for --kind transmission (or --reference for Monte Carlo)");
+  if (o.model_given && o.model != "multipole" && o.model != "adding-doubling")
+    throw InvalidInput("--model", "'" + o.model + "'", "adding-doubling (default) or multipole for --kind transmission (or --reference for Monte Carlo)");
   TransmissionTableOptions options;
+  options.model = o.model_given ? o.model : "adding-doubling";
+  if (options.model == "adding-doubling" && o.reference && !o.reference_everywhere)
+    throw InvalidInput("--reference", "given", "--model multipole (adding-doubling is exact at every thickness; --reference-everywhere runs Monte Carlo)");
   options.reference = o.reference;
   options.reference_everywhere = o.reference_everywhere;
   options.photons = o.photons;
@@ -182,15 +185,18 @@ Built build_transmission(const LutOptions& o, const MediumOptions::Resolved& res
   const multipole::Model model(1.0);
   TableContext context{resolved.material, &resolved.medium, &model, resolved.unit};
   auto table = to_lookup_table(t, context);  // throws when nothing is left
-  table.set("bssrdf:model_description", std::string("total transmittance of slabs: multipole (Donner & Jensen 2005) where valid") +
-                                            (o.reference || o.reference_everywhere ? ", Monte Carlo reference elsewhere" : ""));
+  table.set("bssrdf:model_description",
+            options.model == "adding-doubling" && !o.reference_everywhere
+                ? std::string("total transmittance of slabs: adding-doubling (exact)")
+                : std::string("total transmittance of slabs: multipole (Donner & Jensen 2005) where valid") +
+                      (o.reference || o.reference_everywhere ? ", Monte Carlo reference elsewhere" : ""));
   const double mm = millimetres_per(resolved.unit);
   const std::string u(symbol(resolved.unit));
   std::ostringstream s;
   std::size_t mc = 0;
   for (auto x : t.source) mc += x == TransmissionSource::monte_carlo;
   s << "transmission table: " << t.size() << " thicknesses from " << short_number(t.thickness.front() / mm) << " to "
-    << short_number(t.thickness.back() / mm) << ' ' << u << " (" << t.size() - mc << " multipole, " << mc
+    << short_number(t.thickness.back() / mm) << ' ' << u << " (" << t.size() - mc << (options.model == "adding-doubling" ? " adding-doubling, " : " multipole, ") << mc
     << " Monte Carlo with " << o.photons << " photons per channel";
   if (mc) s << ", " << format_number(std::round(t.monte_carlo_seconds * 100) / 100) << " s";
   s << "); diffuse T per entered flux, ballistic excluded\n";
@@ -440,7 +446,7 @@ Built build_reference_radial(const LutOptions& o, const LayerStack& stack, const
 // The table of --kind for the medium; --model auto is resolved here and says so in the summary.
 Built build(const LutOptions& o, const MediumOptions::Resolved& resolved) {
   if (o.kind == "transmission") {
-    if (!o.accuracy.empty()) throw InvalidInput("--accuracy: only with --model auto (transmission tables use the multipole)");
+    if (!o.accuracy.empty()) throw InvalidInput("--accuracy: only with --model auto (transmission tables use adding-doubling or the multipole)");
     return build_transmission(o, resolved);
   }
   if (o.kind == "radial" && o.reference)

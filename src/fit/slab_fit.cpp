@@ -89,7 +89,7 @@ FitReport fit_slab(const std::vector<SlabMeasurement>& channels, double thicknes
         throw InvalidInput(where + "unscattered standard error", format_number(c.unscattered_stderr), "> 0 and finite");
     }
     const int count = with_u ? 3 : 2;
-    SlabForward forward, coarse;
+    SlabForward forward, coarse, search;
     if (multipole) {
       forward = coarse = [&](const SlabParameters& p) -> std::array<double, 3> {
         const auto [R, T] = multipole_measurables(p.sigma_a, p.sigma_s_prime, p.g, eta, d);
@@ -97,7 +97,8 @@ FitReport fit_slab(const std::vector<SlabMeasurement>& channels, double thicknes
       };
     } else {
       // Fixed angles during the fit, so the residuals are smooth in the parameters: 32 keeps R and
-      // T within 3e-5 of 128 angles over the tested range (test_ad_slab); 8 for the starting grid.
+      // T within 3e-5 of 128 angles over the tested range (test_ad_slab); 8 for the starting grid,
+      // 16 for the search that the final solve on 32 polishes.
       auto with_points = [&, d](int points) {
         return [&, d, points](const SlabParameters& p) -> std::array<double, 3> {
           adding_doubling::Options ad;
@@ -108,10 +109,11 @@ FitReport fit_slab(const std::vector<SlabMeasurement>& channels, double thicknes
       };
       forward = with_points(32);
       coarse = with_points(8);
+      search = with_points(16);
     }
     const auto result = invert_slab({c.reflectance, c.transmittance, with_u ? c.unscattered : 0.0},
                                     {c.reflectance_stderr, c.transmittance_stderr, with_u ? c.unscattered_stderr : 1.0}, count,
-                                    with_u, c.g, d, forward, coarse);
+                                    with_u, c.g, d, forward, coarse, search ? &search : nullptr);
     const auto& p = result.parameters;
     report.parameters.push_back({"sigma_a", c.name, p.sigma_a * mm, result.standard_error[0] * mm, per_unit});
     report.parameters.push_back({"sigma_s_prime", c.name, p.sigma_s_prime * mm, result.standard_error[1] * mm, per_unit});

@@ -3,6 +3,7 @@
 
 #include <ceres/ceres.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace bssrdf {
@@ -30,7 +31,7 @@ struct Residual {
 }  // namespace
 
 SlabInversion invert_slab(const std::array<double, 3>& measured, const std::array<double, 3>& stderr_, int count, bool fit_g,
-                          double g, double d, const SlabForward& forward, const SlabForward& coarse) {
+                          double g, double d, const SlabForward& forward, const SlabForward& coarse, const SlabForward* search) {
   const int p = fit_g ? 3 : 2;
   // Starting point: the best of a coarse grid of reduced albedo and reduced optical thickness.
   double best_cost = INFINITY;
@@ -48,44 +49,42 @@ SlabInversion invert_slab(const std::array<double, 3>& measured, const std::arra
       }
     }
   Residual residual{&forward, measured, stderr_, count, fit_g, g};
-  auto* cost = new ceres::DynamicNumericDiffCostFunction<Residual, ceres::CENTRAL>(new Residual(residual));
-  cost->AddParameterBlock(p);
-  cost->SetNumResiduals(count);
-  ceres::Problem problem;
-  problem.AddResidualBlock(cost, nullptr, x.data());
-  for (int i = 0; i < 2; ++i) {  // 1e-11 to 1e11 per mm
-    problem.SetParameterLowerBound(x.data(), i, -25);
-    problem.SetParameterUpperBound(x.data(), i, 25);
-  }
-  if (fit_g) {
-    problem.SetParameterLowerBound(x.data(), 2, -3.8);  // |g| < 0.999
-    problem.SetParameterUpperBound(x.data(), 2, 3.8);
-  }
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
-  options.max_num_iterations = 100;
-  options.function_tolerance = 1e-12;
-  options.parameter_tolerance = 1e-10;
-  options.gradient_tolerance = 1e-14;
+  // Least squares on the search forward (or the final one when there is none), by Ceres.
   ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
-
-  SlabInversion out;
-  out.parameters = from_x(x.data(), fit_g, g);
-  out.predicted = forward(out.parameters);
-  for (int m = 0; m < count; ++m) out.chi2 += std::pow((out.predicted[m] - measured[m]) / stderr_[m], 2);
-  out.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  out.converged = summary.termination_type == ceres::CONVERGENCE;
-  out.termination = ceres::TerminationTypeToString(summary.termination_type);
-
-  // Linear propagation: with J the Jacobian of the weighted residuals in x, the parameters move by
-  // K = (J^T J)^-1 J^T per unit of weighted measurement error, so Cov(x) = K K^T and row p of K
-  // says how much each measurement contributes to parameter p's variance.
-  Eigen::MatrixXd J(count, p);
   {
-    double residual_plus[3], residual_minus[3];
+    Residual stage_residual{search ? search : &forward, measured, stderr_, count, fit_g, g};
+    auto* cost = new ceres::DynamicNumericDiffCostFunction<Residual, ceres::CENTRAL>(new Residual(stage_residual));
+    cost->AddParameterBlock(p);
+    cost->SetNumResiduals(count);
+    ceres::Problem problem;
+    problem.AddResidualBlock(cost, nullptr, x.data());
+    for (int i = 0; i < 2; ++i) {  // 1e-11 to 1e11 per mm
+      problem.SetParameterLowerBound(x.data(), i, -25);
+      problem.SetParameterUpperBound(x.data(), i, 25);
+    }
+    if (fit_g) {
+      problem.SetParameterLowerBound(x.data(), 2, -3.8);  // |g| < 0.999
+      problem.SetParameterUpperBound(x.data(), 2, 3.8);
+    }
+    ceres::Solver::Options options;
+    options.linear_solver_type = ceres::DENSE_QR;
+    options.max_num_iterations = 100;
+    options.function_tolerance = 1e-12;
+    options.parameter_tolerance = 1e-10;
+    options.gradient_tolerance = 1e-14;
+    ceres::Solve(options, &problem, &summary);
+  }
+  int polish_steps = 0;
+
+  // The Jacobian of the weighted residuals in x (central differences) and the residuals.
+  auto jacobian = [&](const std::array<double, 3>& at, Eigen::VectorXd& r) {
+    Eigen::MatrixXd J(count, p);
+    double residual_plus[3], residual_minus[3], centre[3];
+    const double* b = at.data();
+    residual(&b, centre);
+    r = Eigen::Map<Eigen::VectorXd>(centre, count);
     for (int j = 0; j < p; ++j) {
-      std::array<double, 3> xp = x, xm = x;
+      std::array<double, 3> xp = at, xm = at;
       const double h = 1e-5;
       xp[j] += h;
       xm[j] -= h;
@@ -95,7 +94,31 @@ SlabInversion invert_slab(const std::array<double, 3>& measured, const std::arra
       residual(&bm, residual_minus);
       for (int m = 0; m < count; ++m) J(m, j) = (residual_plus[m] - residual_minus[m]) / (2 * h);
     }
+    return J;
+  };
+  // With a cheaper search, Gauss-Newton steps on the final forward polish the result (its
+  // optimum is within the search forward's error of the start: one or two steps).
+  Eigen::VectorXd r;
+  Eigen::MatrixXd J = jacobian(x, r);
+  while (search && polish_steps < 4) {
+    const Eigen::VectorXd step = J.completeOrthogonalDecomposition().solve(-r);
+    for (int j = 0; j < p; ++j) x[j] = std::clamp(x[j] + step(j), j < 2 ? -25.0 : -3.8, j < 2 ? 25.0 : 3.8);
+    ++polish_steps;
+    if (step.cwiseAbs().maxCoeff() < 1e-7) break;  // J at the previous point serves (x moved < 1e-7)
+    J = jacobian(x, r);
   }
+
+  SlabInversion out;
+  out.parameters = from_x(x.data(), fit_g, g);
+  out.predicted = forward(out.parameters);
+  for (int m = 0; m < count; ++m) out.chi2 += std::pow((out.predicted[m] - measured[m]) / stderr_[m], 2);
+  out.iterations = static_cast<int>(summary.iterations.size()) - 1 + polish_steps;
+  out.converged = summary.termination_type == ceres::CONVERGENCE;
+  out.termination = ceres::TerminationTypeToString(summary.termination_type);
+
+  // Linear propagation: with J the Jacobian of the weighted residuals in x, the parameters move by
+  // K = (J^T J)^-1 J^T per unit of weighted measurement error, so Cov(x) = K K^T and row p of K
+  // says how much each measurement contributes to parameter p's variance.
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeThinU | Eigen::ComputeThinV);
   const auto s = svd.singularValues();
   out.determined = s.size() == p && s(p - 1) > 1e-9 * s(0);

@@ -32,8 +32,11 @@ struct SlabInversion {
 };
 
 // `count` measurements (2: R, T; 3: R, T, U). With fit_g, g is a parameter (start `g`), else held.
-// `forward` is evaluated at fixed accuracy; `coarse` (a cheaper forward) picks the starting point.
+// `forward` is evaluated at fixed accuracy; `coarse` (a cheaper forward) picks the starting point
+// on a grid and, when `search` is given, a first least-squares solve runs on it (cheaper still)
+// before the final one on `forward` polishes the result.
 SlabInversion invert_slab(const std::array<double, 3>& measured, const std::array<double, 3>& stderr_, int count, bool fit_g,
-                          double g, double thickness_mm, const SlabForward& forward, const SlabForward& coarse);
+                          double g, double thickness_mm, const SlabForward& forward, const SlabForward& coarse,
+                          const SlabForward* search = nullptr);
 
 }  // namespace bssrdf

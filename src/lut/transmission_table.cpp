@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "bssrdf/adding_doubling/slab.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/layers.hpp"
 #include "bssrdf/montecarlo.hpp"
@@ -13,10 +14,11 @@ namespace bssrdf {
 void TransmissionTableOptions::validate() const {
   if (photons < 100 || photons > 1'000'000'000) throw InvalidInput("photons", std::to_string(photons), "100 to 1e9");
   if (threads > 4096) throw InvalidInput("threads", std::to_string(threads), "0 (all cores) to 4096");
+  if (model != "multipole" && model != "adding-doubling") throw InvalidInput("model", model, "multipole or adding-doubling");
 }
 
 std::string_view to_string(TransmissionSource source) {
-  return source == TransmissionSource::multipole ? "multipole" : "monte_carlo";
+  return source == TransmissionSource::multipole ? "multipole" : source == TransmissionSource::monte_carlo ? "monte_carlo" : "adding_doubling";
 }
 
 std::string multipole_invalid_code(const multipole::Model& model, const Reduced<double>& m) {
@@ -60,7 +62,16 @@ TransmissionTable build_transmission_table(const Medium& medium, std::vector<dou
       T[c] = model.total_transmittance(m);
     }
     TransmissionSource source = TransmissionSource::multipole;
-    if (everywhere || (!invalid.empty() && reference)) {
+    if (options.model == "adding-doubling" && !everywhere) {
+      // Exact: per entered flux, the unscattered beam removed, as the multipole reports it.
+      const auto stack = LayerStack::slab(medium, d);
+      for (std::size_t c = 0; c < channels; ++c) {
+        const auto a = adding_doubling::solve(adding_doubling::slab_of(stack, c), adding_doubling::Incidence::collimated);
+        T[c] = (a.total_transmittance - a.unscattered_transmittance) * a.entered_scale();
+      }
+      invalid.clear();
+      source = TransmissionSource::adding_doubling;
+    } else if (everywhere || (!invalid.empty() && reference)) {
       MonteCarloOptions mc;
       mc.photons = options.photons;
       mc.seed = options.seed;
@@ -90,7 +101,8 @@ TransmissionTable build_transmission_table(const Medium& medium, std::vector<dou
   }
   // The channel's other warnings and invalid notes (thickness-independent, e.g. low_albedo).
   const multipole::Model thickest(thickness.back());
-  for (std::size_t c = 0; c < channels; ++c) {
+  for (std::size_t c = 0; c < channels && options.model == "adding-doubling"; ++c) t.validity.push_back("no warnings (adding-doubling is exact)");
+  for (std::size_t c = 0; c < channels && options.model != "adding-doubling"; ++c) {
     std::string notes;
     for (const auto& note : thickest.validity(medium.reduced(c)))
       if (note.severity != Severity::note && note.code != "thin_slab")
@@ -112,8 +124,9 @@ LookupTable to_lookup_table(const TransmissionTable& t, const TableContext& cont
   auto out = described_table("transmission", t.size(), 1, context);
   const double mm = millimetres_per(context.unit);
   const std::string u(symbol(context.unit));
-  bool any_mc = false, any_multipole = false;
-  for (auto s : t.source) (s == TransmissionSource::monte_carlo ? any_mc : any_multipole) = true;
+  bool any_mc = false, any_multipole = false, any_ad = false;
+  for (auto s : t.source)
+    (s == TransmissionSource::monte_carlo ? any_mc : s == TransmissionSource::multipole ? any_multipole : any_ad) = true;
   out.set("bssrdf:distance", "slab thickness d, in " + u);
   out.set("bssrdf:normalization",
           std::string("per_entered_flux: diffuse total transmittance T(d) = flux leaving the bottom face after at least "
@@ -123,8 +136,11 @@ LookupTable to_lookup_table(const TransmissionTable& t, const TableContext& cont
   out.set("bssrdf:slab", std::string("homogeneous slab, the medium's eta on both faces, ambient index 1 above and below"));
   out.set("bssrdf:grid", std::string("the thickness channel holds d_j, increasing; interpolate linearly in d (or in ln d)"));
   out.set("bssrdf:size", static_cast<int>(t.size()));
-  out.set("bssrdf:sources", std::string(any_multipole && any_mc ? "multipole and monte_carlo (see the source channel)"
+  out.set("bssrdf:sources", std::string(any_ad ? "adding_doubling" : any_multipole && any_mc ? "multipole and monte_carlo (see the source channel)"
                                         : any_mc ? "monte_carlo" : "multipole"));
+  if (any_ad)
+    out.set("bssrdf:adding_doubling", std::string("exact slab totals (van de Hulst; Prahl 1995), 1e-4 absolute, true HG phase function "
+                                                  "with delta-M, Fresnel at both faces; T = total minus unscattered, per entered flux"));
   if (any_multipole) out.set("bssrdf:multipole", std::string("Donner & Jensen 2005, closed-form totals of the infinite dipole-pair series, classical A"));
   if (any_mc) {
     out.set("bssrdf:monte_carlo_photons", static_cast<int>(t.options.photons));

@@ -83,6 +83,9 @@ struct Totals {
 };
 
 Totals solve(const Slab& slab, Incidence incidence, const Options& options = {});
+// Several incidences from one set of layer operators (e.g. collimated and diffuse for sphere
+// corrections): the same results as separate calls, for little more than the cost of one.
+std::vector<Totals> solve(const Slab& slab, const std::vector<Incidence>& incidences, const Options& options = {});
 
 // Channel `c` of a layer stack: leading and trailing layers that do not scatter become clear
 // layers (slides); the scattering layers between them must share one index and may not contain a

@@ -1,5 +1,5 @@
 // The transmission table: total diffuse transmittance of a slab of the material against its
-// thickness, per channel, for thin-object translucency in real-time engines (Unreal's 32-texel
+// thickness, per channel (options.model "adding-doubling": exact at every thickness, nothing omitted), for thin-object translucency in real-time engines (Unreal's 32-texel
 // transmission profile, Unity's thickness remap). Values come from the multipole (Donner & Jensen
 // 2005) where it holds; where it does not (thinner than 2 transport mean free paths, negative
 // transmittance: the slab's own "invalid" codes, as `bssrdf transmission` uses them) the thickness is
@@ -27,6 +27,7 @@
 namespace bssrdf {
 
 struct TransmissionTableOptions {
+  std::string model = "multipole";    // or "adding-doubling": exact at every thickness, nothing omitted
   bool reference = false;             // Monte Carlo where the multipole is invalid
   bool reference_everywhere = false;  // Monte Carlo at every thickness (implies reference)
   std::uint64_t photons = 100'000;    // Monte Carlo photons per channel and thickness
@@ -36,7 +37,7 @@ struct TransmissionTableOptions {
   void validate() const;  // throws InvalidInput naming the option
 };
 
-enum class TransmissionSource { multipole, monte_carlo };
+enum class TransmissionSource { multipole, monte_carlo, adding_doubling };
 std::string_view to_string(TransmissionSource source);
 
 struct TransmissionTable {

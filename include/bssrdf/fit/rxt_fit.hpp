@@ -1,0 +1,39 @@
+// Inverse adding-doubling of an integrating-sphere file (.rxt): per row, mu_a and mu_s' (and g
+// with M_U) with 1-sigma errors propagated from the measurement errors (the file carries none:
+// they are options), the fitted M_R, M_T, chi^2 and a status. Forward model: adding-doubling
+// (32 angles) with the file's slides and the sphere equations of integrating_sphere.hpp. g is
+// held (at options.g, 0 by default as in iad) with two measurements and fitted with M_U.
+// Not modelled: light lost at the sample's edges (iad's Monte Carlo correction).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "bssrdf/io/rxt.hpp"
+
+namespace bssrdf {
+
+struct RxtFitOptions {
+  double g = 0;
+  double reflectance_stderr = 0.002, transmittance_stderr = 0.002, unscattered_stderr = 0.002;
+};
+
+struct RxtRowFit {
+  RxtRow row;
+  double mu_a = 0, mu_a_stderr = 0, mu_s_prime = 0, mu_s_prime_stderr = 0, g = 0, g_stderr = 0;  // 1/mm
+  double fitted_m_r = 0, fitted_m_t = 0, fitted_m_u = -1;
+  double chi2 = 0;
+  bool converged = false;
+  std::string status;  // "converged", or why not
+};
+
+struct RxtFit {
+  RxtFile file;
+  RxtFitOptions options;
+  std::vector<RxtRowFit> rows;
+  double seconds = 0;
+};
+
+RxtFit fit_rxt(const RxtFile& file, const RxtFitOptions& options = {});
+
+}  // namespace bssrdf

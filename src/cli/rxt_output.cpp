@@ -1,0 +1,103 @@
+// Output of 'bssrdf fit slab --rxt FILE'; see rxt_output.hpp.
+#include "rxt_output.hpp"
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "bssrdf/error.hpp"
+
+namespace bssrdf::cli {
+
+namespace {
+
+nlohmann::json estimate(double value, double stderr_) { return {{"value", value}, {"stderr", stderr_}}; }
+
+}  // namespace
+
+std::string rxt_fit_json(const RxtFit& fit) {
+  const auto& f = fit.file;
+  nlohmann::json doc;
+  doc["tool"] = std::string("bssrdf ") + BSSRDF_VERSION;
+  doc["source"] = f.name;
+  doc["model"] = "adding-doubling";
+  doc["unit"] = "mm";
+  auto sphere = [](const RxtSphere& s) {
+    return nlohmann::json{{"diameter", s.diameter}, {"sample_port", s.sample_port}, {"third_port", s.third_port},
+                          {"detector_port", s.detector_port}, {"wall_reflectance", s.wall_reflectance}};
+  };
+  doc["header"] = {{"sample_index", f.sample_n},
+                   {"slide_index", f.slide_n},
+                   {"sample_thickness", f.sample_thickness},
+                   {"slide_thickness", f.slide_thickness},
+                   {"beam_diameter", f.beam_diameter},
+                   {"standard_reflectance", f.standard_reflectance},
+                   {"spheres", f.spheres},
+                   {"reflection_sphere", sphere(f.reflection)},
+                   {"transmission_sphere", sphere(f.transmission)},
+                   {"measurements", f.measurements}};
+  doc["measurement_stderr"] = {{"m_r", fit.options.reflectance_stderr}, {"m_t", fit.options.transmittance_stderr},
+                               {"m_u", fit.options.unscattered_stderr}};
+  doc["g_held"] = f.measurements == 3 ? nlohmann::json(nullptr) : nlohmann::json(fit.options.g);
+  doc["lost_light_correction"] = false;
+  doc["seconds"] = fit.seconds;
+  doc["rows"] = nlohmann::json::array();
+  for (const auto& r : fit.rows) {
+    nlohmann::json row{{"line", r.row.line},
+                       {"wavelength", r.row.wavelength},
+                       {"mu_a", estimate(r.mu_a, r.mu_a_stderr)},
+                       {"mu_s_prime", estimate(r.mu_s_prime, r.mu_s_prime_stderr)},
+                       {"g", estimate(r.g, r.g_stderr)},
+                       {"m_r", {{"measured", r.row.m_r}, {"fitted", r.fitted_m_r}}},
+                       {"m_t", {{"measured", r.row.m_t}, {"fitted", r.fitted_m_t}}},
+                       {"chi2", r.chi2},
+                       {"converged", r.converged},
+                       {"status", r.status}};
+    if (r.fitted_m_u >= 0) row["m_u"] = {{"measured", r.row.m_u}, {"fitted", r.fitted_m_u}};
+    doc["rows"].push_back(row);
+  }
+  return doc.dump(2) + "\n";
+}
+
+std::string rxt_fit_csv(const RxtFit& fit) {
+  std::ostringstream out;
+  out << "wavelength,mu_a_per_mm,mu_a_stderr,mu_s_prime_per_mm,mu_s_prime_stderr,g,g_stderr,m_r,m_r_fitted,m_t,m_t_fitted,m_u,"
+         "m_u_fitted,chi2,status\n";
+  for (const auto& r : fit.rows) {
+    out << format_number(r.row.wavelength) << ',' << format_number(r.mu_a) << ',' << format_number(r.mu_a_stderr) << ','
+        << format_number(r.mu_s_prime) << ',' << format_number(r.mu_s_prime_stderr) << ',' << format_number(r.g) << ','
+        << format_number(r.g_stderr) << ',' << format_number(r.row.m_r) << ',' << format_number(r.fitted_m_r) << ','
+        << format_number(r.row.m_t) << ',' << format_number(r.fitted_m_t) << ',';
+    if (r.fitted_m_u >= 0) out << format_number(r.row.m_u) << ',' << format_number(r.fitted_m_u);
+    else out << ',';
+    out << ',' << format_number(r.chi2) << ",\"" << r.status << "\"\n";
+  }
+  return out.str();
+}
+
+std::string rxt_fit_table(const RxtFit& fit) {
+  const auto& f = fit.file;
+  std::ostringstream out;
+  char line[512];
+  out << "inverse adding-doubling of " << f.name << "\n";
+  std::snprintf(line, sizeof line,
+                "sample n %.3f, %.3f mm; slides n %.3f, %.3f mm%s; %d sphere(s); standard %.3f; g %s; lost light not corrected\n",
+                f.sample_n, f.sample_thickness, f.slide_n, f.slide_thickness, f.has_slides() ? "" : " (none)", f.spheres,
+                f.standard_reflectance, f.measurements == 3 ? "fitted (M_U given)" : ("held at " + format_number(fit.options.g)).c_str());
+  out << line;
+  out << (f.has_wavelength ? "  lambda" : "     row")
+      << "   mu_a (1/mm)          mu_s' (1/mm)         g               M_R meas/fit     M_T meas/fit     status\n";
+  for (const auto& r : fit.rows) {
+    std::snprintf(line, sizeof line, "%8g  %8.4f +- %-8.2g %8.4f +- %-8.2g %6.3f +- %-5.2g %.4f/%.4f    %.4f/%.4f    %s\n", r.row.wavelength,
+                  r.mu_a, r.mu_a_stderr, r.mu_s_prime, r.mu_s_prime_stderr, r.g, r.g_stderr, r.row.m_r, r.fitted_m_r, r.row.m_t,
+                  r.fitted_m_t, r.status.c_str());
+    out << line;
+  }
+  std::snprintf(line, sizeof line, "%zu rows in %.3f s; errors: 1 sigma from M_R +- %g, M_T +- %g%s\n", fit.rows.size(), fit.seconds,
+                fit.options.reflectance_stderr, fit.options.transmittance_stderr,
+                f.measurements == 3 ? (", M_U +- " + format_number(fit.options.unscattered_stderr)).c_str() : "");
+  out << line;
+  return out.str();
+}
+
+}  // namespace bssrdf::cli

@@ -1,0 +1,179 @@
+// Integrating-sphere files (.rxt, the format of Prahl's iad): the reader's errors, the published
+// example test/basic-B.rxt of iad (forward values by Prahl's adding-doubling with the truth in
+// its comments), and round trips through the sphere equations with 0, 1 and 2 spheres and M_U.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "bssrdf/adding_doubling/slab.hpp"
+#include "bssrdf/error.hpp"
+#include "bssrdf/fit/integrating_sphere.hpp"
+#include "bssrdf/fit/rxt_fit.hpp"
+#include "bssrdf/io/rxt.hpp"
+#include "cli_runner.hpp"
+
+using namespace bssrdf;
+
+namespace {
+
+const char* const kHeader = R"(IAD1
+1.40   # sample index
+1.50   # slide index
+1.0    # sample thickness
+1.0    # slide thickness
+5.0    # beam diameter
+0.98   # standard
+%d     # spheres
+203.2 25.4 12.7 1.0 0.96
+203.2 25.4 12.7 1.0 0.96
+%s
+)";
+
+std::string header(int spheres, const char* measurements) {
+  char buffer[1024];
+  std::snprintf(buffer, sizeof buffer, kHeader, spheres, measurements);
+  return buffer;
+}
+
+// What the instrument of `f` reports for a sample (the forward direction of the fit).
+std::array<double, 3> measure(const RxtFile& f, double mu_a, double mu_s_prime, double g) {
+  adding_doubling::Slab slab;
+  slab.layers = {{mu_a, mu_s_prime / (1 - g), g, f.sample_thickness}};
+  slab.n = f.sample_n;
+  slab.above = slab.below = {{f.slide_n, f.slide_thickness, 0.0}};
+  const auto c = adding_doubling::solve(slab, adding_doubling::Incidence::collimated);
+  const auto d = adding_doubling::solve(slab, adding_doubling::Incidence::diffuse);
+  const auto [m_r, m_t] = sphere_measurements(
+      f, {c.specular_reflectance + c.diffuse_reflectance, c.total_transmittance, d.specular_reflectance + d.diffuse_reflectance,
+          d.total_transmittance});
+  return {m_r, m_t, c.unscattered_transmittance};
+}
+
+void expect_file_error(const std::string& text, const std::string& where, const std::string& what) {
+  try {
+    parse_rxt(text, "x.rxt");
+    ADD_FAILURE() << "accepted: " << what;
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find(where), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+
+TEST(Rxt, PublishedExampleRecoversTheTruthOfEveryRow) {
+  const auto file = read_rxt(std::string(BSSRDF_TEST_DATA) + "/iad_basic_B.rxt");
+  ASSERT_EQ(file.rows.size(), 25u);
+  EXPECT_EQ(file.spheres, 0);
+  EXPECT_TRUE(file.has_slides());
+  RxtFitOptions options;
+  options.reflectance_stderr = options.transmittance_stderr = 1e-4;
+  const auto fit = fit_rxt(file, options);
+  double worst = 0;
+  for (std::size_t k = 0; k < fit.rows.size(); ++k) {
+    const double mu_s = 5.0 * (1 + k / 5), mu_a = 0.1 + 0.2 * (k % 5);  // the file's comments, row order
+    const auto& r = fit.rows[k];
+    EXPECT_EQ(r.status, "converged");
+    EXPECT_NEAR(r.mu_a / mu_a, 1, 5e-3) << "row " << k + 1;
+    EXPECT_NEAR(r.mu_s_prime / mu_s, 1, 5e-3) << "row " << k + 1;
+    worst = std::max({worst, std::abs(r.mu_a / mu_a - 1), std::abs(r.mu_s_prime / mu_s - 1)});
+  }
+  std::printf("  iad test/basic-B.rxt: worst relative deviation of mu_a, mu_s' from the truth: %.2e (%.3f s for 25 rows)\n", worst,
+              fit.seconds);
+}
+
+TEST(Rxt, RoundTripsThroughOneAndTwoSpheresAndTheUnscatteredBeam) {
+  for (int spheres : {0, 1, 2})
+    for (bool with_u : {false, true}) {
+      const auto setup = parse_rxt(header(spheres, with_u ? "3" : "2") + "0.3 0.3" + (with_u ? " 0.01\n" : "\n"), "setup");
+      std::ostringstream text;
+      text << header(spheres, with_u ? "lrtu" : "lrt");
+      const double truth[][3] = {{0.05, 1.0, with_u ? 0.7 : 0.0}, {0.2, 3.0, with_u ? 0.5 : 0.0}};
+      for (int k = 0; k < 2; ++k) {
+        const auto m = measure(setup, truth[k][0], truth[k][1], truth[k][2]);
+        text.precision(12);
+        text << 500 + 100 * k << ' ' << m[0] << ' ' << m[1];
+        if (with_u) text << ' ' << m[2];
+        text << '\n';
+      }
+      const auto fit = fit_rxt(parse_rxt(text.str(), "round-trip"));
+      for (int k = 0; k < 2; ++k) {
+        const auto& r = fit.rows[k];
+        EXPECT_EQ(r.row.wavelength, 500 + 100 * k);
+        EXPECT_NEAR(r.mu_a / truth[k][0], 1, 5e-3) << spheres << " spheres, M_U " << with_u << ", row " << k;
+        EXPECT_NEAR(r.mu_s_prime / truth[k][1], 1, 5e-3) << spheres << " spheres, M_U " << with_u << ", row " << k;
+        if (with_u) EXPECT_NEAR(r.g, truth[k][2], 5e-3);
+        EXPECT_TRUE(std::isfinite(r.mu_a_stderr) && r.mu_a_stderr > 0);
+      }
+    }
+}
+
+TEST(Rxt, SpheresChangeWhatIsMeasured) {
+  // A sphere's gain raises M_R (wall light returns to the sample and detector) and the sample's
+  // own reflectance raises M_T; two coupled spheres differ from one.
+  const SampleTotals t{0.4, 0.3, 0.45, 0.25};
+  const auto none = sphere_measurements(parse_rxt(header(0, "2") + "0.1 0.1\n", "0"), t);
+  const auto one = sphere_measurements(parse_rxt(header(1, "2") + "0.1 0.1\n", "1"), t);
+  const auto two = sphere_measurements(parse_rxt(header(2, "2") + "0.1 0.1\n", "2"), t);
+  EXPECT_EQ(none.first, 0.4);
+  EXPECT_EQ(none.second, 0.3);
+  EXPECT_GT(one.second, 0.3);
+  EXPECT_NE(two.first, one.first);
+  EXPECT_NE(two.second, one.second);
+  // A black-walled sphere measures the totals (up to the standard's normalisation).
+  auto black = parse_rxt(header(1, "2") + "0.1 0.1\n", "black");
+  black.reflection.wall_reflectance = black.transmission.wall_reflectance = 0;
+  const auto m = sphere_measurements(black, t);
+  EXPECT_DOUBLE_EQ(m.first, 0.4);
+  EXPECT_DOUBLE_EQ(m.second, 0.3);
+}
+
+TEST(Rxt, BadFilesNameTheLine) {
+  expect_file_error("IAD2\n1.4\n", "x.rxt:1", "IAD1");
+  expect_file_error(header(0, "2") + "0.3\n", "x.rxt:12", "row has 1 values");
+  expect_file_error(header(0, "2") + "0.6 0.5\n", "x.rxt:12", "M_R + M_T = 1.1");
+  expect_file_error(header(0, "2") + "-0.1 0.5\n", "x.rxt:12", "M_R = -0.1");
+  expect_file_error(header(0, "2") + "0.1 nan\n", "x.rxt:12", "M_T = 'nan'");
+  expect_file_error(header(0, "2") + "0.1 0.2x\n", "x.rxt:12", "M_T = '0.2x'");
+  expect_file_error(header(0, "2"), "x.rxt:11", "no measurement rows");
+  expect_file_error("IAD1\n1.4 # sample\n1.5\nabc\n", "x.rxt:4", "sample thickness = 'abc'");
+  expect_file_error("IAD1\n1.4\n1.5\n1.0\n", "x.rxt:4", "missing slide thickness");
+  expect_file_error(header(3, "2") + "0.1 0.1\n", "x.rxt:8", "number of spheres = 3");
+  expect_file_error(header(0, "1") + "0.1\n", "x.rxt:11", "number of measurements = 1");
+  expect_file_error(header(0, "3") + "0.1 0.2 0.3\n", "x.rxt:12", "M_U = 0.3");
+}
+
+TEST(Rxt, CommandLineWritesRowsOrFailsWithOneLine) {
+  using namespace bssrdf::test_cli;
+  const auto good = temp("good.rxt");
+  {
+    std::ofstream(good) << header(1, "2") << "0.35 0.25\n0.30 0.20\n";
+  }
+  auto r = run("fit slab --rxt " + good.string() + " -f json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  ASSERT_EQ(doc["rows"].size(), 2u);
+  EXPECT_EQ(doc["header"]["spheres"], 1);
+  EXPECT_EQ(doc["rows"][0]["status"], "converged");
+  for (const char* key : {"mu_a", "mu_s_prime", "g"}) {
+    EXPECT_TRUE(doc["rows"][0][key]["value"].is_number()) << key;
+    EXPECT_TRUE(doc["rows"][0][key]["stderr"].is_number()) << key;
+  }
+  EXPECT_NEAR(doc["rows"][0]["m_r"]["fitted"].get<double>(), 0.35, 1e-3);
+  r = run("fit slab --rxt " + good.string() + " -f csv");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(count_lines(r.out), 3);
+  const auto bad = temp("bad.rxt");
+  {
+    std::ofstream(bad) << header(1, "2") << "0.35 0.25\n0.70 0.40\n";
+  }
+  const auto out = temp("never.json");
+  r = run("fit slab --rxt " + bad.string() + " -o " + out.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("bad.rxt:13: M_R + M_T = 1.1"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
