@@ -114,3 +114,16 @@ TEST(FitSlabAddingDoubling, ImpossibleDataAreReportedNotHidden) {
   EXPECT_TRUE(reported) << r.full_report();
   for (const char* p : {"sigma_a", "sigma_s_prime"}) EXPECT_TRUE(std::isfinite(error(r, p)));
 }
+
+TEST(FitSlabAddingDoubling, UndeterminedParametersGetFiniteErrorsAndAWarning) {
+  // Nothing transmitted through 100 mm: only the albedo is determined, not the scale of the
+  // coefficients. Errors stay finite (never NaN): huge for sigma_a, sigma_s', small for alpha'.
+  const auto r = fit_slab({{"x", 0.3, 0.0, 1e-3, 1e-3, 0.0}}, 100.0, LengthUnit::millimetre, 1.4);
+  for (const char* p : {"sigma_a", "sigma_s_prime", "albedo_prime"}) EXPECT_TRUE(std::isfinite(error(r, p))) << p;
+  EXPECT_GT(error(r, "sigma_a"), 10 * value(r, "sigma_a"));
+  EXPECT_LT(error(r, "albedo_prime"), 0.01);
+  bool flagged = false;
+  for (const auto& w : r.warnings) flagged |= w.find("not unique") != std::string::npos;
+  EXPECT_TRUE(flagged) << r.full_report();
+  EXPECT_EQ(r.to_json().find("null"), std::string::npos) << r.to_json();
+}

@@ -131,12 +131,17 @@ Action register_fit(CLI::App& app) {
   struct SlabOptions {
     std::string reflectance, transmittance, r_stderr = "0.002", t_stderr = "0.002", thickness, unit = "mm", eta = "1.4", g, channels;
     std::string unscattered, u_stderr = "0.002", slides, model = "adding-doubling", rxt;
+    bool lost_light = false;
+    std::uint64_t lost_light_photons = 100000;
     OutputOptions output;
   };
   auto so = std::make_shared<SlabOptions>();
   auto* slab = fit->add_subcommand("slab", "Integrating-sphere R and T (and unscattered U) of a slab -> sigma_a, sigma_s' (and g) by adding-doubling");
   slab->add_option("--reflectance", so->reflectance, "Diffuse reflectance per channel, per incident flux, specular excluded");
   slab->add_option("--transmittance", so->transmittance, "Total transmittance per channel (ballistic included)");
+  slab->add_flag("--lost-light", so->lost_light,
+                 "--rxt: correct for light leaving beyond the sphere's sample port with the Monte Carlo reference (off by default)");
+  slab->add_option("--lost-light-photons", so->lost_light_photons, "--lost-light: photons per Monte Carlo run [100000]");
   slab->add_option("--rxt", so->rxt, "Integrating-sphere file of Prahl's iad (.rxt): fit every row (g held at --g or 0 unless M_U is given)");
   slab->add_option("--reflectance-stderr", so->r_stderr, "Standard error of the reflectance [0.002]");
   slab->add_option("--transmittance-stderr", so->t_stderr, "Standard error of the transmittance [0.002]");
@@ -203,6 +208,8 @@ Action register_fit(CLI::App& app) {
       options.reflectance_stderr = parse_number(so->r_stderr, "--reflectance-stderr");
       options.transmittance_stderr = parse_number(so->t_stderr, "--transmittance-stderr");
       options.unscattered_stderr = parse_number(so->u_stderr, "--unscattered-stderr");
+      options.lost_light = so->lost_light;
+      options.lost_light_photons = so->lost_light_photons;
       const auto file = read_rxt(so->rxt);
       const auto fit = fit_rxt(file, options);
       const auto table = rxt_fit_table(fit);
@@ -214,6 +221,7 @@ Action register_fit(CLI::App& app) {
       }
       emit(so->output, content, table);
     } else if (slab->parsed()) {
+      if (so->lost_light) throw InvalidInput("--lost-light: only with --rxt (the file gives the sphere's ports)");
       if (so->reflectance.empty()) throw InvalidInput("--reflectance is required (or --rxt FILE)");
       if (so->transmittance.empty()) throw InvalidInput("--transmittance is required (or --rxt FILE)");
       if (so->thickness.empty()) throw InvalidInput("--thickness is required (or --rxt FILE)");

@@ -39,7 +39,8 @@ std::string rxt_fit_json(const RxtFit& fit) {
   doc["measurement_stderr"] = {{"m_r", fit.options.reflectance_stderr}, {"m_t", fit.options.transmittance_stderr},
                                {"m_u", fit.options.unscattered_stderr}};
   doc["g_held"] = f.measurements == 3 ? nlohmann::json(nullptr) : nlohmann::json(fit.options.g);
-  doc["lost_light_correction"] = false;
+  doc["lost_light_correction"] = fit.options.lost_light;
+  if (fit.options.lost_light) doc["lost_light_photons"] = fit.options.lost_light_photons;
   doc["seconds"] = fit.seconds;
   doc["rows"] = nlohmann::json::array();
   for (const auto& r : fit.rows) {
@@ -54,6 +55,7 @@ std::string rxt_fit_json(const RxtFit& fit) {
                        {"converged", r.converged},
                        {"status", r.status}};
     if (r.fitted_m_u >= 0) row["m_u"] = {{"measured", r.row.m_u}, {"fitted", r.fitted_m_u}};
+    if (fit.options.lost_light) row["lost_light"] = {{"ur1", r.ur1_lost}, {"ut1", r.ut1_lost}};
     doc["rows"].push_back(row);
   }
   return doc.dump(2) + "\n";
@@ -81,9 +83,12 @@ std::string rxt_fit_table(const RxtFit& fit) {
   char line[512];
   out << "inverse adding-doubling of " << f.name << "\n";
   std::snprintf(line, sizeof line,
-                "sample n %.3f, %.3f mm; slides n %.3f, %.3f mm%s; %d sphere(s); standard %.3f; g %s; lost light not corrected\n",
+                "sample n %.3f, %.3f mm; slides n %.3f, %.3f mm%s; %d sphere(s); standard %.3f; g %s; %s\n",
                 f.sample_n, f.sample_thickness, f.slide_n, f.slide_thickness, f.has_slides() ? "" : " (none)", f.spheres,
-                f.standard_reflectance, f.measurements == 3 ? "fitted (M_U given)" : ("held at " + format_number(fit.options.g)).c_str());
+                f.standard_reflectance, f.measurements == 3 ? "fitted (M_U given)" : ("held at " + format_number(fit.options.g)).c_str(),
+                fit.options.lost_light ? ("LOST LIGHT CORRECTED by Monte Carlo (" + std::to_string(fit.options.lost_light_photons) +
+                                          " photons, pencil beam)").c_str()
+                                       : "lost light not corrected");
   out << line;
   out << (f.has_wavelength ? "  lambda" : "     row")
       << "   mu_a (1/mm)          mu_s' (1/mm)         g               M_R meas/fit     M_T meas/fit     status\n";

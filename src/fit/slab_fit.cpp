@@ -129,9 +129,10 @@ FitReport fit_slab(const std::vector<SlabMeasurement>& channels, double thicknes
     std::string shares;
     const char* const parameter_names[] = {"sigma_a", "sigma_s'", "g"};
     for (int j = 0; j < (with_u ? 3 : 2); ++j) {
-      shares += std::string(j ? "; " : "") + parameter_names[j] + ":";
+      if (j) shares.append("; ");
+      shares.append(parameter_names[j]).append(":");
       for (int m = 0; m < count; ++m)
-        shares += " " + std::string(measurement_names[m]) + " " + std::to_string(static_cast<int>(std::lround(100 * result.share[j][m]))) + "%";
+        shares.append(" ").append(measurement_names[m]).append(" ").append(std::to_string(std::lround(100 * result.share[j][m]))).append("%");
     }
     report.warnings.push_back(where + "note: share of each parameter's variance from each measurement: " + shares);
     report.warnings.push_back(where + "note: chi^2 = " + format_number(std::round(result.chi2 * 1000) / 1000) + " for " +

@@ -3,9 +3,15 @@
 // they are options), the fitted M_R, M_T, chi^2 and a status. Forward model: adding-doubling
 // (32 angles) with the file's slides and the sphere equations of integrating_sphere.hpp. g is
 // held (at options.g, 0 by default as in iad) with two measurements and fitted with M_U.
-// Not modelled: light lost at the sample's edges (iad's Monte Carlo correction).
+// Lost light (options.lost_light, off by default): light leaving the sample beyond the sphere's
+// sample port is not collected. The project's Monte Carlo reference (pencil beam: the beam
+// diameter is not modelled) at the current estimate gives the diffuse reflectance and
+// transmittance beyond each port's radius; they are subtracted from UR1 and UT1 (as iad does)
+// and the row is refitted until the losses change by less than 1e-4 (an accelerated fixed-point
+// iteration, at most 20 passes). Losses for diffuse light (URU, UTU) are not corrected.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -16,6 +22,8 @@ namespace bssrdf {
 struct RxtFitOptions {
   double g = 0;
   double reflectance_stderr = 0.002, transmittance_stderr = 0.002, unscattered_stderr = 0.002;
+  bool lost_light = false;              // Monte Carlo lost-light correction (needs a sphere)
+  std::uint64_t lost_light_photons = 100'000;
 };
 
 struct RxtRowFit {
@@ -23,6 +31,7 @@ struct RxtRowFit {
   double mu_a = 0, mu_a_stderr = 0, mu_s_prime = 0, mu_s_prime_stderr = 0, g = 0, g_stderr = 0;  // 1/mm
   double fitted_m_r = 0, fitted_m_t = 0, fitted_m_u = -1;
   double chi2 = 0;
+  double ur1_lost = 0, ut1_lost = 0;  // per incident flux, when the lost-light correction is on
   bool converged = false;
   std::string status;  // "converged", or why not
 };
