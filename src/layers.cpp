@@ -36,8 +36,9 @@ void LayerStack::validate() const {
     const bool last = i + 1 == layers.size();
     if (layer.thickness == kSemiInfinite) {
       if (!last) throw InvalidInput(prefix + ".thickness", "semi-infinite", "> 0 and finite (only the last layer may be semi-infinite)");
-    } else if (!(layer.thickness > 0) || !std::isfinite(layer.thickness)) {
-      throw InvalidInput(prefix + ".thickness", format_number(layer.thickness), "> 0 and finite, or semi-infinite for the last layer");
+    } else if (!(layer.thickness > 0 && layer.thickness <= 1e6)) {  // 1e6 mm = 1 km: use semi-infinite beyond
+      throw InvalidInput(prefix + ".thickness", format_number(layer.thickness),
+                         "> 0 and at most 1e6 mm, or semi-infinite for the last layer");
     }
     const auto check_size = [&](const std::vector<double>& v, const char* name) {
       if (v.size() != nc)

@@ -206,8 +206,9 @@ TEST(Hardening, MultipoleFarTailIsNeverAnInternalError) {
   const auto r = run("profile --sigma-a 1e-9 --sigma-s 1 --eta 1.3 --thickness 100 --radii 1,10000 -f json");
   EXPECT_TRUE(r.status == 0 || r.status == 2) << r.err;
   EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+  const auto doc = r.status == 0 ? json::parse(r.out) : json();
   if (r.status == 0)
-    for (const auto& ch : json::parse(r.out)["channels"])
+    for (const auto& ch : doc["channels"])
       for (const char* key : {"reflectance", "transmittance"})
         for (const auto& v : ch[key]) EXPECT_GE(v.get<double>(), 0.0) << key;
 }
@@ -217,6 +218,31 @@ TEST(Hardening, NumericArraysHoldNumbersOnly) {
   expect_refused(run("profile --material skin1 --model burley --radii 0,0.5,1 -f json"), {"--radii = 0", "> 0 for burley"});
   const auto r = run("profile --material skin1 --model burley --radii 0.001,0.5,1 -f json");
   ASSERT_EQ(r.status, 0) << r.err;
-  for (const auto& ch : json::parse(r.out)["channels"])
+  const auto doc = json::parse(r.out);
+  for (const auto& ch : doc["channels"])
     for (const auto& v : ch["reflectance"]) EXPECT_TRUE(v.is_number()) << ch["reflectance"].dump();
+}
+
+// Lengths beyond any object: --thickness 1e308 was reported as "r_max = 0", --r-max 1e308 as a NaN radius.
+TEST(Hardening, LengthsAreBoundedAndNamedAsTyped) {
+  expect_refused(run("profile --sigma-a 0.1 --sigma-s 1 --thickness 1e308"), {"--thickness = 1e+308", "at most 1e+06"});
+  expect_refused(run("profile --sigma-a 0.1 --sigma-s 1 --r-max 1e308"), {"--r-max = 1e+308"});
+  expect_refused(run("profile --sigma-a 0.1 --sigma-s 1 --radii 1,1e300"), {"--radii = 1e+300"});
+  expect_refused(run("transmission --sigma-a 0.1 --sigma-s 1 --d-max 1e308"), {"--d-max = 1e+308"});
+  expect_refused(run("reference --sigma-a 0.1 --sigma-s 1 --r-max 1e308 -n 100"), {"--r-max = 1e+308"});
+  const auto layers = write("thick.json", "{\"format\": \"bssrdf-layers\", \"version\": 1,\n"
+                                          "\"layers\": [{\"thickness\": 1e300, \"n\": 1.4, \"sigma_a\": 1, \"sigma_s\": 1}]}\n");
+  expect_refused(run("reference --layers " + layers.string() + " -n 100"), {"thickness", "at most 1e6 mm"});
+}
+
+// Fits say how far the model itself is from radiative transfer where that exceeds 1 %.
+TEST(Hardening, FitWarnsAboutTheModelsOwnError) {
+  const auto data = temp("skin.csv");
+  ASSERT_EQ(run("profile --material skin1 --model dipole -f csv -q -o " + data.string()).status, 0);
+  const auto r = run("fit profile " + data.string() + " --model dipole -f json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  bool said = false;
+  const auto doc = json::parse(r.out);
+  for (const auto& w : doc["warnings"]) said |= w.get<std::string>().find("statistical only; dipole itself differs") != std::string::npos;
+  EXPECT_TRUE(said) << r.out.substr(0, 2000);
 }

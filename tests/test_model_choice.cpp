@@ -94,9 +94,11 @@ TEST(ModelChoice, PicksTheCheapestWithinTheAccuracyForEveryChannel) {
     }
     EXPECT_TRUE(found);
     // Worst over channels: no channel alone is estimated worse than the combined figure.
-    for (std::size_t c = 0; c < 3; ++c)
-      for (const auto& e : *estimate_model_errors(skin.reduced(c)))
+    for (std::size_t c = 0; c < 3; ++c) {
+      const auto estimates = estimate_model_errors(skin.reduced(c));  // named: a range-for over *temporary dangles
+      for (const auto& e : *estimates)
         if (e.model == choice.model) EXPECT_LE(e.error(), accuracy);
+    }
   }
   EXPECT_EQ(choose_model(skin, 0.1).model, "pbd");
   // Too strict: the message names the best achievable; outside the measured ranges: the channel.

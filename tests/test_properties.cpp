@@ -9,6 +9,9 @@
 
 #include "bssrdf/fit/profile_fit.hpp"
 #include "bssrdf/io/profile_csv.hpp"
+#include "bssrdf/io/renderer_export.hpp"
+#include "bssrdf/materials.hpp"
+#include "bssrdf/montecarlo.hpp"
 #include "bssrdf/medium.hpp"
 #include "bssrdf/model.hpp"
 #include "bssrdf/profile_report.hpp"
@@ -177,6 +180,50 @@ TEST(WriterProperties, ProfileCsvReadsBackExactly) {
       }
     }
   }
+}
+
+// The materials JSON export loads back to the same media, for every bundled material and unit.
+TEST(WriterProperties, MaterialsJsonExportLoadsBack) {
+  const auto db = MaterialDatabase::load(default_materials_dir());
+  for (const auto unit : {LengthUnit::millimetre, LengthUnit::micrometre, LengthUnit::metre}) {
+    std::vector<ExportEntry> entries;
+    for (const auto& m : db.all()) entries.push_back({m, {}});
+    MaterialDatabase back;
+    back.add_text(export_materials(RendererTarget::json, entries, unit), "exported.json");
+    ASSERT_EQ(back.all().size(), db.all().size());
+    for (std::size_t i = 0; i < db.all().size(); ++i) {
+      const Medium& a = db.all()[i].medium;
+      const Medium& b = back.find(db.all()[i].name).medium;
+      EXPECT_DOUBLE_EQ(a.eta, b.eta);
+      for (std::size_t c = 0; c < a.channels(); ++c) {
+        EXPECT_NEAR(b.sigma_a[c], a.sigma_a[c], 1e-14 * a.sigma_a[c]) << db.all()[i].name;
+        EXPECT_NEAR(b.sigma_s[c] * (1 - b.g[c]), a.sigma_s[c] * (1 - a.g[c]), 1e-14 * a.sigma_s[c]) << db.all()[i].name;
+      }
+    }
+  }
+}
+
+// The Monte Carlo CSV reads back (as 'fit profile' reads it) to the run's per-entered-flux R(r).
+TEST(WriterProperties, MonteCarloCsvReadsBackAsItsEnteredFluxProfile) {
+  Medium medium = Medium::single_channel(0.1, 5, 0.5, 1.4);
+  MonteCarloOptions options;
+  options.photons = 20000;
+  options.bins = 30;
+  const auto result = run_monte_carlo(LayerStack::half_space(medium), options);
+  const auto back = parse_profile_csv(to_csv(result, LengthUnit::millimetre), "mc.csv");
+  ASSERT_EQ(back.channels.size(), 1u);
+  const auto entered = result.channels[0].per_entered_flux();
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < result.bin_radius.size(); ++i) {
+    if (entered.reflectance[i] == 0 && entered.reflectance_stderr[i] == 0) continue;  // skipped: no photon
+    ASSERT_LT(k, back.radius.size());
+    EXPECT_DOUBLE_EQ(back.radius[k], result.bin_radius[i]);
+    EXPECT_DOUBLE_EQ(back.channels[0].value[k], entered.reflectance[i]);
+    EXPECT_DOUBLE_EQ(back.channels[0].standard_error[k], entered.reflectance_stderr[i]);
+    ++k;
+  }
+  EXPECT_EQ(k, back.radius.size());
+  EXPECT_EQ(back.empty_bins, result.bin_radius.size() - k);
 }
 
 }  // namespace

@@ -43,6 +43,21 @@ double parse_number(const std::string& text, const std::string& field) {
   return value;
 }
 
+double parse_length(const std::string& text, const std::string& field) {
+  const double v = parse_number(text, field);
+  if (!(std::abs(v) <= kMaxLength))
+    throw InvalidInput(field, format_number(v), "at most " + format_number(kMaxLength) + " (in the length unit; omit it for the default)");
+  return v;
+}
+
+std::vector<double> parse_length_list(const std::string& text, const std::string& field) {
+  auto values = parse_number_list(text, field);
+  for (double v : values)
+    if (!(std::abs(v) <= kMaxLength))
+      throw InvalidInput(field, format_number(v), "at most " + format_number(kMaxLength) + " each (in the length unit)");
+  return values;
+}
+
 std::string count_range(std::int64_t min, std::int64_t max) { return std::to_string(min) + " to " + std::to_string(max); }
 
 std::int64_t parse_count(const std::string& text, const std::string& field, std::int64_t min, std::int64_t max) {

@@ -16,13 +16,19 @@
 namespace bssrdf::cli {
 
 // "1,2.5,3" -> {1, 2.5, 3}; throws InvalidInput naming `field` for anything that is not a number.
-// Ranges shared by the count options. 1e10 photons is hours of tracing per channel.
-constexpr std::int64_t kMaxPhotons = 10'000'000'000, kMaxSeed = INT64_MAX, kMaxThreads = 4096, kMaxBins = 10'000'000;
-
-// "1 to 10000000000", the accepted range of a count.
-std::string count_range(std::int64_t min, std::int64_t max);
 std::vector<double> parse_number_list(const std::string& text, const std::string& field);
 double parse_number(const std::string& text, const std::string& field);
+
+// Ranges shared by the count options. 1e10 photons is hours of tracing per channel.
+constexpr std::int64_t kMaxPhotons = 10'000'000'000, kMaxSeed = INT64_MAX, kMaxThreads = 4096, kMaxBins = 10'000'000;
+// "1 to 10000000000", the accepted range of a count.
+std::string count_range(std::int64_t min, std::int64_t max);
+// A length (thickness, radius) in the user's unit: a finite number of magnitude at most kMaxLength,
+// so every derived length, area and bin width stays a normal double; the sign and the lower bound
+// are checked where the length is used.
+inline constexpr double kMaxLength = 1e6;
+double parse_length(const std::string& text, const std::string& field);
+std::vector<double> parse_length_list(const std::string& text, const std::string& field);
 // A whole number in [min, max] ("1000000" or "1e6"); parsed as signed and range-checked before any
 // conversion, so "-1" is refused instead of wrapping to 2^64 - 1. Throws InvalidInput naming `field`.
 std::int64_t parse_count(const std::string& text, const std::string& field, std::int64_t min, std::int64_t max);

@@ -150,7 +150,7 @@ std::vector<double> thicknesses_mm(const LutOptions& o, const MediumOptions::Res
   std::vector<double> out;
   if (!o.thickness.empty()) {
     if (!o.d_min.empty() || !o.d_max.empty()) throw InvalidInput("--thickness: give either --thickness or --d-min/--d-max");
-    for (double d : parse_number_list(o.thickness, "--thickness")) {
+    for (double d : parse_length_list(o.thickness, "--thickness")) {
       if (!(d > 0)) throw InvalidInput("--thickness", format_number(d), "> 0");
       out.push_back(d * mm);
     }
@@ -161,8 +161,8 @@ std::vector<double> thicknesses_mm(const LutOptions& o, const MediumOptions::Res
     ell_min = std::min(ell_min, resolved.medium.reduced(c).ell);
     ell_max = std::max(ell_max, resolved.medium.reduced(c).ell);
   }
-  const double a = o.d_min.empty() ? 0.5 * ell_min : parse_number(o.d_min, "--d-min") * mm;
-  const double b = o.d_max.empty() ? 40 * ell_max : parse_number(o.d_max, "--d-max") * mm;
+  const double a = o.d_min.empty() ? 0.5 * ell_min : parse_length(o.d_min, "--d-min") * mm;
+  const double b = o.d_max.empty() ? 40 * ell_max : parse_length(o.d_max, "--d-max") * mm;
   if (!(a > 0)) throw InvalidInput("--d-min", format_number(a / mm), "> 0");
   if (!(b > a)) throw InvalidInput("--d-max", format_number(b / mm), "> --d-min = " + format_number(a / mm));
   if (o.samples < 2 || o.samples > 4096) throw InvalidInput("--samples", std::to_string(o.samples), "2 to 4096");
@@ -253,7 +253,7 @@ Built build_penumbra(const LutOptions& o, const MediumOptions::Resolved& resolve
   const double mm = millimetres_per(resolved.unit);
   const std::string u(symbol(resolved.unit));
   if (!o.width_max.empty()) {
-    const double w = parse_number(o.width_max, "--width-max");
+    const double w = parse_length(o.width_max, "--width-max");
     if (!(w > 0)) throw InvalidInput("--width-max", format_number(w), "> 0 (" + u + ")");
     options.width_max = w * mm;
   }
@@ -283,7 +283,7 @@ Built build_separable(const LutOptions& o, const MediumOptions::Resolved& resolv
   if (o.range == "jimenez") {
     options.range = jimenez_range(o.taps);
   } else if (!o.range.empty()) {
-    const double r = parse_number(o.range, "--range");
+    const double r = parse_length(o.range, "--range");
     if (!(r > 0)) throw InvalidInput("--range", format_number(r), "> 0 (" + u + ") or jimenez");
     options.range = r * mm;
   }

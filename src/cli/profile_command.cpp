@@ -113,7 +113,7 @@ Action register_profile(CLI::App& app) {
                              note->message + "; use 'bssrdf reference --layers " + options->layers +
                              "' (Monte Carlo) for thin layers, or 'bssrdf lut --layers FILE --kind radial --reference' for a table");
     } else if (slab) {
-      const double d = parse_number(options->thickness, "--thickness");
+      const double d = parse_length(options->thickness, "--thickness");
       if (!(d > 0)) throw InvalidInput("--thickness", options->thickness, "> 0");
       auto slab_model = std::make_unique<multipole::Model>(d * mm, std::nullopt, options->pair_tolerance);
       for (std::size_t c = 0; c < resolved.medium.channels(); ++c)
@@ -143,7 +143,7 @@ Action register_profile(CLI::App& app) {
     std::vector<double> radii_mm;
     if (!options->radii.empty()) {
       SampledProfile check;
-      check.radius = parse_number_list(options->radii, "--radii");
+      check.radius = parse_length_list(options->radii, "--radii");
       check.value.assign(check.radius.size(), 0.0);
       if (check.radius.size() == 1) check.radius.push_back(check.radius[0]);  // let validate() name it
       try {
@@ -151,14 +151,14 @@ Action register_profile(CLI::App& app) {
       } catch (const InvalidInput& e) {
         throw InvalidInput(std::string("--radii: ") + e.what());
       }
-      for (double r : parse_number_list(options->radii, "--radii")) radii_mm.push_back(r * mm);
+      for (double r : parse_length_list(options->radii, "--radii")) radii_mm.push_back(r * mm);
     } else {
       if (options->samples < 2 || options->samples > 1000000)
         throw InvalidInput("--samples", std::to_string(options->samples), "2 to 1000000");
       const auto n = static_cast<std::size_t>(options->samples);
       const auto defaults = stack_file ? default_stack_radii_mm(stack_file->stack, n) : default_radii_mm(resolved.medium, *model, n);
-      double lo = options->r_min.empty() ? defaults.front() : parse_number(options->r_min, "--r-min") * mm;
-      double hi = options->r_max.empty() ? defaults.back() : parse_number(options->r_max, "--r-max") * mm;
+      double lo = options->r_min.empty() ? defaults.front() : parse_length(options->r_min, "--r-min") * mm;
+      double hi = options->r_max.empty() ? defaults.back() : parse_length(options->r_max, "--r-max") * mm;
       if (options->spacing == "linear" && options->r_min.empty()) lo = 0;
       if (options->spacing == "log" && !(lo > 0))
         throw InvalidInput("--r-min", format_number(lo / mm), "> 0 with log spacing");

@@ -91,11 +91,11 @@ Action register_reference(CLI::App& app) {
     LengthUnit unit = LengthUnit::millimetre;
     const auto lengths = [&](MonteCarloOptions& mc, LengthUnit u) {
       if (!o.r_max.empty()) {
-        mc.r_max = to_mm(parse_number(o.r_max, "--r-max"), u);
+        mc.r_max = to_mm(parse_length(o.r_max, "--r-max"), u);
         if (!(mc.r_max > 0)) throw InvalidInput("--r-max", o.r_max, "> 0");
       }
       if (!o.r_min.empty()) {
-        mc.r_min = to_mm(parse_number(o.r_min, "--r-min"), u);
+        mc.r_min = to_mm(parse_length(o.r_min, "--r-min"), u);
         if (!(mc.r_min > 0)) throw InvalidInput("--r-min", o.r_min, "> 0");
       }
     };
@@ -129,7 +129,7 @@ Action register_reference(CLI::App& app) {
       unit = resolved.unit;
       double thickness_mm = kSemiInfinite;
       if (!o.thickness.empty()) {
-        const double t = parse_number(o.thickness, "--thickness");
+        const double t = parse_length(o.thickness, "--thickness");
         if (!(t > 0)) throw InvalidInput("--thickness", o.thickness, "> 0 (omit for semi-infinite)");
         thickness_mm = to_mm(t, unit);
       }

@@ -44,7 +44,7 @@ Action register_transmission(CLI::App& app) {
     const bool ad = options->model == "adding-doubling";
     std::vector<double> thickness;  // in unit
     if (!options->thickness.empty()) {
-      thickness = parse_number_list(options->thickness, "--thickness");
+      thickness = parse_length_list(options->thickness, "--thickness");
       for (double d : thickness)
         if (!(d > 0)) throw InvalidInput("--thickness", format_number(d), "> 0");
     } else {
@@ -53,8 +53,8 @@ Action register_transmission(CLI::App& app) {
         ell_min = std::min(ell_min, medium.reduced(c).ell / mm);
         ell_max = std::max(ell_max, medium.reduced(c).ell / mm);
       }
-      const double a = options->d_min.empty() ? (ad ? 0.1 : 2) * ell_min : parse_number(options->d_min, "--d-min");
-      const double b = options->d_max.empty() ? 40 * ell_max : parse_number(options->d_max, "--d-max");
+      const double a = options->d_min.empty() ? (ad ? 0.1 : 2) * ell_min : parse_length(options->d_min, "--d-min");
+      const double b = options->d_max.empty() ? 40 * ell_max : parse_length(options->d_max, "--d-max");
       if (!(a > 0)) throw InvalidInput("--d-min", format_number(a), "> 0");
       if (!(b > a)) throw InvalidInput("--d-max", format_number(b), "> --d-min = " + format_number(a));
       if (options->samples < 2 || options->samples > 100000)

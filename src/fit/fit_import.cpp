@@ -11,30 +11,32 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
+// at(), never the const operator[]: on a missing key that is undefined behaviour (found by the
+// mutation test under the sanitizers); at() throws, and the caller names the file.
 std::string from_fit(const nlohmann::json& fit, const std::string& fit_file, const std::string& name,
                      std::optional<double> eta_given, const std::string& source) {
   if (!fit.is_object() || fit.value("source", "") != "fit")
     throw FileError(fit_file, 0, "$.source: expected \"fit\" (the output of 'bssrdf fit ... -f json')");
-  if (!fit.contains("channels") || !fit["channels"].is_array() || fit["channels"].empty())
+  if (!fit.contains("channels") || !fit.at("channels").is_array() || fit.at("channels").empty())
     throw FileError(fit_file, 0, "$.channels: expected a non-empty array");
   double eta = 0;
   if (eta_given) eta = *eta_given;
-  else if (fit.contains("shared") && fit["shared"].contains("eta")) eta = fit["shared"]["eta"]["value"].get<double>();
+  else if (fit.contains("shared") && fit.at("shared").contains("eta")) eta = fit.at("shared").at("eta").at("value").get<double>();
   else throw InvalidInput("eta: the fit result has no eta; give the one the fit assumed");
   std::vector<std::string> channels;
   std::vector<double> sigma_a, sigma_s_prime;
   std::string unit;
-  for (std::size_t i = 0; i < fit["channels"].size(); ++i) {
-    const auto& c = fit["channels"][i];
+  for (std::size_t i = 0; i < fit.at("channels").size(); ++i) {
+    const auto& c = fit.at("channels").at(i);
     const std::string where = "$.channels[" + std::to_string(i) + "]";
     for (const char* key : {"sigma_a", "sigma_s_prime"})
-      if (!c.contains(key) || !c[key].contains("value") || !c[key]["value"].is_number())
+      if (!c.contains(key) || !c.at(key).contains("value") || !c.at(key).at("value").is_number())
         throw FileError(fit_file, 0, where + "." + key + ": missing (only fits of sigma_a and sigma_s' - profile, albedo, "
                                                           "slab - give a material)");
     channels.push_back(c.value("name", "c" + std::to_string(i)));
-    sigma_a.push_back(c["sigma_a"]["value"].get<double>());
-    sigma_s_prime.push_back(c["sigma_s_prime"]["value"].get<double>());
-    const std::string u = c["sigma_a"].value("unit", "1/mm");
+    sigma_a.push_back(c.at("sigma_a").at("value").get<double>());
+    sigma_s_prime.push_back(c.at("sigma_s_prime").at("value").get<double>());
+    const std::string u = c.at("sigma_a").value("unit", "1/mm");
     if (u.rfind("1/", 0) != 0) throw FileError(fit_file, 0, where + ".sigma_a.unit: '" + u + "' is not 1/LENGTH");
     unit = u.substr(2);
   }

@@ -329,10 +329,12 @@ RadialTable build_radial_table(const Medium& medium, const Model& model, const R
       fail_error = e;
     }
   }
-  // The model at the chosen nodes (the check points keep the stand-in's values).
+  // The model at the chosen nodes (the check points keep the stand-in's values). A reference, as
+  // lambdas capture structured bindings only from C++20 compilers newer than clang 14.
+  auto& chosen = best;
   parallel_for(channels * pass, options.threads, [&](std::size_t item) {
     const std::size_t c = item / pass, j = item % pass;
-    best.node[c][j] = probes[c].scatters() ? model.reflectance(media[c], map.r(best.log_r[j])) : 0.0;
+    chosen.node[c][j] = probes[c].scatters() ? model.reflectance(media[c], map.r(chosen.log_r[j])) : 0.0;
   });
   table.evaluations += channels * pass;
   best_error = worst_error(best, probes, map, options.interpolation) + dense.error / 16;

@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""Random command lines against the bssrdf binary: every run must exit 0 or 2, print exactly one
+line on stderr when it exits 2, never say "internal error", finish within a time limit and leave
+no file behind on failure. Prints a table of outcomes; exit status 1 on any finding.
+
+Usage: tools/fuzz_cli.py [BINARY] [COUNT] [SEED]     (default build/bssrdf 300 1)
+"""
+import os
+import random
+import subprocess
+import sys
+import tempfile
+import time
+
+HOSTILE = ["-1", "0", "1e308", "-1e308", "1e-308", "4.9e-324", "nan", "inf", "-inf", "1e400", "3e9",
+           "18446744073709551615", "9" * 40, "", "abc", "1,2", "1,,2", "0.5", "2", "1.3", "100", "1e-9",
+           "\r", "x\x1b[31m", "1e6", "64", "-0"]
+COMMANDS = {
+    "profile": ["--sigma-a", "--sigma-s", "--g", "--eta", "--radii", "--samples", "--r-min", "--r-max",
+                "--thickness", "--model", "--unit"],
+    "reference": ["--sigma-a", "--sigma-s", "--g", "--eta", "-n", "--bins", "--seed", "--threads", "--r-max",
+                  "--thickness", "--depth-bins", "--roulette-threshold"],
+    "transmission": ["--sigma-a", "--sigma-s", "--eta", "--samples", "--d-min", "--d-max"],
+    "lut": ["--sigma-a", "--sigma-s", "--kind", "--samples", "--taps", "--count", "--photons", "--tolerance",
+            "--size", "--energy", "--band"],
+    "fit gaussians": ["--sigma-a", "--sigma-s", "-n", "--samples"],
+    "fit albedo": ["--albedo", "--distance", "--eta", "--g"],
+}
+# Small photon counts keep Monte Carlo runs short; the rest are random.
+SAFE = {"-n": "2000", "--photons": "2000"}
+
+
+def main():
+    binary = sys.argv[1] if len(sys.argv) > 1 else "build/bssrdf"
+    count = int(sys.argv[2]) if len(sys.argv) > 2 else 300
+    rng = random.Random(int(sys.argv[3]) if len(sys.argv) > 3 else 1)
+    outcomes = {"exit 0": 0, "exit 2 (one line)": 0}
+    findings = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for i in range(count):
+            command = rng.choice(list(COMMANDS))
+            args = command.split() + ["--sigma-a", "0.1", "--sigma-s", "1"] if command not in ("fit albedo",) else command.split() + ["--albedo", "0.5", "--distance", "1"]
+            for option in rng.sample(COMMANDS[command], k=rng.randint(1, 3)):
+                value = rng.choice(HOSTILE) if rng.random() < 0.8 or option not in SAFE else SAFE[option]
+                if option in SAFE and value.lstrip("-").replace(".", "").isdigit() and abs(float(value)) > 1e5:
+                    value = "-1"  # never start a huge Monte Carlo run: still a count the tool must refuse or bound
+                args += [option, value]
+            output = os.path.join(tmp, f"out{i}.json")
+            if command == "lut":
+                args += ["-o", output.replace(".json", ".exr")]
+            else:
+                args += ["-o", output, "-q"] if command != "fit albedo" else []
+            start = time.time()
+            try:
+                run = subprocess.run([binary] + args, capture_output=True, timeout=60)
+            except subprocess.TimeoutExpired:
+                findings.append(("hang > 60 s", args))
+                continue
+            seconds = time.time() - start
+            err = run.stderr.decode(errors="replace")
+            if run.returncode == 0:
+                outcomes["exit 0"] += 1
+            elif run.returncode == 2 and err.count("\n") == 1 and "internal error" not in err:
+                outcomes["exit 2 (one line)"] += 1
+                if any(os.path.exists(p) for p in (output, output.replace(".json", ".exr"))):
+                    findings.append(("file left after exit 2", args))
+            else:
+                findings.append((f"exit {run.returncode}: {err.strip()[:200]!r}", args))
+            if seconds > 30:
+                findings.append((f"slow: {seconds:.0f} s", args))
+    print(f"{count} command lines: " + ", ".join(f"{k}: {v}" for k, v in outcomes.items()) + f", findings: {len(findings)}")
+    for what, args in findings:
+        print(f"  {what}: bssrdf {' '.join(repr(a) if not a or ' ' in a else a for a in args)}")
+    return 1 if findings else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
