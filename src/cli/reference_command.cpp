@@ -86,11 +86,13 @@ Action register_reference(CLI::App& app) {
     const auto lengths = [&](MonteCarloOptions& mc, LengthUnit u) {
       if (!o.r_max.empty()) {
         mc.r_max = to_mm(parse_length(o.r_max, "--r-max"), u);
-        if (!(mc.r_max > 0)) throw InvalidInput("--r-max", o.r_max, "> 0");
+        // Bins of at least 1e-9 mm: narrower ones round R(r) = weight / area to infinity.
+        if (!(mc.r_max >= 1e-9 * static_cast<double>(mc.bins)))
+          throw InvalidInput("--r-max", o.r_max, "> 0 and at least 1e-9 mm per bin");
       }
       if (!o.r_min.empty()) {
         mc.r_min = to_mm(parse_length(o.r_min, "--r-min"), u);
-        if (!(mc.r_min > 0)) throw InvalidInput("--r-min", o.r_min, "> 0");
+        if (!(mc.r_min >= 1e-9)) throw InvalidInput("--r-min", o.r_min, "> 0 and at least 1e-9 mm");
       }
     };
     if (!o.mci.empty()) {
