@@ -62,6 +62,9 @@ TEST(Hardening, CountsAreSignedAndRangeChecked) {
   expect_refused(run("reference --sigma-a 1 --sigma-s 1 --bins -1"), {"--bins = '-1'", "2 to 10000000"});
   expect_refused(run("reference --sigma-a 1 --sigma-s 1 --seed -1"), {"--seed = '-1'"});
   expect_refused(run("reference --sigma-a 1 --sigma-s 1 --threads 99999"), {"--threads = '99999'", "0 to 4096"});
+  // CLI11 read '' as 0 for a double: a roulette threshold of 0 traced 1000 photons for 9 s (1e6: hours).
+  expect_refused(run("reference --sigma-a 0.1 --sigma-s 1 --roulette-threshold ''"), {"--roulette-threshold = ''", "a finite number"});
+  expect_refused(run("reference --sigma-a 0.1 --sigma-s 1 --roulette-threshold 0"), {"--roulette-threshold = 0", "1e-12 <= threshold < 1"});
   expect_refused(run("lut --kind radial --reference --sigma-a 1 --sigma-s 1 --photons -1 -o " + temp("t.exr").string()),
                  {"--photons = '-1'"});
   expect_refused(run("profile --material skin1 --samples -5"), {"--samples = '-5'", "2 to 1000000"});
