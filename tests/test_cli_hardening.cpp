@@ -62,6 +62,9 @@ TEST(Hardening, CountsAreSignedAndRangeChecked) {
   expect_refused(run("reference --sigma-a 1 --sigma-s 1 --bins -1"), {"--bins = '-1'", "2 to 10000000"});
   expect_refused(run("reference --sigma-a 1 --sigma-s 1 --seed -1"), {"--seed = '-1'"});
   expect_refused(run("reference --sigma-a 1 --sigma-s 1 --threads 99999"), {"--threads = '99999'", "0 to 4096"});
+  // CLI11 read '' as 0 for a double: a roulette threshold of 0 traced 1000 photons for 9 s (1e6: hours).
+  expect_refused(run("reference --sigma-a 0.1 --sigma-s 1 --roulette-threshold ''"), {"--roulette-threshold = ''", "a finite number"});
+  expect_refused(run("reference --sigma-a 0.1 --sigma-s 1 --roulette-threshold 0"), {"--roulette-threshold = 0", "1e-12 <= threshold < 1"});
   expect_refused(run("lut --kind radial --reference --sigma-a 1 --sigma-s 1 --photons -1 -o " + temp("t.exr").string()),
                  {"--photons = '-1'"});
   expect_refused(run("profile --material skin1 --samples -5"), {"--samples = '-5'", "2 to 1000000"});
@@ -230,6 +233,8 @@ TEST(Hardening, LengthsAreBoundedAndNamedAsTyped) {
   expect_refused(run("profile --sigma-a 0.1 --sigma-s 1 --radii 1,1e300"), {"--radii = 1e+300"});
   expect_refused(run("transmission --sigma-a 0.1 --sigma-s 1 --d-max 1e308"), {"--d-max = 1e+308"});
   expect_refused(run("reference --sigma-a 0.1 --sigma-s 1 --r-max 1e308 -n 100"), {"--r-max = 1e+308"});
+  // Bins of zero width gave R(r) = null in the JSON.
+  expect_refused(run("reference --sigma-a 0.1 --sigma-s 1 --r-max 4.9e-324 -n 100"), {"--r-max = 4.9e-324", "1e-9 mm per bin"});
   const auto layers = write("thick.json", "{\"format\": \"bssrdf-layers\", \"version\": 1,\n"
                                           "\"layers\": [{\"thickness\": 1e300, \"n\": 1.4, \"sigma_a\": 1, \"sigma_s\": 1}]}\n");
   expect_refused(run("reference --layers " + layers.string() + " -n 100"), {"thickness", "at most 1e6 mm"});
@@ -245,4 +250,13 @@ TEST(Hardening, FitWarnsAboutTheModelsOwnError) {
   const auto doc = json::parse(r.out);
   for (const auto& w : doc["warnings"]) said |= w.get<std::string>().find("statistical only; dipole itself differs") != std::string::npos;
   EXPECT_TRUE(said) << r.out.substr(0, 2000);
+}
+
+// --size went through sscanf("%u"): "-1x10" wrapped to 4 billion albedos (a hang), 1e5 x 1e5 ran out of memory (exit 1).
+TEST(Hardening, TableSizesAreSignedAndBounded) {
+  const auto out = temp("t.exr");
+  expect_refused(run("lut --kind albedo-radius --layout family --size -1x10 -o " + out.string()), {"--size = '-1x10'", "4 to 2048"});
+  expect_refused(run("lut --kind albedo-radius --layout family --size 100000x100000 -o " + out.string()), {"--size = '100000x100000'"});
+  expect_refused(run("lut --kind preintegrated --material skin1 --size 0x-5 -o " + out.string()), {"--size = '0x-5'", "2 to 8192"});
+  EXPECT_FALSE(std::filesystem::exists(out));
 }

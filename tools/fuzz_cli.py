@@ -30,6 +30,14 @@ COMMANDS = {
 SAFE = {"-n": "2000", "--photons": "2000"}
 
 
+def is_number(text):
+    try:
+        float(text)
+        return True
+    except ValueError:
+        return False
+
+
 def main():
     binary = sys.argv[1] if len(sys.argv) > 1 else "build/bssrdf"
     count = int(sys.argv[2]) if len(sys.argv) > 2 else 300
@@ -42,7 +50,7 @@ def main():
             args = command.split() + ["--sigma-a", "0.1", "--sigma-s", "1"] if command not in ("fit albedo",) else command.split() + ["--albedo", "0.5", "--distance", "1"]
             for option in rng.sample(COMMANDS[command], k=rng.randint(1, 3)):
                 value = rng.choice(HOSTILE) if rng.random() < 0.8 or option not in SAFE else SAFE[option]
-                if option in SAFE and value.lstrip("-").replace(".", "").isdigit() and abs(float(value)) > 1e5:
+                if option in SAFE and is_number(value) and abs(float(value)) > 1e5:
                     value = "-1"  # never start a huge Monte Carlo run: still a count the tool must refuse or bound
                 args += [option, value]
             output = os.path.join(tmp, f"out{i}.json")

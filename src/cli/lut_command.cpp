@@ -64,6 +64,21 @@ const std::vector<std::string>& kinds() {
   return k;
 }
 
+// "WxH" with each side a count in its range (parsed as signed: "-1x10" is refused, not wrapped).
+std::pair<std::size_t, std::size_t> parse_grid(const std::string& text, std::int64_t min_w, std::int64_t max_w,
+                                               std::int64_t min_h, std::int64_t max_h, const std::string& example) {
+  const auto x = text.find('x');
+  const std::string accepted = "WIDTHxHEIGHT, width " + count_range(min_w, max_w) + ", height " + count_range(min_h, max_h) +
+                               ", e.g. " + example;
+  if (x == std::string::npos) throw InvalidInput("--size", "'" + text + "'", accepted);
+  try {
+    return {static_cast<std::size_t>(parse_count(text.substr(0, x), "--size", min_w, max_w)),
+            static_cast<std::size_t>(parse_count(text.substr(x + 1), "--size", min_h, max_h))};
+  } catch (const InvalidInput&) {
+    throw InvalidInput("--size", "'" + text + "'", accepted);
+  }
+}
+
 double positive_fraction(const std::string& text, const std::string& field) {
   const double v = parse_number(text, field);
   if (!(v > 0 && v < 1)) throw InvalidInput(field, format_number(v), "0 < value < 1");
@@ -108,9 +123,8 @@ Built build_albedo_radius(const LutOptions& o) {
   if (o.layout == "pbrt") {
     layout = AlbedoRadiusLayout::pbrt();
   } else if (o.layout == "family") {
-    unsigned a = 0, r = 0;
-    if (std::sscanf(o.size.c_str(), "%ux%u", &a, &r) != 2)
-      throw InvalidInput("--size", "'" + o.size + "'", "ALBEDOSxRADII, e.g. 64x48 (each >= 4)");
+    // Up to 2048 a side, as the adaptive layout: 4M cells of beam integrals is already minutes.
+    const auto [a, r] = parse_grid(o.size, 4, 2048, 4, 2048, "64x48 (ALBEDOSxRADII)");
     layout = AlbedoRadiusLayout::family(a, r);
   } else if (o.layout == "adaptive") {
     const double table_tolerance = o.table_tolerance.empty() ? 1e-3 : positive_fraction(o.table_tolerance, "--table-tolerance");
@@ -215,11 +229,7 @@ Built build_transmission(const LutOptions& o, const MediumOptions::Resolved& res
 // "WxH", each >= 1 (width >= 2).
 std::pair<std::size_t, std::size_t> parse_size(const std::string& text, std::size_t width, std::size_t height) {
   if (text.empty()) return {width, height};
-  unsigned w = 0, h = 0;
-  char tail = 0;
-  if (std::sscanf(text.c_str(), "%ux%u%c", &w, &h, &tail) != 2 || w < 2 || h < 1 || w > 8192 || h > 8192)
-    throw InvalidInput("--size", "'" + text + "'", "WIDTHxHEIGHT, width 2 to 8192, height 1 to 8192, e.g. 256x256");
-  return {w, h};
+  return parse_grid(text, 2, 8192, 1, 8192, "256x256");
 }
 
 Built build_preintegrated(const LutOptions& o, const MediumOptions::Resolved& resolved, const Model& model, const TableContext& context) {

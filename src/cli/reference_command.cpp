@@ -24,7 +24,7 @@ Action register_reference(CLI::App& app) {
     std::uint64_t photons = 1'000'000, seed = 1;
     unsigned threads = 0;
     std::size_t bins = 100, depth_bins = 0;
-    double roulette_threshold = MonteCarloOptions{}.roulette_threshold, roulette_survival = MonteCarloOptions{}.roulette_survival;
+    std::string roulette_threshold, roulette_survival;  // parsed here: CLI11 reads '' as 0
   };
   auto options = std::make_shared<Options>();
   auto* sub = app.add_subcommand(
@@ -47,11 +47,12 @@ Action register_reference(CLI::App& app) {
   add_count_option(*sub, "--depth-bins", options->depth_bins, 0, kMaxBins, "Absorbed fraction by depth in this many bins [0: off; --mci: nz]");
   sub->add_option("--absorption", options->absorption, "Absorption estimator: implicit (weights + roulette) or analog [implicit]")
       ->check(CLI::IsMember({"implicit", "analog"}));
-  sub->add_option("--roulette-threshold", options->roulette_threshold,
-                  "Implicit capture: Russian roulette below this weight (unbiased for any value; MCML: 1e-4) [" +
+  auto* threshold_option = sub->add_option("--roulette-threshold", options->roulette_threshold,
+                  "Implicit capture: Russian roulette below this weight, 1e-12 to < 1 (unbiased for any value; cost grows as "
+                  "its logarithm falls; MCML: 1e-4) [" +
                       format_number(MonteCarloOptions{}.roulette_threshold) + "]");
-  sub->add_option("--roulette-survival", options->roulette_survival,
-                  "Implicit capture: probability of surviving the roulette (MCML: 0.1) [" +
+  auto* survival_option = sub->add_option("--roulette-survival", options->roulette_survival,
+                  "Implicit capture: probability of surviving the roulette, 0 < p <= 1 (MCML: 0.1) [" +
                       format_number(MonteCarloOptions{}.roulette_survival) + "]");
   options->output.add_to(*sub);
   layers->excludes(thickness)->excludes(mci);
@@ -61,7 +62,7 @@ Action register_reference(CLI::App& app) {
   auto* bins_option = sub->get_option("--bins");
   auto* depth_option = sub->get_option("--depth-bins");
 
-  return [options, unit_option, photons_option, bins_option, depth_option] {
+  return [options, unit_option, photons_option, bins_option, depth_option, threshold_option, survival_option] {
     const auto& o = *options;
     if (!o.layers.empty() || !o.mci.empty()) {
       if (!o.medium.material.empty() || !o.medium.sigma_a.empty() || !o.medium.sigma_s.empty() || !o.medium.g.empty() ||
@@ -77,8 +78,17 @@ Action register_reference(CLI::App& app) {
     base.spacing = o.spacing == "log" ? BinSpacing::log : BinSpacing::linear;
     base.depth_bins = o.depth_bins;
     base.absorption = o.absorption == "analog" ? AbsorptionEstimator::analog : AbsorptionEstimator::implicit_capture;
-    base.roulette_threshold = o.roulette_threshold;
-    base.roulette_survival = o.roulette_survival;
+    if (threshold_option->count()) {  // given, even as '' (which parse_number refuses)
+      // 0 would trace every photon until its weight underflows (thousands of interactions each).
+      base.roulette_threshold = parse_number(o.roulette_threshold, "--roulette-threshold");
+      if (!(base.roulette_threshold >= 1e-12 && base.roulette_threshold < 1))
+        throw InvalidInput("--roulette-threshold", o.roulette_threshold, "1e-12 <= threshold < 1");
+    }
+    if (survival_option->count()) {
+      base.roulette_survival = parse_number(o.roulette_survival, "--roulette-survival");
+      if (!(base.roulette_survival > 0 && base.roulette_survival <= 1))
+        throw InvalidInput("--roulette-survival", o.roulette_survival, "0 < survival <= 1");
+    }
 
     struct Case {
       std::string label;
@@ -92,11 +102,13 @@ Action register_reference(CLI::App& app) {
     const auto lengths = [&](MonteCarloOptions& mc, LengthUnit u) {
       if (!o.r_max.empty()) {
         mc.r_max = to_mm(parse_length(o.r_max, "--r-max"), u);
-        if (!(mc.r_max > 0)) throw InvalidInput("--r-max", o.r_max, "> 0");
+        // Bins of at least 1e-9 mm: narrower ones round R(r) = weight / area to infinity.
+        if (!(mc.r_max >= 1e-9 * static_cast<double>(mc.bins)))
+          throw InvalidInput("--r-max", o.r_max, "> 0 and at least 1e-9 mm per bin");
       }
       if (!o.r_min.empty()) {
         mc.r_min = to_mm(parse_length(o.r_min, "--r-min"), u);
-        if (!(mc.r_min > 0)) throw InvalidInput("--r-min", o.r_min, "> 0");
+        if (!(mc.r_min >= 1e-9)) throw InvalidInput("--r-min", o.r_min, "> 0 and at least 1e-9 mm");
       }
     };
     if (!o.mci.empty()) {

@@ -27,12 +27,15 @@ void MonteCarloOptions::validate() const {
   if (batch_size < 1) throw InvalidInput("batch_size", std::to_string(batch_size), ">= 1");
   if (threads > 4096) throw InvalidInput("threads", std::to_string(threads), "0 (all cores) to 4096");
   if (bins < 2 || bins > 10'000'000) throw InvalidInput("bins", std::to_string(bins), "2 to 10000000");
-  if (!std::isfinite(r_max) || r_max < 0) throw InvalidInput("r_max", format_number(r_max), "> 0 and finite (0: default)");
-  if (!std::isfinite(r_min) || r_min < 0) throw InvalidInput("r_min", format_number(r_min), "> 0 and finite (0: default)");
+  // Bins of at least 1e-9 mm, so R(r) = weight / bin area stays finite; lengths within 1e6 mm.
+  if (!(r_max == 0 || (r_max >= 1e-9 * static_cast<double>(bins) && r_max <= 1e6)))
+    throw InvalidInput("r_max", format_number(r_max), "1e-9 mm per bin to 1e6 mm (0: default)");
+  if (!(r_min == 0 || (r_min >= 1e-9 && r_min <= 1e6))) throw InvalidInput("r_min", format_number(r_min), "1e-9 to 1e6 mm (0: default)");
   if (r_max > 0 && r_min > 0 && spacing == BinSpacing::log && !(r_min < r_max))
     throw InvalidInput("r_min", format_number(r_min), "< r_max = " + format_number(r_max));
   if (depth_bins > 10'000'000) throw InvalidInput("depth_bins", std::to_string(depth_bins), "0 to 10000000");
-  if (!std::isfinite(z_max) || z_max < 0) throw InvalidInput("z_max", format_number(z_max), ">= 0 and finite");
+  if (!(z_max == 0 || (z_max >= 1e-9 * static_cast<double>(depth_bins) && z_max <= 1e6)))
+    throw InvalidInput("z_max", format_number(z_max), "1e-9 mm per depth bin to 1e6 mm (0: default)");
   if (!(roulette_threshold >= 0) || !(roulette_threshold < 1))
     throw InvalidInput("roulette_threshold", format_number(roulette_threshold), "0 <= threshold < 1");
   if (!(roulette_survival > 0) || !(roulette_survival <= 1))
