@@ -16,6 +16,7 @@
 #include "bssrdf/io/layers_json.hpp"
 #include "bssrdf/io/mci.hpp"
 #include "bssrdf/io/profile_csv.hpp"
+#include "bssrdf/io/rxt.hpp"
 #include "bssrdf/materials.hpp"
 
 namespace bssrdf::fuzz {
@@ -31,6 +32,7 @@ inline const std::vector<Target>& targets() {
       {"layers", [](const std::string& b) { parse_layers_json(b, "fuzz.json"); }},
       {"mci", [](const std::string& b) { parse_mci(b, "fuzz.mci"); }},
       {"profile_csv", [](const std::string& b) { parse_profile_csv(b, "fuzz.csv"); }},
+      {"rxt", [](const std::string& b) { parse_rxt(b, "fuzz.rxt"); }},
       {"fit_import", [](const std::string& b) { MaterialDatabase().add_text(materials_file_from_fit(b, "fit.json", "X", std::nullopt, "fit"), "m.json"); }},
   };
   return kFuzzTargets;
