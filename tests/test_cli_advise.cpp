@@ -1,0 +1,87 @@
+// `bssrdf advise` end to end: the JSON names issue 16 fixes, the choice is the cheapest candidate
+// within tolerance for the target, the object-size flag, and bad input (exit 2, one line, no output).
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "cli_runner.hpp"
+
+using namespace bssrdf;
+using test_cli::count_lines;
+using test_cli::run;
+
+TEST(CliAdvise, JsonNamesAndTheChoiceIsTheCheapestWithinTolerance) {
+  const auto r = run("advise --material Skin1 --pixel 0.1mm --tolerance 2 -f json -n 100000");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(doc.contains("choice"));
+  ASSERT_TRUE(doc["candidates"].is_array());
+  bool lambertian = false;
+  double previous_cost = -1;
+  std::optional<std::size_t> first_meeting;
+  for (std::size_t i = 0; i < doc["candidates"].size(); ++i) {
+    const auto& c = doc["candidates"][i];
+    for (const char* key : {"representation", "error", "cost", "meets_tolerance"}) ASSERT_TRUE(c.contains(key)) << key;
+    lambertian |= c["representation"] == "lambertian";
+    EXPECT_GE(c["cost"].get<double>(), previous_cost);  // cheapest first
+    previous_cost = c["cost"].get<double>();
+    EXPECT_EQ(c["meets_tolerance"].get<bool>(), c["error"].get<double>() <= 2.0);
+    if (!first_meeting && c["meets_tolerance"].get<bool>()) first_meeting = i;
+  }
+  EXPECT_TRUE(lambertian);
+  ASSERT_TRUE(first_meeting);
+  EXPECT_EQ(doc["choice"]["representation"], doc["candidates"][*first_meeting]["representation"]);
+  EXPECT_LT(doc["reference_noise"].get<double>(), 0.5);
+  EXPECT_EQ(doc["choice"]["cost_unit"], "ns");
+}
+
+TEST(CliAdvise, RealtimeTargetChoosesOnlyRealtimeCandidates) {
+  const auto r = run("advise --material Marble --pixel 1mm --tolerance 3 --target realtime -f json -n 100000");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  ASSERT_FALSE(doc["choice"].is_null());
+  EXPECT_TRUE(doc["choice"]["realtime"].get<bool>());
+  // Any offline candidate listed before the choice that meets the tolerance was skipped for the target.
+  for (const auto& c : doc["candidates"]) {
+    if (c["representation"] == doc["choice"]["representation"]) break;
+    EXPECT_TRUE(!c["meets_tolerance"].get<bool>() || !c["realtime"].get<bool>()) << c["representation"];
+  }
+}
+
+TEST(CliAdvise, LambertianSufficesWhenScatteringIsFarBelowAPixel) {
+  // sigma_s' = 100/mm: 0.06 mm diffuse mean free path, 50 mm pixels.
+  const auto r = run("advise --sigma-a 1 --sigma-s 100 --channels x --pixel 5cm -f json -n 100000");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["choice"]["representation"], "lambertian");
+}
+
+TEST(CliAdvise, WideProfilesOnSmallObjectsAreFlagged) {
+  auto r = run("advise --material Skin1 --pixel 1mm --object-size 5mm -n 20000 -f json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto doc = nlohmann::json::parse(r.out);
+  ASSERT_EQ(doc["warnings"].size(), 1u);
+  EXPECT_NE(doc["warnings"][0].get<std::string>().find("slab"), std::string::npos);
+  r = run("advise --material Skin1 --pixel 1mm --object-size 2m -n 20000 -f json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(nlohmann::json::parse(r.out)["warnings"].empty());
+}
+
+TEST(CliAdvise, TableNamesTheChoiceAndWhyCheaperOnesFail) {
+  const auto r = run("advise --material Ketchup --pixel 0.5mm -n 50000");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("lambertian"), std::string::npos);
+  EXPECT_TRUE(r.out.find("choice:") != std::string::npos || r.out.find("no candidate") != std::string::npos);
+}
+
+TEST(CliAdvise, BadInputExitsTwoWithOneLine) {
+  for (const char* args : {"--material Skin1 --pixel -1mm", "--material Skin1 --pixel 0.1furlong", "--material Skin1 --pixel 0",
+                           "--material Skin1 --pixel 0.1 --tolerance 0", "--material Skin1 --pixel 0.1 --tolerance nan",
+                           "--material Skin1 --pixel 0.1 --target mobile", "--material Skin1 --pixel 0.1 --object-size -3",
+                           "--material Skin1", "--material Skin1 --pixel 0.1 -n 5", "--all --material Skin1 --pixel 1"}) {
+    const auto r = run(std::string("advise ") + args);
+    EXPECT_EQ(r.status, 2) << args << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;
+    EXPECT_TRUE(r.out.empty()) << args;
+  }
+}
