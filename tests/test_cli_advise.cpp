@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <algorithm>
+#include <filesystem>
 #include <optional>
 
 #include "cli_runner.hpp"
@@ -83,5 +85,30 @@ TEST(CliAdvise, BadInputExitsTwoWithOneLine) {
     EXPECT_EQ(r.status, 2) << args << ": " << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;
     EXPECT_TRUE(r.out.empty()) << args;
+  }
+}
+
+TEST(CliValidityMap, WritesEveryModelsPanelAndTheCheapestMap) {
+  const auto file = test_cli::temp("map.svg");
+  for (const char* over : {"albedo,eta", "albedo,g"}) {
+    const auto r = run(std::string("models --map ") + file.string() + " --over " + over + " --metric total --accuracy 0.05");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string svg = test_cli::slurp(file);
+    for (const char* model : {"dipole", "better-dipole", "burley", "pbd", "quantized+ss"})
+      EXPECT_NE(svg.find(std::string(">") + model + "<"), std::string::npos) << model;
+    EXPECT_NE(svg.find("cheapest within 5 %"), std::string::npos);
+    EXPECT_NE(svg.find("alpha' (reduced albedo)"), std::string::npos);
+    EXPECT_GT(std::count(svg.begin(), svg.end(), '\n'), 100);
+  }
+}
+
+TEST(CliValidityMap, BadInputExitsTwoWithoutAFile) {
+  const auto file = test_cli::temp("bad.svg");
+  for (const std::string args : {"--map " + file.string() + " --over albedo,sigma", "--map " + file.string() + " --metric image",
+                                 "--map " + test_cli::temp("map.png").string(), "--map " + file.string() + " --accuracy -1"}) {
+    const auto r = run("models " + args);
+    EXPECT_EQ(r.status, 2) << args << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(file)) << args;
   }
 }

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <numbers>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "bssrdf/error.hpp"
+#include "bssrdf/lut/gaussian_mixture_table.hpp"
 #include "bssrdf/model.hpp"
 #include "bssrdf/model_choice.hpp"
 
@@ -98,6 +100,22 @@ Advice advise(const Medium& medium, const ReferenceProfile& reference, const Adv
       profiles.push_back(annuli_of(edges, table, 0));  // no light beyond the table
     }
     add("radial-table-" + std::to_string(n) + ":" + best_model, profiles, kTableLookupNs, n * channels * 4, true);
+  }
+  for (int count : {1, 2, 4, 8}) {
+    const GaussianMixtureTable fit = fitted_mixture_table(medium, *model, count);
+    std::vector<AnnularProfile> profiles;
+    for (std::size_t c = 0; c < channels; ++c) {
+      const auto& w = fit.weight[c];
+      const auto& v = fit.variance[c];
+      const auto sum = [&](double r) {
+        double R = 0;
+        for (std::size_t k = 0; k < w.size(); ++k) R += w[k] * std::exp(-r * r / (2 * v[k])) / (2 * std::numbers::pi * v[k]);
+        return R;
+      };
+      profiles.push_back(annuli_of(edges, sum, 0));  // a sum of Gaussians has no tail beyond itself
+    }
+    add("gaussians-" + std::to_string(count) + ":" + best_model, profiles, count * kGaussianTermNs,
+        static_cast<std::size_t>(count) * (channels + 1) * 4, true);
   }
   add("reference-table", ref.channels, kTableLookupNs, (edges.size() - 1) * channels * 4, true);
   advice.candidates.back().image.error = 2 * advice.candidates.back().image.reference_noise;

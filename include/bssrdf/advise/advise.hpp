@@ -13,6 +13,9 @@
 //  - "radial-table-N:MODEL": R(r) of the analytic model with the smallest image error, tabulated
 //    at N radii geometric from 1e-3 to 30 transport mean free paths and interpolated linearly in
 //    (ln r, ln R), 0 beyond; N = 8, 16, 32, 64. Cost kTableLookupNs, memory N x channels x 4 bytes.
+//  - "gaussians-K:MODEL": K = 1, 2, 4, 8 Gaussians with shared variances fitted to that model
+//    (fitted_mixture_table, the texture-space / GPU Gems 3 form). Cost K x kGaussianTermNs, memory
+//    K x (channels + 1) x 4 bytes.
 //  - "reference-table": the reference itself tabulated on its annuli (what `lut --kind radial
 //    --reference` writes); error: twice the reference noise (its own statistical error, which the
 //    comparison against itself cannot see). Cost kTableLookupNs, memory annuli x channels x 4 bytes.
@@ -36,6 +39,8 @@ namespace bssrdf {
 // Assumed cost of one table lookup with interpolation (a log, a floor, a lerp), ns: an estimate of
 // the order of bench_models' closed forms, not a measurement.
 inline constexpr double kTableLookupNs = 5;
+// Assumed cost of one Gaussian term (an exp and a multiply-add), ns: an estimate, not a measurement.
+inline constexpr double kGaussianTermNs = 3;
 
 enum class AdviseTarget { realtime, offline, any };
 AdviseTarget parse_advise_target(const std::string& text);  // throws InvalidInput naming "--target"

@@ -82,7 +82,9 @@ class ImageErrorMeter {
   std::vector<double> edges_;
   double pixel_ = 0;
   std::size_t K_ = 0;
-  std::vector<std::vector<double>> weight_;  // [pixel][annulus], edge pattern
+  std::vector<std::vector<double>> weight_;  // [pixel][annulus - first_[pixel]], edge pattern
+  std::vector<std::size_t> first_;           // [pixel]: annuli before it are wholly on one side
+  double weight(std::size_t pixel, std::size_t annulus) const;
 };
 
 }  // namespace bssrdf
