@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Checks `bssrdf advise`'s predicted image error independently of the advice code.
 
 For each material and pixel size: the advice (seed 1, default photons) names a representation and
@@ -7,7 +7,7 @@ against an independent, 5x larger Monte Carlo reference (seed 2, the tool's `ref
 its own log bins), with the same definition (README, "Choosing by what a viewer sees"): shadow edge
 and one-pixel line, box-filtered, 8-bit sRGB code values, largest over pixels and channels.
 
-  python3 tools/validation/advise_check.py build/bssrdf Skin1,Ketchup 0.01,0.1,1,10
+  /usr/bin/python3 tools/validation/advise_check.py build/bssrdf Skin1,Ketchup 0.01,0.1,1,10
 """
 import csv, io, json, math, subprocess, sys
 import numpy as np
