@@ -174,7 +174,7 @@ std::string to_table(const Advice& advice, const std::string& material) {
   for (std::size_t i = 0; i < advice.candidates.size(); ++i) {
     const auto& c = advice.candidates[i];
     out << std::left << std::setw(34) << c.representation << std::right << std::setw(10) << std::setprecision(3) << c.image.error
-        << std::setw(10) << std::setprecision(0) << c.cost << std::setw(10) << c.memory_bytes << "  "
+        << std::setw(10) << std::setprecision(1) << c.cost << std::setw(10) << c.memory_bytes << "  "
         << (c.meets_tolerance ? "yes" : "no") << (c.realtime ? "" : " (offline)") << (advice.choice == i ? "  <- choice" : "") << "\n";
   }
   out << std::setprecision(3);

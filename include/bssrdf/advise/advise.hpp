@@ -36,11 +36,12 @@
 
 namespace bssrdf {
 
-// Assumed cost of one table lookup with interpolation (a log, a floor, a lerp), ns: an estimate of
-// the order of bench_models' closed forms, not a measurement.
-inline constexpr double kTableLookupNs = 5;
-// Assumed cost of one Gaussian term (an exp and a multiply-add), ns: an estimate, not a measurement.
-inline constexpr double kGaussianTermNs = 3;
+// One lookup of a radial table (a log, a floor, a lerp and an exp), ns, and one Gaussian term: the
+// ratios to the dipole's R(r) measured by tools/bench/bench_advise (0.68 and 1.88 / 8 for 8
+// Gaussians, median of 3, loaded 2-core machine) times the dipole's 19 ns of bench_models, so that
+// they rank with the models' costs.
+inline constexpr double kTableLookupNs = 13;
+inline constexpr double kGaussianTermNs = 4.5;
 
 enum class AdviseTarget { realtime, offline, any };
 AdviseTarget parse_advise_target(const std::string& text);  // throws InvalidInput naming "--target"
