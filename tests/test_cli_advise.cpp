@@ -5,7 +5,9 @@
 #include <nlohmann/json.hpp>
 #include <algorithm>
 #include <filesystem>
+#include <cstdio>
 #include <optional>
+#include <sstream>
 
 #include "cli_runner.hpp"
 
@@ -111,4 +113,43 @@ TEST(CliValidityMap, BadInputExitsTwoWithoutAFile) {
     EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;
     EXPECT_FALSE(std::filesystem::exists(file)) << args;
   }
+}
+
+TEST(CliAdvise, WriteProducesTheChosenTable) {
+  const auto dir = test_cli::temp("advised");
+  // A loose tolerance: the Lambertian albedo, equal to the reference's diffuse reflectance.
+  auto r = run("advise --material Skin1 --pixel 1mm --tolerance 300 -n 20000 -f json --write " + dir.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_EQ(nlohmann::json::parse(r.out)["choice"]["representation"], "lambertian");
+  auto table = nlohmann::json::parse(test_cli::slurp(dir / "Skin1.lambertian.json"));
+  EXPECT_EQ(table["format"], "bssrdf-lut");
+  EXPECT_EQ(table["kind"], "albedo");
+  ASSERT_EQ(table["channels"].size(), 3u);
+  const double red = table["channels"][0]["values"][0].get<double>();
+  EXPECT_GT(red, 0.3);  // Skin1's red diffuse reflectance, about 0.44
+  EXPECT_LT(red, 0.6);
+  // A tolerance the 8-radius table meets: its values are the model's R(r) at its radii.
+  r = run("advise --material Skin1 --pixel 1mm --tolerance 30 -n 20000 --write " + dir.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_NE(r.out.find("choice: radial-table-8:pbd"), std::string::npos) << r.out;
+  table = nlohmann::json::parse(test_cli::slurp(dir / "Skin1.radial-table-8_pbd.json"));
+  EXPECT_EQ(table["width"], 8);
+  const auto radius = table["channels"][0]["values"][3].get<double>(), R = table["channels"][1]["values"][3].get<double>();
+  char radii[64];
+  std::snprintf(radii, sizeof radii, "%.17g,%.17g", radius, 2 * radius);
+  const auto p = run(std::string("profile --material Skin1 --model pbd -f csv --radii ") + radii);
+  ASSERT_EQ(p.status, 0) << p.err;
+  std::istringstream lines(p.out);
+  std::string line;
+  while (std::getline(lines, line) && (line.empty() || line[0] == '#' || line[0] == 'r')) {}
+  const double profile_R = std::stod(line.substr(line.find(',') + 1));  // first row, red channel
+  EXPECT_NEAR(R, profile_R, 1e-9 * profile_R);
+}
+
+TEST(CliAdvise, WriteWithoutAChoiceFailsWithoutOutput) {
+  const auto dir = test_cli::temp("none");
+  const auto r = run("advise --material Skin1 --pixel 1mm --tolerance 0.01 -n 20000 --write " + dir.string());
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_TRUE(r.out.empty());
 }

@@ -73,7 +73,10 @@ Advice advise(const Medium& medium, const ReferenceProfile& reference, const Adv
   };
 
   std::vector<AnnularProfile> lambertian;
-  for (const auto& p : ref.channels) lambertian.push_back(point_profile(edges, p.total()));
+  for (const auto& p : ref.channels) {
+    lambertian.push_back(point_profile(edges, p.total()));
+    advice.diffuse_reflectance.push_back(p.total());
+  }
   add("lambertian", lambertian, 0, 0, true);
 
   std::string best_model;

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "bssrdf/advise/advise.hpp"
+#include "bssrdf/advise/advise_files.hpp"
 #include "bssrdf/error.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -37,7 +38,7 @@ double parse_length(const std::string& text, const std::string& field, LengthUni
 Action register_advise(CLI::App& app) {
   struct Options {
     MediumOptions medium;
-    std::string pixel, target = "any", tolerance = "1", object_size, format;
+    std::string pixel, target = "any", tolerance = "1", object_size, format, write;
     bool all = false;
     std::uint64_t photons = 200'000, seed = 1;
     unsigned threads = 0;
@@ -53,6 +54,8 @@ Action register_advise(CLI::App& app) {
   sub->add_option("--target", options->target, "realtime, offline or any [any]");
   sub->add_option("--object-size", options->object_size, "Size of the object, with an optional unit: flags profiles wider than it");
   sub->add_flag("--all", options->all, "Every material of the database, one line each");
+  sub->add_option("--write", options->write, "Write the chosen representation's table into this directory (bssrdf-lut JSON)")
+      ->check(file_name("--write"));
   add_count_option(*sub, "--photons,-n", options->photons, 1000, kMaxPhotons,
                    "Monte Carlo reference: photons per channel [200000]");
   add_count_option(*sub, "--seed", options->seed, 0, kMaxSeed, "Monte Carlo reference: random seed [1]");
@@ -72,6 +75,7 @@ Action register_advise(CLI::App& app) {
     const bool json = o.format == "json";
 
     if (o.all) {
+      if (!o.write.empty()) throw InvalidInput("--write", o.write, "one material at a time (not with --all)");
       if (!o.medium.material.empty() || !o.medium.sigma_a.empty() || !o.medium.sigma_s.empty())
         throw InvalidInput("--all", "with a medium", "alone (it advises on every material of the database)");
       const auto database = MaterialDatabase::load_with_user(o.medium.db);
@@ -101,7 +105,11 @@ Action register_advise(CLI::App& app) {
     const auto resolved = o.medium.resolve();
     const std::string name = resolved.material ? resolved.material->name : "medium";
     const Advice advice = advise(resolved.medium, reference, a);
+    std::string written;
+    if (!o.write.empty())  // before printing, so a failure prints nothing
+      written = write_advised_file(o.write, name, resolved.medium, resolved.material, advice, {o.photons, o.seed, o.threads}).string();
     std::cout << (json ? to_json(advice, name) : to_table(advice, name));
+    if (!written.empty() && !json) std::cout << "wrote: " << written << "\n";
   };
 }
 

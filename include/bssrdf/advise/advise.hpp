@@ -68,6 +68,7 @@ struct Advice {
   std::string reference;                  // its description
   double reference_seconds = 0;
   double reference_noise = 0;             // largest over the candidates' comparisons (code values)
+  std::vector<double> diffuse_reflectance;  // the reference's, per channel (the Lambertian albedo)
   std::vector<AdviseCandidate> candidates;  // cheapest first (all, whatever the target)
   std::optional<std::size_t> choice;      // index into candidates: cheapest within tolerance for the target
   double profile_radius = 0;              // mm: the radius holding 99 % of the reference's light, widest channel
