@@ -23,7 +23,7 @@ bool closed_form(const std::string& model) {
 
 std::function<double(double)> radial_table(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell, double hi_ell) {
   if (n < 2) throw InvalidInput("radial table radii", std::to_string(n), ">= 2");
-  const double lo = lo_ell * m.ell, hi = hi_ell * m.ell, step = std::log(hi / lo) / static_cast<double>(n - 1);
+  const double lo = lo_ell * m.ell, hi = hi_ell * m.ell, step = std::log(hi_ell / lo_ell) / static_cast<double>(n - 1);
   std::vector<double> log_R(n);
   for (std::size_t j = 0; j < n; ++j) {
     const double R = model.reflectance(m, lo * std::exp(step * static_cast<double>(j)));

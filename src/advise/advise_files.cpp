@@ -43,12 +43,13 @@ std::filesystem::path write_advised_file(const std::filesystem::path& dir, const
     table = described_table("radial-log", n, 1, context);
     table.set("bssrdf:interpolation", "linear in (ln r, ln R); R(r_0) below r_0, 0 beyond r_{N-1}");
     for (std::size_t c = 0; c < medium.channels(); ++c) {
+      // The nodes of radial_table(): R of the model at lo e^{j step}, exactly as the advice judged them.
       const auto m = medium.reduced(c);
-      const auto R = radial_table(*model, m, n);
+      const double lo = 1e-3 * m.ell, step = std::log(30 / 1e-3) / static_cast<double>(n - 1);  // as radial_table()
       std::vector<double> radius, values;
       for (std::size_t j = 0; j < n; ++j) {
-        radius.push_back(1e-3 * m.ell * std::pow(3e4, static_cast<double>(j) / static_cast<double>(n - 1)));
-        values.push_back(R(radius.back()));
+        radius.push_back(lo * std::exp(step * static_cast<double>(j)));
+        values.push_back(model->reflectance(m, radius.back()));
       }
       table.add_channel("radius." + medium.channel_names[c], "radius, mm", radius);
       table.add_channel(medium.channel_names[c], "R(r), 1/mm^2, per unit entered flux", values);
