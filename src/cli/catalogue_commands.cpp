@@ -7,6 +7,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "bssrdf/advise/validity_map.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/io/atomic_file.hpp"
 #include "bssrdf/io/svg_chart.hpp"
@@ -96,7 +97,20 @@ Action register_models(CLI::App& app) {
   sub->add_option("--accuracy", *accuracy, "With a medium: relative error allowed (total and R(r) L2) [0.1]");
   auto chart = std::make_shared<std::string>();
   sub->add_option("--chart", *chart, "Write an SVG chart of cost against measured error (over all measured cases, or for the medium)");
-  return [json, medium, accuracy, chart] {
+  auto map = std::make_shared<ValidityMapOptions>();
+  auto map_file = std::make_shared<std::string>();
+  sub->add_option("--map", *map_file, "Write SVG validity maps: each model's measured error over a parameter plane and the cheapest within --accuracy, materials marked");
+  sub->add_option("--over", map->over, "--map: the plane, albedo,eta (g = 0) or albedo,g (eta = 1.3) [albedo,eta]");
+  sub->add_option("--metric", map->metric, "--map: total or profile (relative errors against Monte Carlo) [profile]");
+  return [json, medium, accuracy, chart, map, map_file] {
+    if (!map_file->empty()) {  // validity maps (advise/validity_map.hpp)
+      if (std::filesystem::path(*map_file).extension() != ".svg") throw InvalidInput("--map", "'" + *map_file + "'", "a file ending in .svg");
+      map->tolerance = parse_accuracy(*accuracy);
+      const auto database = MaterialDatabase::load_with_user(medium->db);
+      write_file_atomically(*map_file, render_validity_map(*map, database.all()));
+      std::cout << "map: " << *map_file << '\n';
+      return;
+    }
     if (!chart->empty()) {
       if (std::filesystem::path(*chart).extension() != ".svg") throw InvalidInput("--chart", "'" + *chart + "'", "a file ending in .svg");
       std::optional<MediumOptions::Resolved> resolved;

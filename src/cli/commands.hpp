@@ -17,5 +17,6 @@ Action register_fit(CLI::App& app);
 Action register_transmission(CLI::App& app);
 Action register_lut(CLI::App& app);
 Action register_slab(CLI::App& app);
+Action register_advise(CLI::App& app);
 
 }  // namespace bssrdf::cli

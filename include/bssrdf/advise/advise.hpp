@@ -1,0 +1,93 @@
+// The cheapest representation of a material that looks right at a scene's pixel size: every
+// candidate is rendered through the image-space error (image_error.hpp) against the reference
+// (reference_profile.hpp) and the cheapest one within the tolerance for the target is chosen.
+//
+//   Advice a = advise(skin, MonteCarloReference({}), {.pixel = 0.1, .tolerance = 1});
+//   if (a.choice) std::cout << a.candidates[*a.choice].representation;
+//
+// Candidates (cost: nanoseconds of profile work per evaluation at a shading point, the unit every
+// candidate shares; ties ordered by memory):
+//  - "lambertian": no subsurface transport, the reference's diffuse reflectance as albedo. Cost 0.
+//  - every analytic model of the registry (dipole, better-dipole, burley, ..., quantized+ss): cost
+//    one R(r) evaluation as measured by bench_models (model_choice.hpp).
+//  - "radial-table-N:MODEL": R(r) of the analytic model with the smallest image error, tabulated
+//    at N radii geometric from 1e-3 to 30 transport mean free paths and interpolated linearly in
+//    (ln r, ln R), 0 beyond; N = 8, 16, 32, 64. Cost kTableLookupNs, memory N x channels x 4 bytes.
+//  - "gaussians-K:MODEL": K = 1, 2, 4, 8 Gaussians with shared variances fitted to that model
+//    (fitted_mixture_table, the texture-space / GPU Gems 3 form). Cost K x kGaussianTermNs, memory
+//    K x (channels + 1) x 4 bytes.
+//  - "reference-table": the reference itself tabulated on its annuli (what `lut --kind radial
+//    --reference` writes); error: twice the reference noise (its own statistical error, which the
+//    comparison against itself cannot see). Cost kTableLookupNs, memory annuli x channels x 4 bytes.
+// Real-time targets keep the candidates a shader evaluates in closed form or by one lookup:
+// lambertian, dipole, better-dipole, the burley variants and the tables.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bssrdf/advise/image_error.hpp"
+#include "bssrdf/advise/reference_profile.hpp"
+#include "bssrdf/medium.hpp"
+#include "bssrdf/model.hpp"
+
+namespace bssrdf {
+
+// One lookup of a radial table (a log, a floor, a lerp and an exp), ns, and one Gaussian term: the
+// ratios to the dipole's R(r) measured by tools/bench/bench_advise (0.68 and 1.88 / 8 for 8
+// Gaussians, median of 3, loaded 2-core machine) times the dipole's 19 ns of bench_models, so that
+// they rank with the models' costs.
+inline constexpr double kTableLookupNs = 13;
+inline constexpr double kGaussianTermNs = 4.5;
+
+enum class AdviseTarget { realtime, offline, any };
+AdviseTarget parse_advise_target(const std::string& text);  // throws InvalidInput naming "--target"
+std::string_view to_string(AdviseTarget target);
+
+struct AdviseOptions {
+  double pixel = 0.1;      // mm per pixel
+  double tolerance = 1;    // largest acceptable image error, 8-bit sRGB code values
+  AdviseTarget target = AdviseTarget::any;
+  double object_size = 0;  // mm; 0: not given
+};
+
+struct AdviseCandidate {
+  std::string representation;
+  ImageError image;                // .error: the predicted image-space error
+  double cost = 0;                 // ns per evaluation
+  std::size_t memory_bytes = 0;
+  bool realtime = false;
+  bool meets_tolerance = false;
+};
+
+struct Advice {
+  AdviseOptions options;
+  std::string reference;                  // its description
+  double reference_seconds = 0;
+  double reference_noise = 0;             // largest over the candidates' comparisons (code values)
+  std::vector<double> diffuse_reflectance;  // the reference's, per channel (the Lambertian albedo)
+  std::vector<AdviseCandidate> candidates;  // cheapest first (all, whatever the target)
+  std::optional<std::size_t> choice;      // index into candidates: cheapest within tolerance for the target
+  double profile_radius = 0;              // mm: the radius holding 99 % of the reference's light, widest channel
+  std::string object_warning;             // non-empty when 2 profile_radius exceeds options.object_size
+};
+
+// The radial-table candidate: R(r) of `model` at n >= 2 radii geometric over [lo_ell ell, hi_ell ell]
+// (ell: transport mean free path), linear in (ln r, ln R) between them, R(r_0) below and 0 beyond
+// (the table a renderer loads).
+std::function<double(double)> radial_table(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell = 1e-3,
+                                           double hi_ell = 30);
+
+Advice advise(const Medium& medium, const ReferenceProfile& reference, const AdviseOptions& options);
+
+// JSON (names fixed by issue 16): {"choice": {"representation", "error", "cost", "memory_bytes",
+// ...} or null, "candidates": [{"representation", "error", "cost", "meets_tolerance", ...}],
+// "pixel_mm", "tolerance", "target", "reference", "reference_noise", "profile_radius_mm", "warnings"}.
+std::string to_json(const Advice& advice, const std::string& material);
+// A table for people: the candidates, the choice and why the cheaper ones fail.
+std::string to_table(const Advice& advice, const std::string& material);
+
+}  // namespace bssrdf

@@ -1,0 +1,25 @@
+// The files for an advised representation (`bssrdf advise --write DIR`), as bssrdf-lut JSON, the
+// format `bssrdf lut` writes, named DIR/STEM.REPRESENTATION.json (':' becomes '_'):
+//  - lambertian: kind "albedo", one value per channel (the reference's diffuse reflectance);
+//  - radial-table-N:MODEL: kind "radial-log", the N radii and R(r) per channel (each channel its
+//    own radii, 1e-3 to 30 transport mean free paths), linear in (ln r, ln R), 0 beyond;
+//  - gaussians-K:MODEL: the `lut --kind gaussians` table of K Gaussians fitted to MODEL;
+//  - reference-table: the `lut --kind radial --reference` table (same photons and seed as advised);
+//  - an analytic model: the `lut --kind radial --model MODEL` table.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+
+#include "bssrdf/advise/advise.hpp"
+#include "bssrdf/materials.hpp"
+
+namespace bssrdf {
+
+// Writes the chosen candidate's file (atomically; creates DIR). Returns its path. Throws
+// InvalidInput when the advice has no choice or DIR cannot be created.
+std::filesystem::path write_advised_file(const std::filesystem::path& dir, const std::string& stem, const Medium& medium,
+                                         const std::optional<Material>& material, const Advice& advice,
+                                         const MonteCarloReferenceOptions& reference);
+
+}  // namespace bssrdf

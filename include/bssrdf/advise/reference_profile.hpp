@@ -1,0 +1,67 @@
+// Where the truth comes from when a representation is judged: one interface, so that the exact
+// model, when it exists, replaces the Monte Carlo reference by one change (a ModelReference of it).
+//
+//   MonteCarloReference mc({.photons = 200'000});
+//   ReferenceProfiles ref = mc.profiles(skin);       // one AnnularProfile per channel, with stderr
+//   ModelReference exact(make_model("pbd"));         // a formula as the reference: no noise, fast
+//
+// Annuli: the first [0, r_min), then geometric from r_min = 1e-3 ell to r_max = 30 ell (ell: the
+// transport mean free path, smallest and largest over the channels), 48 per decade, then
+// [r_max, 2 r_max] for the light beyond. All channels share them. Spreading each annulus's light
+// evenly over it is the image error's one approximation: for a Gaussian profile it is measured at
+// 0.6 code values with 24 annuli per decade, 0.15 with 48 (second order; tests/test_image_error.cpp).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bssrdf/advise/annular_profile.hpp"
+#include "bssrdf/medium.hpp"
+#include "bssrdf/model.hpp"
+
+namespace bssrdf {
+
+struct ReferenceProfiles {
+  std::string description;               // what was run, for reports
+  std::vector<AnnularProfile> channels;  // per entered flux
+  double seconds = 0;                    // wall-clock cost of producing them
+};
+
+class ReferenceProfile {
+ public:
+  virtual ~ReferenceProfile() = default;
+  virtual ReferenceProfiles profiles(const Medium& medium) const = 0;
+};
+
+// The annuli described above, for a medium.
+std::vector<double> reference_annuli(const Medium& medium, std::size_t bins_per_decade = 48);
+
+struct MonteCarloReferenceOptions {
+  std::uint64_t photons = 200'000;  // per channel
+  std::uint64_t seed = 1;
+  unsigned threads = 0;             // 0: all; never changes the result
+};
+
+// The radiative-transfer Monte Carlo solution of the half-space (montecarlo.hpp), binned on the annuli.
+class MonteCarloReference : public ReferenceProfile {
+ public:
+  explicit MonteCarloReference(MonteCarloReferenceOptions options) : options_(options) {}
+  ReferenceProfiles profiles(const Medium& medium) const override;
+
+ private:
+  MonteCarloReferenceOptions options_;
+};
+
+// A model as the reference (exact when the model is; for tests and for the exact model to come).
+class ModelReference : public ReferenceProfile {
+ public:
+  explicit ModelReference(std::unique_ptr<Model> model) : model_(std::move(model)) {}
+  ReferenceProfiles profiles(const Medium& medium) const override;
+
+ private:
+  std::unique_ptr<Model> model_;
+};
+
+}  // namespace bssrdf

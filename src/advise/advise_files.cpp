@@ -1,0 +1,77 @@
+#include "bssrdf/advise/advise_files.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bssrdf/error.hpp"
+#include "bssrdf/io/atomic_file.hpp"
+#include "bssrdf/layers.hpp"
+#include "bssrdf/lut/gaussian_mixture_table.hpp"
+#include "bssrdf/lut/radial_table.hpp"
+#include "bssrdf/lut/reference_radial_table.hpp"
+#include "bssrdf/lut/table_context.hpp"
+
+namespace bssrdf {
+
+std::filesystem::path write_advised_file(const std::filesystem::path& dir, const std::string& stem, const Medium& medium,
+                                         const std::optional<Material>& material, const Advice& advice,
+                                         const MonteCarloReferenceOptions& reference) {
+  if (!advice.choice) throw InvalidInput("--write: no candidate meets the tolerance for this target, so there is nothing to write");
+  const std::string representation = advice.candidates[*advice.choice].representation;
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error || !std::filesystem::is_directory(dir)) throw InvalidInput("--write", "'" + dir.string() + "'", "a directory that can be created");
+  std::string name = representation;
+  std::replace(name.begin(), name.end(), ':', '_');
+  const auto path = dir / (stem + "." + name + ".json");
+
+  const auto colon = representation.find(':');
+  const std::string head = representation.substr(0, colon);
+  std::unique_ptr<Model> model;
+  if (colon != std::string::npos) model = make_model(representation.substr(colon + 1));
+  TableContext context;
+  context.material = material;
+  context.medium = &medium;
+  context.model = model.get();
+  LookupTable table;
+  if (representation == "lambertian") {
+    table = described_table("albedo", 1, 1, context);
+    for (std::size_t c = 0; c < medium.channels(); ++c)
+      table.add_channel(medium.channel_names[c], "diffuse reflectance (albedo), per unit entered flux", {advice.diffuse_reflectance[c]});
+  } else if (head.rfind("radial-table-", 0) == 0) {
+    const auto n = static_cast<std::size_t>(std::stoul(head.substr(13)));
+    table = described_table("radial-log", n, 1, context);
+    table.set("bssrdf:interpolation", "linear in (ln r, ln R); R(r_0) below r_0, 0 beyond r_{N-1}");
+    for (std::size_t c = 0; c < medium.channels(); ++c) {
+      // The nodes of radial_table(): R of the model at lo e^{j step}, exactly as the advice judged them.
+      const auto m = medium.reduced(c);
+      const double lo = 1e-3 * m.ell, step = std::log(30 / 1e-3) / static_cast<double>(n - 1);  // as radial_table()
+      std::vector<double> radius, values;
+      for (std::size_t j = 0; j < n; ++j) {
+        radius.push_back(lo * std::exp(step * static_cast<double>(j)));
+        values.push_back(model->reflectance(m, radius.back()));
+      }
+      table.add_channel("radius." + medium.channel_names[c], "radius, mm", radius);
+      table.add_channel(medium.channel_names[c], "R(r), 1/mm^2, per unit entered flux", values);
+    }
+  } else if (head.rfind("gaussians-", 0) == 0) {
+    table = to_lookup_table(fitted_mixture_table(medium, *model, std::stoi(head.substr(10))), context);
+  } else if (representation == "reference-table") {
+    ReferenceRadialOptions options;
+    options.photons = reference.photons;
+    options.seed = reference.seed;
+    options.threads = reference.threads;
+    table = to_lookup_table(build_reference_radial_table(LayerStack::half_space(medium), options), context);
+  } else {
+    model = make_model(representation);
+    context.model = model.get();
+    table = to_lookup_table(build_radial_table(medium, *model, {}), context);
+  }
+  table.set("bssrdf:advice", representation + " at " + format_number(advice.options.pixel) + " mm per pixel: image error " +
+                                 format_number(advice.candidates[*advice.choice].image.error) + " code values (tolerance " +
+                                 format_number(advice.options.tolerance) + ")");
+  write_file_atomically(path, to_json(table));
+  return path;
+}
+
+}  // namespace bssrdf

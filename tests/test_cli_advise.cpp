@@ -1,0 +1,158 @@
+// `bssrdf advise` end to end: the JSON names issue 16 fixes, the choice is the cheapest candidate
+// within tolerance for the target, the object-size flag, and bad input (exit 2, one line, no output).
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <algorithm>
+#include <filesystem>
+#include <cstdio>
+#include <optional>
+#include <sstream>
+
+#include "cli_runner.hpp"
+
+using namespace bssrdf;
+using test_cli::count_lines;
+using test_cli::run;
+
+TEST(CliAdvise, JsonNamesAndTheChoiceIsTheCheapestWithinTolerance) {
+  const auto r = run("advise --material Skin1 --pixel 0.1mm --tolerance 2 -f json -n 100000");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(doc.contains("choice"));
+  ASSERT_TRUE(doc["candidates"].is_array());
+  bool lambertian = false;
+  double previous_cost = -1;
+  std::optional<std::size_t> first_meeting;
+  for (std::size_t i = 0; i < doc["candidates"].size(); ++i) {
+    const auto& c = doc["candidates"][i];
+    for (const char* key : {"representation", "error", "cost", "meets_tolerance"}) ASSERT_TRUE(c.contains(key)) << key;
+    lambertian |= c["representation"] == "lambertian";
+    EXPECT_GE(c["cost"].get<double>(), previous_cost);  // cheapest first
+    previous_cost = c["cost"].get<double>();
+    EXPECT_EQ(c["meets_tolerance"].get<bool>(), c["error"].get<double>() <= 2.0);
+    if (!first_meeting && c["meets_tolerance"].get<bool>()) first_meeting = i;
+  }
+  EXPECT_TRUE(lambertian);
+  ASSERT_TRUE(first_meeting);
+  EXPECT_EQ(doc["choice"]["representation"], doc["candidates"][*first_meeting]["representation"]);
+  EXPECT_LT(doc["reference_noise"].get<double>(), 0.5);
+  EXPECT_EQ(doc["choice"]["cost_unit"], "ns");
+}
+
+TEST(CliAdvise, RealtimeTargetChoosesOnlyRealtimeCandidates) {
+  const auto r = run("advise --material Marble --pixel 1mm --tolerance 3 --target realtime -f json -n 100000");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  ASSERT_FALSE(doc["choice"].is_null());
+  EXPECT_TRUE(doc["choice"]["realtime"].get<bool>());
+  // Any offline candidate listed before the choice that meets the tolerance was skipped for the target.
+  for (const auto& c : doc["candidates"]) {
+    if (c["representation"] == doc["choice"]["representation"]) break;
+    EXPECT_TRUE(!c["meets_tolerance"].get<bool>() || !c["realtime"].get<bool>()) << c["representation"];
+  }
+}
+
+TEST(CliAdvise, LambertianSufficesWhenScatteringIsFarBelowAPixel) {
+  // sigma_s' = 100/mm: 0.06 mm diffuse mean free path, 50 mm pixels.
+  const auto r = run("advise --sigma-a 1 --sigma-s 100 --channels x --pixel 5cm -f json -n 100000");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["choice"]["representation"], "lambertian");
+}
+
+TEST(CliAdvise, WideProfilesOnSmallObjectsAreFlagged) {
+  auto r = run("advise --material Skin1 --pixel 1mm --object-size 5mm -n 20000 -f json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto doc = nlohmann::json::parse(r.out);
+  ASSERT_EQ(doc["warnings"].size(), 1u);
+  EXPECT_NE(doc["warnings"][0].get<std::string>().find("slab"), std::string::npos);
+  r = run("advise --material Skin1 --pixel 1mm --object-size 2m -n 20000 -f json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(nlohmann::json::parse(r.out)["warnings"].empty());
+}
+
+TEST(CliAdvise, TableNamesTheChoiceAndWhyCheaperOnesFail) {
+  const auto r = run("advise --material Ketchup --pixel 0.5mm -n 50000");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("lambertian"), std::string::npos);
+  EXPECT_TRUE(r.out.find("choice:") != std::string::npos || r.out.find("no candidate") != std::string::npos);
+}
+
+TEST(CliAdvise, BadInputExitsTwoWithOneLine) {
+  for (const char* args : {"--material Skin1 --pixel -1mm", "--material Skin1 --pixel 0.1furlong", "--material Skin1 --pixel 0",
+                           "--material Skin1 --pixel 0.1 --tolerance 0", "--material Skin1 --pixel 0.1 --tolerance nan",
+                           "--material Skin1 --pixel 0.1 --target mobile", "--material Skin1 --pixel 0.1 --object-size -3",
+                           "--material Skin1", "--material Skin1 --pixel 0.1 -n 5", "--all --material Skin1 --pixel 1"}) {
+    const auto r = run(std::string("advise ") + args);
+    EXPECT_EQ(r.status, 2) << args << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;
+    EXPECT_TRUE(r.out.empty()) << args;
+  }
+}
+
+TEST(CliValidityMap, WritesEveryModelsPanelAndTheCheapestMap) {
+  const auto file = test_cli::temp("map.svg");
+  for (const char* over : {"albedo,eta", "albedo,g"}) {
+    const auto r = run(std::string("models --map ") + file.string() + " --over " + over + " --metric total --accuracy 0.05");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string svg = test_cli::slurp(file);
+    for (const char* model : {"dipole", "better-dipole", "burley", "pbd", "quantized+ss"})
+      EXPECT_NE(svg.find(std::string(">") + model + "<"), std::string::npos) << model;
+    EXPECT_NE(svg.find("cheapest within 5 %"), std::string::npos);
+    EXPECT_NE(svg.find("alpha' (reduced albedo)"), std::string::npos);
+    EXPECT_GT(std::count(svg.begin(), svg.end(), '\n'), 100);
+  }
+}
+
+TEST(CliValidityMap, BadInputExitsTwoWithoutAFile) {
+  const auto file = test_cli::temp("bad.svg");
+  for (const std::string args : {"--map " + file.string() + " --over albedo,sigma", "--map " + file.string() + " --metric image",
+                                 "--map " + test_cli::temp("map.png").string(), "--map " + file.string() + " --accuracy -1"}) {
+    const auto r = run("models " + args);
+    EXPECT_EQ(r.status, 2) << args << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(file)) << args;
+  }
+}
+
+TEST(CliAdvise, WriteProducesTheChosenTable) {
+  const auto dir = test_cli::temp("advised");
+  // A loose tolerance: the Lambertian albedo, equal to the reference's diffuse reflectance.
+  auto r = run("advise --material Skin1 --pixel 1mm --tolerance 300 -n 20000 -f json --write " + dir.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_EQ(nlohmann::json::parse(r.out)["choice"]["representation"], "lambertian");
+  auto table = nlohmann::json::parse(test_cli::slurp(dir / "Skin1.lambertian.json"));
+  EXPECT_EQ(table["format"], "bssrdf-lut");
+  EXPECT_EQ(table["kind"], "albedo");
+  ASSERT_EQ(table["channels"].size(), 3u);
+  const double red = table["channels"][0]["values"][0].get<double>();
+  EXPECT_GT(red, 0.3);  // Skin1's red diffuse reflectance, about 0.44
+  EXPECT_LT(red, 0.6);
+  // A tolerance the 8-radius table meets: its values are the model's R(r) at its radii.
+  r = run("advise --material Skin1 --pixel 1mm --tolerance 30 -n 20000 --write " + dir.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_NE(r.out.find("choice: radial-table-8:pbd"), std::string::npos) << r.out;
+  table = nlohmann::json::parse(test_cli::slurp(dir / "Skin1.radial-table-8_pbd.json"));
+  EXPECT_EQ(table["width"], 8);
+  const auto radius = table["channels"][0]["values"][3].get<double>(), R = table["channels"][1]["values"][3].get<double>();
+  char radii[64];
+  std::snprintf(radii, sizeof radii, "%.17g,%.17g", radius, 2 * radius);
+  const auto p = run(std::string("profile --material Skin1 --model pbd -f csv --radii ") + radii);
+  ASSERT_EQ(p.status, 0) << p.err;
+  std::istringstream lines(p.out);
+  std::string line;
+  while (std::getline(lines, line) && (line.empty() || line[0] == '#' || line[0] == 'r')) {}
+  const double profile_R = std::stod(line.substr(line.find(',') + 1));  // first row, red channel
+  EXPECT_NEAR(R, profile_R, 1e-9 * profile_R);
+  // Every node is the model's value, the outermost (30 transport mean free paths) too: the table
+  // written is the table judged (a node written as 0 there once lost 3 % of Skin1's red light).
+  for (const auto& v : table["channels"][1]["values"]) EXPECT_GT(v.get<double>(), 0);
+}
+
+TEST(CliAdvise, WriteWithoutAChoiceFailsWithoutOutput) {
+  const auto dir = test_cli::temp("none");
+  const auto r = run("advise --material Skin1 --pixel 1mm --tolerance 0.01 -n 20000 --write " + dir.string());
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_TRUE(r.out.empty());
+}

@@ -1,0 +1,102 @@
+// Costs behind `bssrdf advise` (advise/advise.hpp), medians, with ratios against the dipole's
+// R(r) measured in the same run (bench_models' baseline):
+//  - one lookup of a 16-radius table (radial_table: a log, a floor, a lerp and an exp), one sum of
+//    K Gaussians (K = 1, 2, 4, 8): the per-evaluation costs the candidates assume;
+//  - advise() for Skin1 at 0.01 to 10 mm with the Monte Carlo reference (200 000 photons) and with
+//    a model as the reference (PBD: what plugging in an exact model costs), and the whole database
+//    with the model reference.
+//
+//   bench_advise [repetitions=5]
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <numbers>
+#include <vector>
+
+#include "bssrdf/advise/advise.hpp"
+#include "bssrdf/materials.hpp"
+#include "bssrdf/model.hpp"
+
+using namespace bssrdf;
+
+namespace {
+
+volatile double sink;
+
+template <class F>
+double median_ns_per_call(F&& f, const std::vector<double>& radii, int repetitions) {
+  std::vector<double> per_call;
+  for (int rep = 0; rep < repetitions; ++rep) {
+    const auto start = std::chrono::steady_clock::now();
+    double acc = 0;
+    long calls = 0;
+    do {
+      for (double r : radii) acc += f(r);
+      calls += static_cast<long>(radii.size());
+    } while (std::chrono::steady_clock::now() - start < std::chrono::milliseconds(20));
+    sink = acc;
+    per_call.push_back(std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count() / static_cast<double>(calls));
+  }
+  std::nth_element(per_call.begin(), per_call.begin() + repetitions / 2, per_call.end());
+  return per_call[repetitions / 2];
+}
+
+template <class F>
+double median_seconds(F&& f, int repetitions) {
+  std::vector<double> s;
+  for (int rep = 0; rep < repetitions; ++rep) {
+    const auto start = std::chrono::steady_clock::now();
+    f();
+    s.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::nth_element(s.begin(), s.begin() + repetitions / 2, s.end());
+  return s[repetitions / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int repetitions = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
+  std::vector<double> radii;
+  for (int i = 0; i < 64; ++i) radii.push_back(0.01 * std::pow(2000.0, i / 63.0));
+  const auto m = reduce(0.1, 0.9, 0.0, 1.3);
+  const auto dipole = make_model("dipole");
+  const double base = median_ns_per_call([&](double r) { return dipole->reflectance(m, r); }, radii, repetitions);
+  std::printf("per evaluation, median of %d (alpha' 0.9, eta 1.3, 64 radii over 0.01-20 ell); ratio to the dipole\n", repetitions);
+  std::printf("  %-22s %8.2f ns  1.00\n", "dipole (baseline)", base);
+  const auto table = radial_table(*make_model("pbd"), m, 16);
+  const double lookup = median_ns_per_call(table, radii, repetitions);
+  std::printf("  %-22s %8.2f ns  %.2f   (assumed kTableLookupNs = %g)\n", "radial table lookup", lookup, lookup / base, kTableLookupNs);
+  for (int k : {1, 2, 4, 8}) {
+    std::vector<double> w(static_cast<std::size_t>(k), 0.1), v;
+    for (int j = 0; j < k; ++j) v.push_back(0.1 * std::pow(4.0, j));
+    const double ns = median_ns_per_call(
+        [&](double r) {
+          double R = 0;
+          for (std::size_t j = 0; j < w.size(); ++j) R += w[j] * std::exp(-r * r / (2 * v[j])) / (2 * std::numbers::pi * v[j]);
+          return R;
+        },
+        radii, repetitions);
+    std::printf("  %d Gaussian%-12s %8.2f ns  %.2f   (assumed %g)\n", k, k > 1 ? "s" : "", ns, ns / base, k * kGaussianTermNs);
+  }
+
+  const auto database = MaterialDatabase::load_with_user("");
+  const Medium& skin = database.find("Skin1").medium;
+  const MonteCarloReference mc({200'000, 1, 0});
+  const ModelReference model_reference(make_model("pbd"));
+  std::printf("\nadvise(Skin1), wall seconds, median of %d\n", repetitions);
+  for (double pixel : {0.01, 0.1, 1.0, 10.0}) {
+    AdviseOptions o;
+    o.pixel = pixel;
+    const double with_mc = median_seconds([&] { advise(skin, mc, o); }, repetitions);
+    const double with_model = median_seconds([&] { advise(skin, model_reference, o); }, repetitions);
+    std::printf("  %5g mm  Monte Carlo reference %.3f s   model reference %.3f s   ratio %.1f\n", pixel, with_mc, with_model, with_mc / with_model);
+  }
+  AdviseOptions o;
+  o.pixel = 1;
+  const double all = median_seconds([&] { for (const auto& mat : database.all()) advise(mat.medium, model_reference, o); }, 1);
+  std::printf("\nthe database (%zu materials) at 1 mm with the model reference: %.2f s (%.3f s a material)\n", database.all().size(), all,
+              all / static_cast<double>(database.all().size()));
+}
