@@ -30,10 +30,20 @@ std::pair<MatrixXd, MatrixXd> phase_blocks(const Angles& angles, double g, doubl
   }
   VectorXd c(terms);
   for (int k = 0; k < terms; ++k) c(k) = (2 * k + 1) / 2.0 * (f < 1 ? (std::pow(g, k) - f) / (1 - f) : (k == 0));
-  VectorXd c_alternating = c;
-  for (int k = 1; k < terms; k += 2) c_alternating(k) = -c(k);
-  MatrixXd same = P.transpose() * c.asDiagonal() * P;
-  MatrixXd opposite = P.transpose() * c_alternating.asDiagonal() * P;
+  // P_k(-mu) = (-1)^k P_k(mu): with E and O the sums over even and odd k, same = E + O and
+  // opposite = E - O, half the products of forming both directly (terms = 2n is even).
+  const int half = terms / 2;
+  MatrixXd P_even(half, n), P_odd(half, n);
+  VectorXd c_even(half), c_odd(half);
+  for (int k = 0; k < half; ++k) {
+    P_even.row(k) = P.row(2 * k);
+    P_odd.row(k) = P.row(2 * k + 1);
+    c_even(k) = c(2 * k);
+    c_odd(k) = c(2 * k + 1);
+  }
+  const MatrixXd E = P_even.transpose() * c_even.asDiagonal() * P_even;
+  const MatrixXd O = P_odd.transpose() * c_odd.asDiagonal() * P_odd;
+  MatrixXd same = E + O, opposite = E - O;
   // Exact energy conservation on the discrete angles: put each row's defect on the diagonal
   // (forward scattering), keeping the matrix symmetric.
   for (int i = 0; i < n; ++i) {
