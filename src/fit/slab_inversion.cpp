@@ -123,11 +123,22 @@ SlabInversion invert_slab(const std::array<double, 3>& measured, const std::arra
   if (search) r = final_residual(x);
   while (search && polish_steps < 4) {
     const Eigen::VectorXd step = J.completeOrthogonalDecomposition().solve(-r);
+    const auto previous_x = x;
+    const auto previous_predicted = predicted;
     for (int j = 0; j < p; ++j) x[j] = std::clamp(x[j] + step(j), j < 2 ? -25.0 : -3.8, j < 2 ? 25.0 : 3.8);
-    ++polish_steps;
+    const Eigen::VectorXd previous_r = r;
     r = final_residual(x);
+    // A step that raises chi^2 (a near-singular Jacobian far from any optimum, e.g. data out of
+    // the model's reach) is not taken: the polish never leaves a worse point than it started from.
+    if (r.squaredNorm() > previous_r.squaredNorm()) {
+      x = previous_x;
+      r = previous_r;
+      predicted = previous_predicted;
+      break;
+    }
+    ++polish_steps;
     // A step below 1e-3 (0.1 % in the coefficients) leaves O(1e-6) to go, and the Jacobian at
-    // the previous point serves the covariance to 0.1 %.
+    // the previous point serves the covariance to 0.2 %.
     if (step.cwiseAbs().maxCoeff() < 1e-3) break;
     Eigen::VectorXd search_r;
     J = jacobian(search_residual, x, search_r);
