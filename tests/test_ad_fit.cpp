@@ -114,6 +114,12 @@ TEST(FitSlabAddingDoubling, ImpossibleDataAreReportedNotHidden) {
   for (const auto& w : r.warnings) reported |= w.find("out of the model's reach") != std::string::npos;
   EXPECT_TRUE(reported) << r.full_report();
   for (const char* p : {"sigma_a", "sigma_s_prime"}) EXPECT_TRUE(std::isfinite(error(r, p)));
+  // The closest point is the clear slab (T = 1 - Fresnel losses ~ 0.946, R ~ 0.026; chi^2 ~ 618),
+  // not a black one (R = T = 0, chi^2 = 941300), which a Gauss-Newton step on a vanishing
+  // Jacobian would jump to.
+  double chi2 = 0;
+  for (const auto& residual : r.residuals) chi2 += residual.weighted * residual.weighted;
+  EXPECT_LT(chi2, 1000) << r.full_report();
 }
 
 TEST(FitSlabAddingDoubling, UndeterminedParametersGetFiniteErrorsAndAWarning) {

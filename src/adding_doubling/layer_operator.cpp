@@ -30,10 +30,20 @@ std::pair<MatrixXd, MatrixXd> phase_blocks(const Angles& angles, double g, doubl
   }
   VectorXd c(terms);
   for (int k = 0; k < terms; ++k) c(k) = (2 * k + 1) / 2.0 * (f < 1 ? (std::pow(g, k) - f) / (1 - f) : (k == 0));
-  VectorXd c_alternating = c;
-  for (int k = 1; k < terms; k += 2) c_alternating(k) = -c(k);
-  MatrixXd same = P.transpose() * c.asDiagonal() * P;
-  MatrixXd opposite = P.transpose() * c_alternating.asDiagonal() * P;
+  // P_k(-mu) = (-1)^k P_k(mu): with E and O the sums over even and odd k, same = E + O and
+  // opposite = E - O, half the products of forming both directly (terms = 2n is even).
+  const int half = terms / 2;
+  MatrixXd P_even(half, n), P_odd(half, n);
+  VectorXd c_even(half), c_odd(half);
+  for (int k = 0; k < half; ++k) {
+    P_even.row(k) = P.row(2 * k);
+    P_odd.row(k) = P.row(2 * k + 1);
+    c_even(k) = c(2 * k);
+    c_odd(k) = c(2 * k + 1);
+  }
+  const MatrixXd E = P_even.transpose() * c_even.asDiagonal() * P_even;
+  const MatrixXd O = P_odd.transpose() * c_odd.asDiagonal() * P_odd;
+  MatrixXd same = E + O, opposite = E - O;
   // Exact energy conservation on the discrete angles: put each row's defect on the diagonal
   // (forward scattering), keeping the matrix symmetric.
   for (int i = 0; i < n; ++i) {
@@ -69,13 +79,44 @@ LayerOperator thin_layer(const Angles& angles, double albedo, const MatrixXd& sa
 }
 
 // Two copies of a homogeneous (up-down symmetric) layer: R2 = R + T R (I - RR)^-1 T,
-// T2 = T (I - RR)^-1 T (R commutes with (I - RR)^-1).
+// T2 = T (I - RR)^-1 T (R commutes with (I - RR)^-1). Valid in any basis; the fallback of
+// double_symmetric.
 void double_layer(MatrixXd& R, MatrixXd& T) {
   const MatrixXd I = MatrixXd::Identity(R.rows(), R.cols());
   const MatrixXd Y = (I - R * R).partialPivLu().solve(T);
   const MatrixXd TR = T * R;
   R += TR * Y;
   T = T * Y;
+}
+
+// The same doubling for R and T in the symmetric basis C^-1/2 (.) C^1/2, C = diag(2 mu w), where
+// reciprocity makes both symmetric (Prahl 1995, sec. 5.3: his R and T are symmetric and the flux
+// operators are C R, C T). Splitting (I - RR)^-1 = [(I - R)^-1 + (I + R)^-1] / 2 gives
+//   R2 + T2 = R + T (I - R)^-1 T,   R2 - T2 = R - T (I + R)^-1 T,
+// and I -+ R are positive definite (the eigenvalues of R lie in (-1, 1)), so each term is
+// W^T W with W = L^-1 T from a Cholesky factor: under half the operations of the LU form, with
+// symmetric results by construction. Returns false (R, T untouched) if a factorisation fails.
+bool double_symmetric(MatrixXd& R, MatrixXd& T) {
+  const auto n = R.rows();
+  MatrixXd sum = R, difference = R;  // lower triangles of R2 + T2 and R2 - T2
+  for (const double sign : {1.0, -1.0}) {
+    MatrixXd A = -sign * R;
+    A.diagonal().array() += 1;
+    const Eigen::LLT<MatrixXd> cholesky(A);
+    if (cholesky.info() != Eigen::Success) return false;
+    const MatrixXd W = cholesky.matrixL().solve(T);
+    (sign > 0 ? sum : difference).selfadjointView<Eigen::Lower>().rankUpdate(W.transpose(), sign);
+  }
+  for (Eigen::Index j = 0; j < n; ++j)
+    for (Eigen::Index i = j; i < n; ++i) {
+      R(i, j) = R(j, i) = (sum(i, j) + difference(i, j)) / 2;
+      T(i, j) = T(j, i) = (sum(i, j) - difference(i, j)) / 2;
+    }
+  return true;
+}
+
+void double_in_symmetric_basis(MatrixXd& R, MatrixXd& T) {
+  if (!double_symmetric(R, T)) double_layer(R, T);
 }
 
 }  // namespace
@@ -86,7 +127,6 @@ LayerOperator homogeneous_layer(const Angles& angles, double albedo, double g, d
   const double f = std::pow(g, 2 * n);
   const double albedo_m = albedo * (1 - f) / (1 - albedo * f);
   const double tau = optical_thickness * (1 - albedo * f);
-  LayerOperator layer;
   if (albedo_m == 0 || tau == 0) {  // pure absorber (or nothing): straight lines
     VectorXd e(n);
     for (int i = 0; i < n; ++i) e(i) = std::isinf(tau) ? 0.0 : std::exp(-tau / angles.mu[i]);
@@ -95,21 +135,30 @@ LayerOperator homogeneous_layer(const Angles& angles, double albedo, double g, d
   }
   const auto [same, opposite] = phase_blocks(angles, g, f);
   const double start_max = kStartThicknessPerMu * angles.mu.front();
-  MatrixXd R, T;
-  if (std::isinf(tau)) {
-    auto thin = thin_layer(angles, albedo_m, same, opposite, start_max);
-    R = thin.R_top;
-    T = thin.T_down;
-    // Double until nothing is transmitted (each doubling squares the transmission far out).
-    for (int k = 0; k < 80 && T.colwise().sum().maxCoeff() > 1e-13; ++k) double_layer(R, T);
-    return {R, R, MatrixXd::Zero(n, n), MatrixXd::Zero(n, n)};
+  const bool infinite = std::isinf(tau);
+  const int doublings = infinite ? 0 : std::max(0, static_cast<int>(std::ceil(std::log2(tau / start_max))));
+  const auto thin = thin_layer(angles, albedo_m, same, opposite, infinite ? start_max : std::ldexp(tau, -doublings));
+  // Double in the symmetric basis: S^-1 (.) S with S = C^1/2 = diag(sqrt(2 mu w)).
+  VectorXd s(n);
+  for (int i = 0; i < n; ++i) s(i) = std::sqrt(2 * angles.mu[i] * angles.weight[i]);
+  const VectorXd s_inverse = s.cwiseInverse();
+  auto to_symmetric = [&](const MatrixXd& flux) -> MatrixXd {
+    const MatrixXd m = s_inverse.asDiagonal() * flux * s.asDiagonal();
+    return (m + m.transpose()) / 2;  // symmetric up to rounding already
+  };
+  auto to_flux = [&](const MatrixXd& m) -> MatrixXd { return s.asDiagonal() * m * s_inverse.asDiagonal(); };
+  MatrixXd R = to_symmetric(thin.R_top), T = to_symmetric(thin.T_down);
+  if (infinite) {
+    // Double until nothing is transmitted (each doubling squares the transmission far out);
+    // the column sums of the flux operator are s^T T / s^T.
+    auto transmitted = [&] { return ((s.transpose() * T).array() * s_inverse.transpose().array()).maxCoeff(); };
+    for (int k = 0; k < 80 && transmitted() > 1e-13; ++k) double_in_symmetric_basis(R, T);
+    const MatrixXd R_flux = to_flux(R);
+    return {R_flux, R_flux, MatrixXd::Zero(n, n), MatrixXd::Zero(n, n)};
   }
-  const int doublings = std::max(0, static_cast<int>(std::ceil(std::log2(tau / start_max))));
-  auto thin = thin_layer(angles, albedo_m, same, opposite, std::ldexp(tau, -doublings));
-  R = thin.R_top;
-  T = thin.T_down;
-  for (int k = 0; k < doublings; ++k) double_layer(R, T);
-  return {R, R, T, T};
+  for (int k = 0; k < doublings; ++k) double_in_symmetric_basis(R, T);
+  const MatrixXd R_flux = to_flux(R), T_flux = to_flux(T);
+  return {R_flux, R_flux, T_flux, T_flux};
 }
 
 LayerOperator add(const LayerOperator& upper, const LayerOperator& lower) {

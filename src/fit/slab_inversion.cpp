@@ -28,6 +28,14 @@ struct Residual {
   }
 };
 
+template <ceres::NumericDiffMethodType method>
+ceres::CostFunction* numeric_cost(const Residual& residual, int parameters, int residuals) {
+  auto* cost = new ceres::DynamicNumericDiffCostFunction<Residual, method>(new Residual(residual));
+  cost->AddParameterBlock(parameters);
+  cost->SetNumResiduals(residuals);
+  return cost;
+}
+
 }  // namespace
 
 SlabInversion invert_slab(const std::array<double, 3>& measured, const std::array<double, 3>& stderr_, int count, bool fit_g,
@@ -48,14 +56,13 @@ SlabInversion invert_slab(const std::array<double, 3>& measured, const std::arra
         x[1] = std::log(trial.sigma_s_prime);
       }
     }
-  Residual residual{&forward, measured, stderr_, count, fit_g, g};
   // Least squares on the search forward (or the final one when there is none), by Ceres.
   ceres::Solver::Summary summary;
   {
     Residual stage_residual{search ? search : &forward, measured, stderr_, count, fit_g, g};
-    auto* cost = new ceres::DynamicNumericDiffCostFunction<Residual, ceres::CENTRAL>(new Residual(stage_residual));
-    cost->AddParameterBlock(p);
-    cost->SetNumResiduals(count);
+    // Forward differences when a polish follows (they cost p solves per Jacobian instead of 2p,
+    // and the search only has to come close); central ones when this is the final solve.
+    auto* cost = search ? numeric_cost<ceres::FORWARD>(stage_residual, p, count) : numeric_cost<ceres::CENTRAL>(stage_residual, p, count);
     ceres::Problem problem;
     problem.AddResidualBlock(cost, nullptr, x.data());
     for (int i = 0; i < 2; ++i) {  // 1e-11 to 1e11 per mm
@@ -72,16 +79,19 @@ SlabInversion invert_slab(const std::array<double, 3>& measured, const std::arra
     options.function_tolerance = 1e-12;
     options.parameter_tolerance = 1e-10;
     options.gradient_tolerance = 1e-14;
+    // Ceres refines every step of a bounded problem by a projected line search; with cubic
+    // interpolation (the default) each trial costs a Jacobian, with quadratic only a solve.
+    options.line_search_interpolation_type = ceres::QUADRATIC;
     ceres::Solve(options, &problem, &summary);
   }
   int polish_steps = 0;
 
   // The Jacobian of the weighted residuals in x (central differences) and the residuals.
-  auto jacobian = [&](const std::array<double, 3>& at, Eigen::VectorXd& r) {
+  auto jacobian = [&](const Residual& res, const std::array<double, 3>& at, Eigen::VectorXd& r) {
     Eigen::MatrixXd J(count, p);
     double residual_plus[3], residual_minus[3], centre[3];
     const double* b = at.data();
-    residual(&b, centre);
+    res(&b, centre);
     r = Eigen::Map<Eigen::VectorXd>(centre, count);
     for (int j = 0; j < p; ++j) {
       std::array<double, 3> xp = at, xm = at;
@@ -90,29 +100,53 @@ SlabInversion invert_slab(const std::array<double, 3>& measured, const std::arra
       xm[j] -= h;
       const double* bp = xp.data();
       const double* bm = xm.data();
-      residual(&bp, residual_plus);
-      residual(&bm, residual_minus);
+      res(&bp, residual_plus);
+      res(&bm, residual_minus);
       for (int m = 0; m < count; ++m) J(m, j) = (residual_plus[m] - residual_minus[m]) / (2 * h);
     }
     return J;
   };
   // With a cheaper search, Gauss-Newton steps on the final forward polish the result (its
-  // optimum is within the search forward's error of the start: one or two steps).
+  // optimum is within the search forward's error of the start: one or two steps). The Jacobian
+  // is the search forward's: the two differ by the search's angular error (~1e-4 in R and T),
+  // so a step leaves ~1e-3 of the remaining error, and only the residuals cost a final solve.
+  const Residual search_residual{search ? search : &forward, measured, stderr_, count, fit_g, g};
   Eigen::VectorXd r;
-  Eigen::MatrixXd J = jacobian(x, r);
+  Eigen::MatrixXd J = jacobian(search_residual, x, r);
+  std::array<double, 3> predicted{};
+  auto final_residual = [&](const std::array<double, 3>& at) {
+    predicted = forward(from_x(at.data(), fit_g, g));
+    Eigen::VectorXd residuals(count);
+    for (int m = 0; m < count; ++m) residuals(m) = (predicted[m] - measured[m]) / stderr_[m];
+    return residuals;
+  };
+  if (search) r = final_residual(x);
   while (search && polish_steps < 4) {
     const Eigen::VectorXd step = J.completeOrthogonalDecomposition().solve(-r);
+    const auto previous_x = x;
+    const auto previous_predicted = predicted;
     for (int j = 0; j < p; ++j) x[j] = std::clamp(x[j] + step(j), j < 2 ? -25.0 : -3.8, j < 2 ? 25.0 : 3.8);
+    const Eigen::VectorXd previous_r = r;
+    r = final_residual(x);
+    // A step that raises chi^2 (a near-singular Jacobian far from any optimum, e.g. data out of
+    // the model's reach) is not taken: the polish never leaves a worse point than it started from.
+    if (r.squaredNorm() > previous_r.squaredNorm()) {
+      x = previous_x;
+      r = previous_r;
+      predicted = previous_predicted;
+      break;
+    }
     ++polish_steps;
-    // A step below 1e-3 (0.1 % in the coefficients) leaves O(1e-6) to go (Gauss-Newton converges
-    // quadratically here), and the Jacobian at the previous point serves the covariance to 0.1 %.
+    // A step below 1e-3 (0.1 % in the coefficients) leaves O(1e-6) to go, and the Jacobian at
+    // the previous point serves the covariance to 0.2 %.
     if (step.cwiseAbs().maxCoeff() < 1e-3) break;
-    J = jacobian(x, r);
+    Eigen::VectorXd search_r;
+    J = jacobian(search_residual, x, search_r);
   }
 
   SlabInversion out;
   out.parameters = from_x(x.data(), fit_g, g);
-  out.predicted = forward(out.parameters);
+  out.predicted = search ? predicted : forward(out.parameters);
   for (int m = 0; m < count; ++m) out.chi2 += std::pow((out.predicted[m] - measured[m]) / stderr_[m], 2);
   out.iterations = static_cast<int>(summary.iterations.size()) - 1 + polish_steps;
   out.converged = summary.termination_type == ceres::CONVERGENCE;
@@ -125,9 +159,11 @@ SlabInversion invert_slab(const std::array<double, 3>& measured, const std::arra
   const auto s = svd.singularValues();
   out.determined = s.size() == p && s(p - 1) > 1e-9 * s(0);
   // Pseudo-inverse with singular values floored at 1e-9 of the largest: an undetermined
-  // combination gets a huge (finite) error instead of NaN, and the report says so.
+  // combination gets a huge (finite) error instead of NaN, and the report says so. The absolute
+  // floor 1e-100 keeps the squared errors finite where the data do not move at all (a Jacobian
+  // of zeros, e.g. everything absorbed).
   Eigen::VectorXd inverse(s.size());
-  for (int k = 0; k < s.size(); ++k) inverse(k) = 1 / std::max(s(k), 1e-9 * std::max(s(0), 1e-300));
+  for (int k = 0; k < s.size(); ++k) inverse(k) = 1 / std::max(s(k), std::max(1e-9 * s(0), 1e-100));
   const Eigen::MatrixXd K = svd.matrixV() * inverse.asDiagonal() * svd.matrixU().transpose();  // p x count
   for (int j = 0; j < p; ++j) {
     const double variance = K.row(j).squaredNorm();

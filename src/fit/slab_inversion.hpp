@@ -1,5 +1,5 @@
 // The inversion shared by 'fit slab' and the integrating-sphere files: measured (R, T[, U]) with
-// standard errors -> sigma_a, sigma_s' [, g] by weighted least squares (Ceres, numeric central
+// standard errors -> sigma_a, sigma_s' [, g] by weighted least squares (Ceres, numeric
 // differences through the forward solver), with the covariance, the share of each measurement
 // in each parameter's variance, and chi^2.
 #pragma once
