@@ -87,4 +87,21 @@ std::string json_excerpt(const nlohmann::json& value, std::size_t max_chars) {
   return text;
 }
 
+std::vector<TextRecord> comment_stripped_records(const std::string& text) {
+  std::vector<TextRecord> out;
+  std::istringstream in(text);
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    const auto hash = line.find('#');
+    if (hash != std::string::npos) line.resize(hash);
+    std::istringstream words(line);
+    TextRecord r{number, {}};
+    for (std::string word; words >> word;) r.tokens.push_back(word);
+    if (!r.tokens.empty()) out.push_back(std::move(r));
+  }
+  return out;
+}
+
 }  // namespace bssrdf

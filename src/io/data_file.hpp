@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace bssrdf {
 
@@ -24,5 +25,13 @@ nlohmann::json parse_json_document(const std::string& text, const std::string& f
 
 // A JSON value for a message: its compact text, shortened to `max_chars` (a value can be megabytes).
 std::string json_excerpt(const nlohmann::json& value, std::size_t max_chars = 40);
+
+// The non-empty lines of a whitespace-separated text format ('.mci', '.rxt') with '#' comments
+// removed: each line's number (from 1) and its words.
+struct TextRecord {
+  int line;
+  std::vector<std::string> tokens;
+};
+std::vector<TextRecord> comment_stripped_records(const std::string& text);
 
 }  // namespace bssrdf

@@ -17,32 +17,11 @@ namespace {
 constexpr double kMinMciLength = 1e-7, kMaxMciLength = 1e3;
 constexpr long long kMaxMciBins = 10'000'000, kMaxMciPhotons = 10'000'000'000;
 
-struct Record {
-  int line;
-  std::vector<std::string> tokens;
-};
-
-std::vector<Record> records(const std::string& text) {
-  std::vector<Record> out;
-  std::istringstream in(text);
-  std::string line;
-  int number = 0;
-  while (std::getline(in, line)) {
-    ++number;
-    const auto hash = line.find('#');
-    if (hash != std::string::npos) line.resize(hash);
-    std::istringstream words(line);
-    Record r{number, {}};
-    std::string word;
-    while (words >> word) r.tokens.push_back(word);
-    if (!r.tokens.empty()) out.push_back(std::move(r));
-  }
-  return out;
-}
+using Record = TextRecord;
 
 class Reader {
  public:
-  Reader(const std::string& text, std::string name) : records_(records(text)), name_(std::move(name)) {}
+  Reader(const std::string& text, std::string name) : records_(comment_stripped_records(text)), name_(std::move(name)) {}
 
   // The next record, which must have `count` tokens (or at least min_count .. count).
   const Record& next(const std::string& what, std::size_t min_count, std::size_t count) {

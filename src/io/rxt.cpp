@@ -2,10 +2,10 @@
 #include "bssrdf/io/rxt.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "bssrdf/error.hpp"
+#include "data_file.hpp"
 
 namespace bssrdf {
 
@@ -19,17 +19,10 @@ struct Token {
 // Whitespace-separated tokens with '#' comments removed, grouped by line.
 std::vector<std::vector<Token>> tokenize(const std::string& text) {
   std::vector<std::vector<Token>> lines;
-  std::istringstream in(text);
-  std::string line;
-  int number = 0;
-  while (std::getline(in, line)) {
-    ++number;
-    const auto hash = line.find('#');
-    if (hash != std::string::npos) line.erase(hash);
-    std::istringstream words(line);
+  for (const auto& record : comment_stripped_records(text)) {
     std::vector<Token> tokens;
-    for (std::string w; words >> w;) tokens.push_back({w, number});
-    if (!tokens.empty()) lines.push_back(tokens);
+    for (const auto& word : record.tokens) tokens.push_back({word, record.line});
+    lines.push_back(std::move(tokens));
   }
   return lines;
 }
@@ -141,11 +134,7 @@ RxtFile parse_rxt(const std::string& text, const std::string& name) {
 }
 
 RxtFile read_rxt(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw FileError(path.string(), 0, "cannot open the file");
-  std::stringstream s;
-  s << in.rdbuf();
-  return parse_rxt(s.str(), path.string());
+  return parse_rxt(read_data_file(path, "the .rxt file"), path.string());
 }
 
 }  // namespace bssrdf

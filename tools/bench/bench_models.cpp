@@ -17,31 +17,13 @@
 #include "bssrdf/models/photon_beam_diffusion.hpp"
 #include "bssrdf/single_scattering.hpp"
 #include "pbrt_style.hpp"
+#include "median_timing.hpp"
 
 using namespace bssrdf;
+using bssrdf::bench::median_ns_per_call;
 using bssrdf::bench::pbrt_style_pbd;
 
 namespace {
-
-volatile double sink;
-
-template <class F>
-double median_ns_per_call(F&& f, const std::vector<double>& radii, int repetitions) {
-  std::vector<double> per_call;
-  for (int rep = 0; rep < repetitions; ++rep) {
-    const auto start = std::chrono::steady_clock::now();
-    double acc = 0;
-    int calls = 0;
-    do {
-      for (double r : radii) acc += f(r);
-      calls += static_cast<int>(radii.size());
-    } while (std::chrono::steady_clock::now() - start < std::chrono::milliseconds(20));
-    sink = acc;
-    per_call.push_back(std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count() / calls);
-  }
-  std::nth_element(per_call.begin(), per_call.begin() + repetitions / 2, per_call.end());
-  return per_call[repetitions / 2];
-}
 
 }  // namespace
 
