@@ -114,7 +114,10 @@ TEST(ImageError, MeetingAToleranceAtAPixelSizeMeansMeetingItAtCoarserOnes) {
   for (const char* name : {"dipole", "better-dipole", "burley", "quantized"})
     candidates.emplace_back(name, model_profiles(skin(), edges, *make_model(name)));
   bool code_error_grew_below_profile = false;
-  for (const auto& [name, profiles] : candidates) {
+  for (const auto& candidate : candidates) {
+    // Plain references, not a structured binding: the lambdas below capture them (clang 14 cannot).
+    const auto& name = candidate.first;
+    const auto& profiles = candidate.second;
     const auto edge_error = [&](double pixel) {  // linear, with the flat lit region beyond the window
       const ImageErrorMeter meter(edges, pixel);
       double worst = 0;

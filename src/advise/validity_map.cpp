@@ -107,7 +107,8 @@ std::string render_validity_map(const ValidityMapOptions& options, const std::ve
       }
   };
   int index = 0;
-  for (const auto& [cost, m] : order) {
+  for (const auto& entry : order) {
+    const auto m = entry.second;  // a plain variable: C++20 lambdas cannot capture a structured binding in clang 14
     panel(index++, std::string(detail::kCandidateNames[m]), [&](std::size_t i, std::size_t j) { return std::isnan(error[m][i][j]) ? std::string("#dddddd") : error_colour(error[m][i][j]); },
           [&](std::size_t i, std::size_t j) {
             return std::isnan(error[m][i][j]) ? std::string() : std::to_string(static_cast<int>(std::lround(100 * error[m][i][j])));
