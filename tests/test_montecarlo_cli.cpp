@@ -54,7 +54,7 @@ TEST(MonteCarloCli, SameSeedSameOutputForOneAndTwoThreads) {
 TEST(MonteCarloCli, RunsMcmlFilesAndLayerFiles) {
   const auto mci = temp("case.mci");
   std::ofstream(mci) << "1.0\n1\nx.mco A\n2000\n0.01 0.01\n10 20 1\n1\n1.0\n1.4 1 100 0.9 1\n1.0\n";
-  auto r = run("reference --mci " + mci.string() + " --format json");
+  auto r = run("reference --mci " + mci.string() + " --mco-dir " + scratch().string() + " --format json");  // x.mco in the scratch folder
   ASSERT_EQ(r.status, 0) << r.err;
   auto doc = nlohmann::json::parse(r.out);
   ASSERT_EQ(doc["runs"].size(), 1u);
