@@ -1,5 +1,5 @@
 // What a material's coefficients imply, per channel: albedos, the four distance conventions
-// renderers use (reference/RENDERERS.md), the surface albedo and Burley's d fitted to a physical
+// renderers use (mfp 1/sigma_t, transport mfp 1/sigma_t', dmfp 1/sigma_tr, Burley's d), the surface albedo and Burley's d fitted to a physical
 // profile, and whether diffusion applies at all. Computed from the coefficients on demand, never
 // stored in material files, so they cannot disagree with them.
 //

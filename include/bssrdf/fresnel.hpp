@@ -1,5 +1,5 @@
 // Fresnel reflection at a smooth dielectric boundary and the diffuse quantities diffusion theory
-// builds from it (reference/MODELS.md section 1). Templated on the scalar for ceres::Jet.
+// builds from it (Egan & Hilgeman 1979 fit of F_dr; d'Eon & Irving 2011 fits of the moments C1, C2). Templated on the scalar for ceres::Jet.
 //
 // Argument convention: x = n_incident / n_transmitted, the ratio seen by light *arriving* at the
 // boundary. Light inside a medium of relative index eta = n_medium / n_outside meets the boundary

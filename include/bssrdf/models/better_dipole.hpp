@@ -1,4 +1,4 @@
-// Better dipole (d'Eon 2012), reference/MODELS.md section 3: Grosjean D_G, the improved boundary
+// Better dipole (d'Eon 2012): Grosjean D_G, the improved boundary
 // condition A = (1 + 3C2)/(1 - 2C1) from the exact internal Fresnel moments, exitance from both
 // fluence and flux, source strength alpha'^2 (multiple scattering only; add single scattering
 // separately). z_r = 1/sigma_t', z_v = -z_r - 4 A D_G.

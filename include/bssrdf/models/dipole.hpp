@@ -1,4 +1,4 @@
-// Classical dipole (Jensen, Marschner, Levoy, Hanrahan 2001), reference/MODELS.md section 2.
+// Classical dipole (Jensen, Marschner, Levoy, Hanrahan 2001).
 // Real source at depth z_r = ell, negative image at height z_v = ell (1 + 4A/3) above the surface,
 // classical D = 1/(3 sigma_t'), classical A from the Egan-Hilgeman F_dr. Multiple scattering only.
 //

@@ -1,4 +1,4 @@
-// Multipole for slabs (Donner & Jensen 2005), reference/MODELS.md section 4: a slab of thickness d
+// Multipole for slabs (Donner & Jensen 2005): a slab of thickness d
 // between two boundaries with their own extrapolation distances z_b0 = 2 A_0 D (top) and
 // z_bd = 2 A_d D (bottom), classical D = 1/(3 sigma_t'). Dipole pairs i = -n..n mirror the real
 // source at depth ell in both extrapolated boundaries, with period L = 2 (d + z_b0 + z_bd):

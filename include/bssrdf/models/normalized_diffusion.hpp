@@ -1,4 +1,4 @@
-// Normalized diffusion (Christensen & Burley 2015), reference/MODELS.md section 7: an empirical
+// Normalized diffusion (Christensen & Burley 2015): an empirical
 // two-exponential profile with closed-form CDF and inverse CDF, scaled to a physical profile by one
 // of three published fits of d against the surface albedo A (which includes single scattering).
 //

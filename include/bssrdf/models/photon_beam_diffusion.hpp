@@ -1,4 +1,4 @@
-// Photon beam diffusion (Habel, Christensen, Jarosz 2013), reference/MODELS.md section 5: the
+// Photon beam diffusion (Habel, Christensen, Jarosz 2013): the
 // better-dipole kernel integrated along the refracted beam, plus exact single scattering.
 //
 //   R_ms(r) = alpha'^2 int_0^inf sigma_t' e^{-sigma_t' t} kappa(t) E(r; t) dt,

@@ -1,4 +1,4 @@
-// Quantized diffusion (d'Eon & Irving 2011), reference/MODELS.md section 6: the same improved
+// Quantized diffusion (d'Eon & Irving 2011): the same improved
 // diffusion theory as photon beam diffusion, evaluated as a sum of 2D Gaussians by quantising the
 // path length ("time") tau into geometric bins. Multiple scattering only.
 //
