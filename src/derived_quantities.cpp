@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "bssrdf/adding_doubling/slab.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/fit/inverse_fits.hpp"
 #include "bssrdf/model.hpp"
@@ -16,6 +17,22 @@ std::vector<double> burley_fit_radii_mm(const Reduced<double>& m, std::size_t co
   const double r_min = 1e-3 * std::min(m.ell, r_max / 16);
   return log_spaced(r_min, r_max, count);
 }
+
+namespace {
+
+// The total diffuse reflectance of the semi-infinite medium per entered flux, by adding-doubling
+// (exact radiative transfer with the Henyey-Greenstein phase function and Fresnel boundary).
+double exact_total_reflectance(const Reduced<double>& m) {
+  adding_doubling::Slab slab;
+  slab.layers = {{m.sigma_a, m.sigma_s, m.g}};
+  slab.n = m.eta;
+  const auto t = adding_doubling::solve(slab, adding_doubling::Incidence::collimated);
+  // Without absorption the total is 1 exactly; the quadrature can exceed it by its error estimate.
+  const double total = t.diffuse_reflectance * t.entered_scale();
+  return total > 1 && total - 1 <= t.error_estimate ? 1.0 : total;
+}
+
+}  // namespace
 
 DerivedQuantities derive_quantities(const Medium& medium, const DerivationOptions& options) {
   medium.validate();
@@ -45,14 +62,25 @@ DerivedQuantities derive_quantities(const Medium& medium, const DerivationOption
 
     std::vector<std::string> reasons;
     if (m.sigma_s_prime > 0) {
-      ch.surface_albedo = model->total_reflectance(m);
+      const double model_total = model->total_reflectance(m);
+      ch.surface_albedo = model_total;
+      for (const auto& note : model->validity(m))
+        if (note.severity == Severity::invalid) reasons.push_back(note.message);
+      if (model_total > 1) {
+        // The physical model creates energy here (its validity says so above): the surface albedo
+        // is the exact radiative-transfer total instead, which conserves it.
+        ch.surface_albedo = exact_total_reflectance(m);
+        reasons.push_back("surface albedo and Burley A are the exact total " + format_number(std::round(ch.surface_albedo * 1e5) / 1e5) +
+                          " (adding-doubling), not " + out.physical_model + "'s " + format_number(std::round(model_total * 1e5) / 1e5));
+      }
+      // Burley's d fitted to the physical profile, his A held at the surface albedo: the fitted
+      // profile carries exactly the surface albedo's energy (its error includes any excess of the
+      // physical model's).
       NamedProfile profile{ch.name, model->sample(m, burley_fit_radii_mm(m, options.radii))};
-      const auto fit = fit_burley({profile}, LengthUnit::millimetre, out.physical_model);
+      const auto fit = fit_burley({profile}, LengthUnit::millimetre, out.physical_model, {ch.surface_albedo});
       ch.burley_d = fit.find("burley_d", ch.name)->value;
       ch.burley_albedo = fit.find("surface_albedo", ch.name)->value;
       ch.burley_error = fit.find("relative_l2_error", ch.name)->value;
-      for (const auto& note : model->validity(m))
-        if (note.severity == Severity::invalid) reasons.push_back(note.message);
     } else {
       // Nothing scatters back: no profile to fit.
       ch.burley_d = ch.burley_albedo = ch.burley_error = nan;

@@ -6,12 +6,7 @@
 #include <numbers>
 
 #include "bssrdf/error.hpp"
-#include "bssrdf/models/better_dipole.hpp"
-#include "bssrdf/models/dipole.hpp"
-#include "bssrdf/models/normalized_diffusion.hpp"
-#include "bssrdf/models/photon_beam_diffusion.hpp"
-#include "bssrdf/models/quantized_diffusion.hpp"
-#include "bssrdf/models/with_single_scattering.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/quadrature.hpp"
 
 namespace bssrdf {
@@ -112,24 +107,13 @@ SampledProfile Model::sample(const Reduced<double>& m, const std::vector<double>
   return p;
 }
 
-std::unique_ptr<Model> make_model(std::string_view name) {
-  constexpr std::string_view kSingle = "+ss";
-  if (name.size() > kSingle.size() && name.substr(name.size() - kSingle.size()) == kSingle)
-    return std::make_unique<WithSingleScattering>(make_model(name.substr(0, name.size() - kSingle.size())));
-  if (name == "dipole") return std::make_unique<classical_dipole::Model>();
-  if (name == "better-dipole") return std::make_unique<better_dipole::Model>();
-  if (name == "pbd") return std::make_unique<photon_beam_diffusion::Model>();
-  if (name == "quantized") return std::make_unique<quantized_diffusion::Model>();
-  if (name == "burley") return std::make_unique<normalized_diffusion::Model>(normalized_diffusion::Scaling::searchlight_mfp);
-  if (name == "burley-diffuse") return std::make_unique<normalized_diffusion::Model>(normalized_diffusion::Scaling::diffuse_mfp);
-  if (name == "burley-dmfp") return std::make_unique<normalized_diffusion::Model>(normalized_diffusion::Scaling::searchlight_dmfp);
-  std::string known;
-  for (const auto& n : model_names()) known.append(known.empty() ? "" : ", ").append(n);
-  throw InvalidInput("model", std::string("'").append(name).append("'"), std::string("one of ").append(known));
-}
+std::unique_ptr<Model> make_model(std::string_view name) { return model_entry(name).make(); }
 
 std::vector<std::string> model_names() {
-  return {"dipole", "better-dipole", "pbd", "quantized", "burley", "burley-diffuse", "burley-dmfp"};
+  std::vector<std::string> names;
+  for (const auto& e : model_registry())
+    if (e.listed) names.push_back(e.name);
+  return names;
 }
 
 }  // namespace bssrdf

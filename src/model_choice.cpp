@@ -2,24 +2,34 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "bssrdf/error.hpp"
+#include "bssrdf/model_registry.hpp"
+#include "bssrdf/validity.hpp"
 #include "model_error_table.hpp"
 
 namespace bssrdf {
 namespace {
 
-// One R(r) evaluation, ns: bench_models medians on the 2-core development machine (alpha' 0.9,
-// g 0, eta 1.3, 64 radii over 0.01-20 ell). Only their order matters to the choice.
-double cost_ns(std::string_view model) {
-  if (model == "dipole") return 19;
-  if (model == "better-dipole") return 26;
-  if (model == "burley" || model == "burley-diffuse" || model == "burley-dmfp") return 28;
-  if (model == "dipole+ss") return 530;
-  if (model == "better-dipole+ss") return 540;
-  if (model == "pbd") return 1195;
-  if (model == "quantized") return 8285;
-  return 9069;  // quantized+ss
+// The `--model auto` candidates (model registry order) with their column of the measured error table.
+struct Candidate {
+  const ModelEntry* entry;
+  std::size_t column;
+};
+const std::vector<Candidate>& candidates() {
+  static const std::vector<Candidate> list = [] {
+    std::vector<Candidate> out;
+    for (const auto& e : model_registry()) {
+      if (!e.auto_candidate) continue;
+      const auto it = std::find(detail::kCandidateNames.begin(), detail::kCandidateNames.end(), e.name);
+      if (it == detail::kCandidateNames.end())
+        throw std::logic_error("model " + e.name + " is an auto candidate without a column in the measured error table");
+      out.push_back({&e, static_cast<std::size_t>(it - detail::kCandidateNames.begin())});
+    }
+    return out;
+  }();
+  return list;
 }
 
 // The measured grid values bracketing v: {lower, upper}, equal on a grid value; nullopt outside.
@@ -53,12 +63,19 @@ std::optional<std::vector<ModelErrorEstimate>> estimate_model_errors(const Reduc
   for (const auto& c : detail::kMeasuredCases) matched += in(c.albedo_prime, *a) && in(c.eta, *e) && in(c.g, *g);
   if (matched != corners(*a) * corners(*e) * corners(*g)) return std::nullopt;
   std::vector<ModelErrorEstimate> out;
-  for (std::size_t k = 0; k < detail::kCandidateModels; ++k) {
-    ModelErrorEstimate est{std::string(detail::kCandidateNames[k]), cost_ns(detail::kCandidateNames[k])};
+  for (const auto& [entry, k] : candidates()) {
+    ModelErrorEstimate est;
+    est.model = entry->name;
+    est.cost_ns = entry->cost_ns;
     for (const auto& c : detail::kMeasuredCases)
       if (in(c.albedo_prime, *a) && in(c.eta, *e) && in(c.g, *g)) {
         est.total_error = std::max(est.total_error, c.error[k].total);
         est.profile_error = std::max(est.profile_error, c.error[k].profile);
+      }
+    for (const auto& note : entry->make()->validity(m))
+      if (note.severity == Severity::invalid) {
+        est.invalid = note.code + ": " + note.message;
+        break;
       }
     out.push_back(est);
   }
@@ -68,8 +85,8 @@ std::optional<std::vector<ModelErrorEstimate>> estimate_model_errors(const Reduc
 
 std::vector<MeasuredModel> measured_models() {
   std::vector<MeasuredModel> out;
-  for (std::size_t k = 0; k < detail::kCandidateModels; ++k) {
-    MeasuredModel m{std::string(detail::kCandidateNames[k]), cost_ns(detail::kCandidateNames[k]), {}, {}};
+  for (const auto& [entry, k] : candidates()) {
+    MeasuredModel m{entry->name, entry->cost_ns, {}, {}};
     for (const auto& c : detail::kMeasuredCases) {
       m.total_error.push_back(c.error[k].total);
       m.profile_error.push_back(c.error[k].profile);
@@ -93,11 +110,15 @@ std::vector<ModelErrorEstimate> estimate_model_errors(const Medium& medium) {
                          "outside it choose the model yourself (bssrdf models)");
     if (worst.empty()) {
       worst = *estimates;
+      for (auto& e : worst)
+        if (!e.invalid.empty()) e.invalid = "channel " + medium.channel_names[c] + ": " + e.invalid;
       continue;
     }
     for (std::size_t k = 0; k < estimates->size(); ++k) {  // same order: sorted by a fixed cost
       worst[k].total_error = std::max(worst[k].total_error, (*estimates)[k].total_error);
       worst[k].profile_error = std::max(worst[k].profile_error, (*estimates)[k].profile_error);
+      if (worst[k].invalid.empty() && !(*estimates)[k].invalid.empty())
+        worst[k].invalid = "channel " + medium.channel_names[c] + ": " + (*estimates)[k].invalid;
     }
   }
   return worst;
@@ -105,7 +126,7 @@ std::vector<ModelErrorEstimate> estimate_model_errors(const Medium& medium) {
 
 std::optional<std::string> cheapest_within(const std::vector<ModelErrorEstimate>& estimates, double accuracy) {
   for (const auto& e : estimates)
-    if (e.error() <= accuracy) return e.model;
+    if (e.invalid.empty() && e.error() <= accuracy) return e.model;
   return std::nullopt;
 }
 
@@ -116,11 +137,20 @@ ModelChoice choose_model(const Medium& medium, double accuracy) {
     choice.model = *model;
     return choice;
   }
-  const auto best = *std::min_element(choice.estimates.begin(), choice.estimates.end(),
-                                      [](const auto& x, const auto& y) { return x.error() < y.error(); });
+  // The most accurate valid model (an invalid one is never offered).
+  const auto best = *std::min_element(choice.estimates.begin(), choice.estimates.end(), [](const auto& x, const auto& y) {
+    return std::pair{!x.invalid.empty(), x.error()} < std::pair{!y.invalid.empty(), y.error()};
+  });
+  if (!best.invalid.empty())
+    throw InvalidInput("--model auto: every measured model marks itself invalid for this medium (" + best.model + ": " +
+                       best.invalid + "); choose the model yourself (bssrdf models)");
+  std::string excluded;
+  for (const auto& e : choice.estimates)
+    if (!e.invalid.empty()) excluded += (excluded.empty() ? "" : ", ") + e.model;
   throw InvalidInput("accuracy", format_number(accuracy),
-                     ">= " + format_number(std::ceil(best.error() * 1000) / 1000) + " for this medium: the most accurate model, " + best.model +
-                         ", was measured within that of the Monte Carlo reference here");
+                     ">= " + format_number(std::ceil(best.error() * 1000) / 1000) + " for this medium: the most accurate valid model, " +
+                         best.model + ", was measured within that of the Monte Carlo reference here" +
+                         (excluded.empty() ? "" : " (" + excluded + " mark themselves invalid here and are never chosen)"));
 }
 
 }  // namespace bssrdf

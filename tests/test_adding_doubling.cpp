@@ -34,7 +34,7 @@ std::vector<Case> cases() {
 
 }  // namespace
 
-const char* const kModels[] = {"dipole", "better-dipole", "dipole+ss", "better-dipole+ss", "pbd", "quantized",
+const char* const kModels[] = {"dipole", "better-dipole", "better-dipole+ss", "pbd", "quantized",
                                "quantized+ss", "burley", "burley-diffuse", "burley-dmfp"};
 
 TEST(AddingDoubling, ErrorTable) {

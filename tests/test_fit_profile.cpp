@@ -45,7 +45,7 @@ const Truth kSkin{{0.032, 0.17, 0.48}, {0.74, 0.88, 1.01}};
 }  // namespace
 
 TEST(FitProfile, NoiseFreeRoundTripsForEveryModel) {
-  for (const char* name : {"dipole", "better-dipole", "pbd", "quantized", "dipole+ss", "better-dipole+ss", "quantized+ss",
+  for (const char* name : {"dipole", "better-dipole", "pbd", "quantized", "better-dipole+ss", "quantized+ss",
                            "burley", "burley-diffuse", "burley-dmfp"}) {
     const auto data = synthesize(name, kSkin, 1.3);
     ProfileFitOptions options;
@@ -119,7 +119,7 @@ TEST(FitProfile, MonteCarloDataAndHowWellEachModelExplainsIt) {
   }
   data.channels.push_back(ch);
   std::printf("  model             sigma_a (truth 0.05)     sigma_s' (truth 0.95)    chi2/dof\n");
-  for (const char* name : {"pbd", "better-dipole+ss", "quantized+ss", "dipole+ss"}) {
+  for (const char* name : {"pbd", "better-dipole+ss", "quantized+ss"}) {
     ProfileFitOptions options;
     options.model = name;
     const auto report = fit_profile(data, options);

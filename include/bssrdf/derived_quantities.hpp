@@ -9,8 +9,8 @@
 //   mfp            1/sigma_t     (unreduced; Blender's Random Walk radius, Mitsuba's sigma_t)
 //   transport_mfp  ell = 1/sigma_t'
 //   diffuse_mfp    ell_d = 1/sigma_tr, sigma_tr = sqrt(3 sigma_a sigma_t') (classical)
-//   burley_d       d of R(r) = A (e^{-r/d} + e^{-r/3d}) / (8 pi d r), least squares against the
-//                  physical model's R(r) (fit_burley), with its relative L2 error
+//   burley_d       d of R(r) = A (e^{-r/d} + e^{-r/3d}) / (8 pi d r), A = the surface albedo, d by
+//                  least squares against the physical model's R(r) (fit_burley), with its relative L2 error
 #pragma once
 
 #include <string>
@@ -27,9 +27,12 @@ struct DerivedChannel {
   double sigma_s_prime = 0, sigma_t_prime = 0, albedo_prime = 0;
   double mfp = 0, transport_mfp = 0, diffuse_mfp = 0;  // mm; diffuse_mfp is infinite when sigma_a = 0
   // Total diffuse reflectance of the physical model (single scattering included), per entered flux.
+  // Where that model creates energy (its total exceeds 1: pbd at alpha' near 1), the exact total
+  // by adding-doubling instead, and `reason` says so: never above 1.
   double surface_albedo = 0;
-  // Burley's d (mm) and A fitted to the physical profile, and the fit's relative L2 error
-  // sqrt(int r (fit - R)^2 dr / int r R^2 dr). NaN when the channel does not scatter (sigma_s = 0).
+  // Burley's d (mm) fitted to the physical profile's shape with A held at surface_albedo (energy
+  // conserved: A <= 1), and the fit's relative L2 error sqrt(int r (fit - R)^2 dr / int r R^2 dr).
+  // NaN when the channel does not scatter (sigma_s = 0).
   double burley_d = 0, burley_albedo = 0, burley_error = 0;
   bool diffusion_valid = true;
   std::string reason;  // why diffusion does not apply (empty when it does)

@@ -26,6 +26,9 @@ struct ModelErrorEstimate {
   double cost_ns = 0;        // one R(r) evaluation (bench_models median, alpha' 0.9, eta 1.3)
   double total_error = 0;    // |relative error of the total reflectance|
   double profile_error = 0;  // area-weighted relative L2 error of R(r), single scattering included
+  // The model's own verdict here: its first "invalid" validity note ("code: message"), empty when it
+  // has none. An invalid model is never chosen, whatever its measured error.
+  std::string invalid;
   double error() const { return total_error > profile_error ? total_error : profile_error; }
 };
 
@@ -46,7 +49,7 @@ struct MeasuredModel {
 };
 std::vector<MeasuredModel> measured_models();
 
-// The cheapest of `estimates` (cheapest first) whose error() <= accuracy; nullopt when none is.
+// The cheapest valid one of `estimates` (cheapest first) whose error() <= accuracy; nullopt when none is.
 std::optional<std::string> cheapest_within(const std::vector<ModelErrorEstimate>& estimates, double accuracy);
 
 struct ModelChoice {

@@ -11,13 +11,12 @@
 #include "bssrdf/lut/gaussian_mixture_table.hpp"
 #include "bssrdf/model.hpp"
 #include "bssrdf/model_choice.hpp"
+#include "bssrdf/model_registry.hpp"
 
 namespace bssrdf {
 namespace {
 
-bool closed_form(const std::string& model) {
-  return model == "dipole" || model == "better-dipole" || model.rfind("burley", 0) == 0;
-}
+bool closed_form(const std::string& model) { return model_entry(model).closed_form; }
 
 }  // namespace
 

@@ -13,6 +13,7 @@
 #include "bssrdf/io/svg_chart.hpp"
 #include "bssrdf/model.hpp"
 #include "bssrdf/model_choice.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/models/diffusion_validity.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -31,7 +32,8 @@ void print_estimates(const MediumOptions& options, const std::string& accuracy_t
   if (json) {
     nlohmann::json doc = {{"accuracy", accuracy}, {"chosen", chosen.empty() ? nlohmann::json(nullptr) : nlohmann::json(chosen)}};
     for (const auto& e : estimates)
-      doc["models"].push_back({{"name", e.model}, {"cost_ns", e.cost_ns}, {"total_error", e.total_error}, {"profile_l2_error", e.profile_error}});
+      doc["models"].push_back({{"name", e.model}, {"cost_ns", e.cost_ns}, {"total_error", e.total_error}, {"profile_l2_error", e.profile_error},
+                                  {"invalid", e.invalid.empty() ? nlohmann::json(nullptr) : nlohmann::json(e.invalid)}});
     std::cout << doc.dump(2) << '\n';
     return;
   }
@@ -40,7 +42,8 @@ void print_estimates(const MediumOptions& options, const std::string& accuracy_t
   for (const auto& e : estimates) {
     char line[160];
     std::snprintf(line, sizeof line, "  %-18s %8.0f  %5.1f %%  %6.1f %%", e.model.c_str(), e.cost_ns, 100 * e.total_error, 100 * e.profile_error);
-    std::cout << line << (e.model == chosen ? "   <- cheapest within " + format_number(100 * accuracy) + " %" : "") << '\n';
+    std::cout << line << (e.model == chosen ? "   <- cheapest within " + format_number(100 * accuracy) + " %" : "")
+              << (e.invalid.empty() ? "" : "   invalid here, never chosen: " + e.invalid) << '\n';
   }
   if (chosen.empty()) std::cout << "no model is measured within " << format_number(100 * accuracy) << " % here\n";
 }
@@ -122,9 +125,10 @@ Action register_models(CLI::App& app) {
     if (!medium->material.empty() || !medium->sigma_a.empty()) return print_estimates(*medium, *accuracy, *json);
     if (!accuracy->empty()) throw InvalidInput("--accuracy: give a medium (--material or --sigma-a/--sigma-s) too");
     nlohmann::json list = nlohmann::json::array();
-    for (const auto& name : model_names()) {
-      const auto model = make_model(name);
-      const auto& limits = measured_limits(name);
+    for (const auto& entry : model_registry()) {
+      if (!entry.listed) continue;
+      const auto& name = entry.name;
+      const auto model = entry.make();
       // The validity domain as measured: the lowest alpha' where the total is within 5 %.
       const auto within = [&](const std::vector<AccuracyBand>& bands, double tolerance) {
         double lowest = 1;
@@ -133,18 +137,21 @@ Action register_models(CLI::App& app) {
           else break;
         return lowest;
       };
-      const double iso = within(limits.isotropic_bands, 0.05), fwd = within(limits.forward_bands, 0.05);
-      std::string domain = "total within 5 % of adding-doubling for alpha' >= " + format_number(iso) +
-                           " (g = 0), >= " + format_number(fwd) + " (g = 0.9); eta 1-1.4";
-      if (iso == 1 && fwd == 1) domain = "total not within 5 % of adding-doubling anywhere measured";
+      std::string domain = "total not measured against adding-doubling";
+      if (const auto& limits = entry.limits) {
+        const double iso = within(limits->isotropic_bands, 0.05), fwd = within(limits->forward_bands, 0.05);
+        domain = "total within 5 % of adding-doubling for alpha' >= " + format_number(iso) + " (g = 0), >= " +
+                 format_number(fwd) + " (g = 0.9); eta 1-1.4";
+        if (iso == 1 && fwd == 1) domain = "total not within 5 % of adding-doubling anywhere measured";
+      }
       if (*json) {
         list.push_back({{"name", name},
                         {"description", model->description()},
-                        {"includes_single_scattering", model->includes_single_scattering()},
+                        {"includes_single_scattering", entry.includes_single_scattering},
                         {"validity_domain", domain}});
       } else {
         std::cout << name << "\n    " << model->description() << "\n    single scattering: "
-                  << (model->includes_single_scattering() ? "included" : "omitted (add with --single-scattering)")
+                  << (entry.includes_single_scattering ? "included" : "omitted (add with --single-scattering)")
                   << "\n    " << domain << "\n";
       }
     }

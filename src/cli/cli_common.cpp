@@ -241,7 +241,8 @@ ChosenModel resolve_model(const std::string& name, const std::string& accuracy, 
   std::string rejected;
   for (const auto& e : choice.estimates) {
     if (e.model == choice.model) break;
-    rejected += (rejected.empty() ? "" : ", ") + e.model + " " + format_number(std::round(e.error() * 1000) / 10) + " %";
+    rejected += (rejected.empty() ? "" : ", ") + e.model + " " +
+                (e.invalid.empty() ? format_number(std::round(e.error() * 1000) / 10) + " %" : "invalid here");
   }
   const auto& chosen = *std::find_if(choice.estimates.begin(), choice.estimates.end(), [&](const auto& e) { return e.model == choice.model; });
   return {choice.model, "auto: " + choice.model + ", the cheapest measured within " + format_number(a * 100) +

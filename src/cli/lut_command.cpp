@@ -27,6 +27,7 @@
 #include "bssrdf/lut/separable_kernel.hpp"
 #include "bssrdf/lut/transmission_table.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/models/multipole.hpp"
 #include "bssrdf/profile.hpp"
 #include "cli_common.hpp"
@@ -327,8 +328,8 @@ Built build_separable(const LutOptions& o, const MediumOptions::Resolved& resolv
 
 Built build_gaussians(const LutOptions& o, const MediumOptions::Resolved& resolved, const Model& model, const TableContext& context) {
   GaussianMixtureTable t;
-  if (o.count == 0 && model.name() == "quantized") {
-    t = quantized_mixture_table(resolved.medium, dynamic_cast<const quantized_diffusion::Model&>(model));
+  if (o.count == 0 && model_entry(model.name()).own_gaussians) {
+    t = own_mixture_table(resolved.medium, model);
   } else {
     const int count = o.count == 0 ? 6 : o.count;
     if (count < 1 || count > 32) throw InvalidInput("--count", std::to_string(count), "1 to 32");

@@ -43,9 +43,11 @@ json show_json(const Material& m, const DerivedQuantities& q, LengthUnit unit) {
                {{"mfp", "1/sigma_t (unreduced), " + u},
                 {"transport_mfp", "ell = 1/sigma_t', " + u},
                 {"diffuse_mfp", "ell_d = 1/sigma_tr, sigma_tr = sqrt(3 sigma_a sigma_t'), " + u + "; null without absorption"},
-                {"burley_d", "d of R(r) = A (e^{-r/d} + e^{-r/3d})/(8 pi d r) least-squares fitted to the " + q.physical_model +
-                                 " profile, " + u + "; burley_fit_error = sqrt(int r (fit - R)^2 dr / int r R^2 dr)"},
-                {"surface_albedo", "total diffuse reflectance of the " + q.physical_model + " profile per entered flux"},
+                {"burley_d", "d of R(r) = A (e^{-r/d} + e^{-r/3d})/(8 pi d r), A = surface_albedo, least-squares fitted to the " +
+                                 q.physical_model + " profile, " + u + "; burley_fit_error = sqrt(int r (fit - R)^2 dr / int r R^2 dr)"},
+                {"surface_albedo", "total diffuse reflectance of the " + q.physical_model +
+                                       " profile per entered flux; where that exceeds 1 (the model creates energy), the exact total by "
+                                       "adding-doubling, and the channel's reason says so"},
                 {"coefficients", per}}},
               {"notes", m.notes}};
   doc["channels"] = json::array();

@@ -13,7 +13,7 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/io/layers_json.hpp"
 #include "bssrdf/model.hpp"
-#include "bssrdf/models/normalized_diffusion.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/models/layered.hpp"
 #include "bssrdf/models/multipole.hpp"
 #include "bssrdf/profile_report.hpp"
@@ -22,6 +22,23 @@
 
 namespace bssrdf::cli {
 namespace {
+
+// A model whose R(r) holds its (nonzero) total at no finite radius has no profile to print: R(r)
+// would be 0 at every radius while the total is not (burley-dmfp without absorption, whose length
+// 1/sigma_tr is infinite). Refused, with the model's own reason.
+void refuse_unbounded_profile(const Model& model, const Medium& medium) {
+  for (std::size_t c = 0; c < medium.channels(); ++c) {
+    const auto m = medium.reduced(c);
+    const double total = model.total_reflectance(m);
+    if (!(total > 0) || std::isfinite(model.radius_for_fraction(m, 0.99))) continue;
+    std::string reason;
+    for (const auto& note : model.validity(m))
+      if (note.severity == Severity::invalid) reason = " (" + note.message + ")";
+    throw InvalidInput("channel " + medium.channel_names[c] + ": " + model.name() + " spreads its total reflectance " +
+                       format_number(std::round(total * 1e5) / 1e5) + " over no finite radius here" + reason +
+                       "; choose another model (bssrdf models)");
+  }
+}
 
 // The first note that makes the multipole unusable here (not the albedo notes every diffusion
 // model carries), or nullptr.
@@ -131,25 +148,30 @@ Action register_profile(CLI::App& app) {
       auto_note = chosen.note;
       model = make_model(chosen.name + (options->single_scattering ? "+ss" : ""));
     }
+    if (model && !slab) refuse_unbounded_profile(*model, resolved.medium);
     if (!options->surface_albedo.empty()) {
       const double A = parse_number(options->surface_albedo, "--surface-albedo");
       if (!(A > 0 && A < 1)) throw InvalidInput("--surface-albedo", format_number(A), "0 < A < 1");
-      const auto* burley = dynamic_cast<const normalized_diffusion::Model*>(model.get());
-      if (!burley)
+      const auto* entry = model ? find_model_entry(model->name()) : nullptr;
+      if (!entry || !entry->with_surface_albedo)
         throw InvalidInput("--surface-albedo: only the burley models take a surface albedo, not " +
                            (model ? model->name() : std::string("multipole")));
-      model = std::make_unique<normalized_diffusion::Model>(burley->scaling(), A);
+      model = entry->with_surface_albedo(A);
     }
     std::vector<double> radii_mm;
     if (!options->radii.empty()) {
       SampledProfile check;
       check.radius = parse_length_list(options->radii, "--radii");
       check.value.assign(check.radius.size(), 0.0);
-      if (check.radius.size() == 1) check.radius.push_back(check.radius[0]);  // let validate() name it
-      try {
-        check.validate();
-      } catch (const InvalidInput& e) {
-        throw InvalidInput(std::string("--radii: ") + e.what());
+      if (check.radius.size() == 1) {  // one radius is a valid request; validate() checks profiles of two or more
+        if (!std::isfinite(check.radius[0]) || check.radius[0] < 0)
+          throw InvalidInput("--radii", format_number(check.radius[0]), ">= 0 and finite");
+      } else {
+        try {
+          check.validate();
+        } catch (const InvalidInput& e) {
+          throw InvalidInput(std::string("--radii: ") + e.what());
+        }
       }
       for (double r : parse_length_list(options->radii, "--radii")) radii_mm.push_back(r * mm);
     } else {

@@ -93,6 +93,17 @@ struct BurleyResidual {
   }
 };
 
+// The same with A fixed (ln A given): only ln d is a parameter.
+struct BurleyShapeResidual {
+  BurleyResidual full;
+  double log_albedo;
+  template <class T>
+  bool operator()(const T* log_d, T* residual) const {
+    const T x[2] = {log_d[0], T(log_albedo)};
+    return full(x, residual);
+  }
+};
+
 void check_profiles(const std::vector<NamedProfile>& channels) {
   if (channels.empty()) throw InvalidInput("profile: no channels to fit");
   for (const auto& c : channels) {
@@ -243,9 +254,14 @@ FitReport fit_gaussians(const std::vector<NamedProfile>& channels, int count, Le
   return report;
 }
 
-FitReport fit_burley(const std::vector<NamedProfile>& channels, LengthUnit unit, const std::string& source) {
+FitReport fit_burley(const std::vector<NamedProfile>& channels, LengthUnit unit, const std::string& source,
+                     const std::vector<double>& totals) {
   const auto start = std::chrono::steady_clock::now();
   check_profiles(channels);
+  if (!totals.empty() && totals.size() != channels.size())
+    throw InvalidInput("totals: " + std::to_string(totals.size()) + " values for " + std::to_string(channels.size()) + " channels");
+  for (double t : totals)
+    if (!(t > 0 && t <= 1)) throw InvalidInput("total reflectance", format_number(t), "0 < total <= 1 (energy is conserved)");
   FitReport report;
   report.kind = "burley";
   report.model = "normalized diffusion (Christensen & Burley 2015): d and A by least squares";
@@ -253,14 +269,23 @@ FitReport fit_burley(const std::vector<NamedProfile>& channels, LengthUnit unit,
   report.converged = true;
   const std::string u(symbol(unit));
   double worst = 0;
-  for (const auto& c : channels) {
+  for (std::size_t k = 0; k < channels.size(); ++k) {
+    const auto& c = channels[k];
     // Start from the profile's integral and half-energy radius (Burley's r_50 = 1.5436 d).
     std::array<double, 2> x = {std::log(c.profile.radius_for_fraction(0.5) / normalized_diffusion::inverse_cdf(1.0, 0.5)),
-                               std::log(c.profile.integrate())};
+                               std::log(totals.empty() ? c.profile.integrate() : totals[k])};
     ceres::Problem problem;
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<BurleyResidual, ceres::DYNAMIC, 2>(
-                                 new BurleyResidual{&c.profile, root_weights(c.profile)}, static_cast<int>(c.profile.size())),
-                             nullptr, x.data());
+    // A given total is Burley's A itself (his surface albedo, the profile's energy): only d is
+    // fitted. Free, A absorbs the misfit of the shape and can exceed 1.
+    if (totals.empty())
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<BurleyResidual, ceres::DYNAMIC, 2>(
+                                   new BurleyResidual{&c.profile, root_weights(c.profile)}, static_cast<int>(c.profile.size())),
+                               nullptr, x.data());
+    else
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<BurleyShapeResidual, ceres::DYNAMIC, 1>(
+                                   new BurleyShapeResidual{{&c.profile, root_weights(c.profile)}, x[1]},
+                                   static_cast<int>(c.profile.size())),
+                               nullptr, x.data());
     ceres::Solver::Options options;
     options.linear_solver_type = ceres::DENSE_QR;
     options.function_tolerance = 1e-14;

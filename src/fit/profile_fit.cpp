@@ -9,57 +9,19 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/model.hpp"
 #include "bssrdf/model_choice.hpp"
-#include "bssrdf/models/better_dipole.hpp"
-#include "bssrdf/models/dipole.hpp"
-#include "bssrdf/models/photon_beam_diffusion.hpp"
-#include "bssrdf/models/quantized_diffusion.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/profile.hpp"
-#include "bssrdf/single_scattering.hpp"
 #include "fit_common.hpp"
 
 namespace bssrdf {
 namespace {
 
-// The templated forward models: R(r) at every radius for one channel's coefficients.
-enum class Forward { dipole, better_dipole, pbd, quantized, numeric };
-
+// The model's forward form (model_registry.hpp) and, for a numeric form, the runtime model.
 struct ForwardModel {
-  Forward kind = Forward::numeric;
-  bool single_scattering = false;
-  int pbd_samples = 16;
-  double qd_ratio = 1.1;
-  std::shared_ptr<const Model> runtime;  // for Forward::numeric
+  FitForm form;
+  bool singular_at_origin = false;
+  std::shared_ptr<const Model> runtime;
 };
-
-template <class T>
-void evaluate(const ForwardModel& f, const Reduced<T>& m, const std::vector<double>& radii, T* out) {
-  switch (f.kind) {
-    case Forward::dipole:
-      for (std::size_t i = 0; i < radii.size(); ++i) out[i] = classical_dipole::reflectance(m, T(radii[i]));
-      break;
-    case Forward::better_dipole: {
-      const auto b = improved_boundary(m.eta);
-      for (std::size_t i = 0; i < radii.size(); ++i) out[i] = better_dipole::reflectance(m, b, T(radii[i]));
-      break;
-    }
-    case Forward::pbd: {
-      const auto b = improved_boundary(m.eta);
-      for (std::size_t i = 0; i < radii.size(); ++i)
-        out[i] = photon_beam_diffusion::multiple_scattering(m, b, T(radii[i]), f.pbd_samples);
-      break;
-    }
-    case Forward::quantized: {
-      const auto mix = quantized_diffusion::mixture(m, improved_boundary(m.eta), f.qd_ratio);
-      for (std::size_t i = 0; i < radii.size(); ++i) out[i] = quantized_diffusion::reflectance(mix, T(radii[i]));
-      break;
-    }
-    case Forward::numeric:
-      break;  // handled by NumericResidual
-  }
-  if (f.single_scattering || f.kind == Forward::pbd)
-    for (std::size_t i = 0; i < radii.size(); ++i)
-      if (radii[i] > 0) out[i] += single_scattering_reflectance(m, T(radii[i]), f.kind == Forward::pbd ? f.pbd_samples : 32);
-}
 
 struct ChannelData {
   std::vector<double> radius, value, sigma;
@@ -75,7 +37,7 @@ struct AutoResidual {
     using std::exp;
     const T sigma_a = exp(channel[0]), sigma_s_prime = exp(channel[1]);
     const auto m = reduce(sigma_a, sigma_s_prime / T(1 - data->g), T(data->g), eta[0]);
-    evaluate(*forward, m, data->radius, residual);
+    evaluate(forward->form, m, data->radius, residual);
     const T scale = exp(log_scale[0]);
     for (std::size_t i = 0; i < data->radius.size(); ++i)
       residual[i] = (scale * residual[i] - T(data->value[i])) / T(data->sigma[i]);
@@ -96,19 +58,8 @@ struct NumericResidual {
 };
 
 ForwardModel forward_for(const std::string& name) {
-  ForwardModel f;
-  std::string base = name;
-  if (base.size() > 3 && base.substr(base.size() - 3) == "+ss") {
-    f.single_scattering = true;
-    base = base.substr(0, base.size() - 3);
-  }
-  if (base == "dipole") f.kind = Forward::dipole;
-  else if (base == "better-dipole") f.kind = Forward::better_dipole;
-  else if (base == "pbd") f.kind = Forward::pbd;
-  else if (base == "quantized") f.kind = Forward::quantized;
-  f.runtime = make_model(name);  // validates the name
-  if (f.kind == Forward::numeric) f.single_scattering = false;  // the runtime model has it already
-  return f;
+  const auto& entry = model_entry(name);
+  return {entry.fit_form, entry.singular_at_origin, entry.make()};
 }
 
 }  // namespace
@@ -142,9 +93,7 @@ FitReport fit_profile(const MeasuredProfile& data, const ProfileFitOptions& opti
     if (!(peak > 0)) throw InvalidInput("channel " + in.name + ": every value is 0; nothing to fit");
     ch.g = options.g.empty() ? 0.0 : options.g.size() == 1 ? options.g[0] : options.g[c];
     for (std::size_t i = 0; i < data.radius.size(); ++i) {
-      if (data.radius[i] <= 0 && (forward.single_scattering || forward.kind == Forward::pbd ||
-                                  options.model.rfind("burley", 0) == 0))
-        continue;  // these models are singular at r = 0
+      if (data.radius[i] <= 0 && forward.singular_at_origin) continue;
       ch.radius.push_back(data.radius[i]);
       ch.value.push_back(in.value[i]);
       ch.sigma.push_back(in.standard_error.empty() ? std::max(in.value[i], 1e-9 * peak) : in.standard_error[i]);
@@ -170,16 +119,13 @@ FitReport fit_profile(const MeasuredProfile& data, const ProfileFitOptions& opti
     x[c] = {std::log((1 - a) * sigma_t_prime), std::log(a * sigma_t_prime)};
   }
   double eta = options.eta, log_scale = 0;
-  if (forward.kind == Forward::pbd)
-    forward.pbd_samples = photon_beam_diffusion::samples_for_tolerance(0.9, 0.0, options.eta, 1e-6);
-  // The same discretisation as the runtime model at this eta.
-  if (forward.kind == Forward::quantized) forward.qd_ratio = quantized_diffusion::ratio_for_tolerance(options.eta, 1e-3);
+  prepare(forward.form, options.eta);  // the same discretisation as the runtime model at this eta
 
   ceres::Problem problem;
   for (std::size_t c = 0; c < channels.size(); ++c) {
     const int n = static_cast<int>(channels[c].radius.size());
     ceres::CostFunction* cost;
-    if (forward.kind == Forward::numeric) {
+    if (forward.form.numeric()) {
       cost = new ceres::NumericDiffCostFunction<NumericResidual, ceres::CENTRAL, ceres::DYNAMIC, 2, 1, 1>(
           new NumericResidual{&channels[c], &forward}, ceres::TAKE_OWNERSHIP, n);
     } else {
@@ -297,7 +243,7 @@ FitReport fit_profile(const MeasuredProfile& data, const ProfileFitOptions& opti
     const auto& ch = channels[c];
     std::vector<double> r(ch.radius.size());
     const double lscale = log_scale;
-    if (forward.kind == Forward::numeric) NumericResidual{&ch, &forward}(x[c].data(), &eta, &lscale, r.data());
+    if (forward.form.numeric()) NumericResidual{&ch, &forward}(x[c].data(), &eta, &lscale, r.data());
     else AutoResidual{&ch, &forward}(x[c].data(), &eta, &lscale, r.data());
     for (std::size_t i = 0; i < r.size(); ++i) {
       const double model_value = ch.value[i] + r[i] * ch.sigma[i];

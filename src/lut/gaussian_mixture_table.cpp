@@ -5,6 +5,7 @@
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/fit/inverse_fits.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/profile_report.hpp"
 
 namespace bssrdf {
@@ -23,10 +24,16 @@ std::size_t GaussianMixtureTable::count() const {
 }
 
 GaussianMixtureTable quantized_mixture_table(const Medium& medium, const quantized_diffusion::Model& model) {
+  return own_mixture_table(medium, model);
+}
+
+GaussianMixtureTable own_mixture_table(const Medium& medium, const Model& model) {
   medium.validate();
+  const auto& own = model_entry(model.name()).own_gaussians;
+  if (!own) throw InvalidInput("model", "'" + model.name() + "'", "a model with its own Gaussian mixture (quantized)");
   const auto start = std::chrono::steady_clock::now();
   GaussianMixtureTable t;
-  t.method = "quantized diffusion's own mixture (d'Eon & Irving 2011), time-bin ratio chosen for tolerance 1e-3";
+  t.method = "the model's own mixture: " + model.description();
   t.shared_variance = false;
   t.channel_names = medium.channel_names;
   for (std::size_t c = 0; c < medium.channels(); ++c) {
@@ -39,7 +46,7 @@ GaussianMixtureTable quantized_mixture_table(const Medium& medium, const quantiz
       t.relative_l2_error.push_back(0);
       continue;
     }
-    const auto mix = model.gaussians(m);
+    const auto mix = own(model, m);
     t.variance.push_back(mix.variance);
     t.weight.push_back(mix.weight);
     double sum = 0;

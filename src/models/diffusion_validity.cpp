@@ -3,67 +3,17 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <map>
 #include <stdexcept>
 
 #include "bssrdf/error.hpp"
+#include "bssrdf/model_registry.hpp"
 
 namespace bssrdf {
 
-// Worst |error| of each model's total against adding-doubling over eta in {1, 1.4}, for alpha'
-// at or above each bound (alpha' from the similarity relation), rounded up to 0.1 %: first at
-// g = 0, then at g = 0.9. Measured by tests/test_adding_doubling.cpp, which fails if a band stops
-// holding or is padded (and prints the measured bands).
-namespace {
-
-using Bands = std::vector<AccuracyBand>;
-
-Bands bands(std::initializer_list<double> worst) {
-  static constexpr double kBounds[] = {0.99, 0.95, 0.9, 0.8, 0.7, 0.5, 0.3, 0.1, 0.01};
-  Bands out;
-  std::size_t i = 0;
-  for (double w : worst) out.push_back({kBounds[i++], w});
-  return out;
-}
-
-std::map<std::string, DiffusionLimits, std::less<>> measured() {
-  std::map<std::string, DiffusionLimits, std::less<>> table;
-  const auto add = [&](const std::string& name, Bands isotropic, Bands forward, std::string context = "") {
-    DiffusionLimits limits;
-    limits.isotropic_bands = std::move(isotropic);
-    limits.forward_bands = std::move(forward);
-    limits.context = std::move(context);
-    table.emplace(name, std::move(limits));
-  };
-  const std::string omits = "; the model omits single scattering, much of this error at g near 0";
-  add("dipole", bands({0.014, 0.040, 0.104, 0.212, 0.288, 0.372, 0.404, 0.407, 0.407}),
-      bands({0.012, 0.059, 0.167, 0.387, 0.616, 1.147, 1.874, 2.902, 3.465}), omits);
-  add("better-dipole", bands({0.027, 0.102, 0.173, 0.304, 0.414, 0.601, 0.766, 0.923, 0.993}),
-      bands({0.025, 0.082, 0.125, 0.184, 0.256, 0.397, 0.570, 0.824, 0.981}), omits);
-  add("dipole+ss", bands({0.194, 0.233, 0.325, 0.534, 0.701, 0.960, 1.160, 1.326, 1.384}),
-      bands({0.011, 0.065, 0.175, 0.401, 0.638, 1.199, 2.003, 3.318, 4.363}));
-  add("better-dipole+ss", bands({0.183, 0.183, 0.183, 0.183, 0.183, 0.183, 0.183, 0.183, 0.183}),
-      bands({0.022, 0.077, 0.118, 0.163, 0.221, 0.325, 0.413, 0.413, 0.413}));
-  add("pbd", bands({0.118, 0.137, 0.143, 0.143, 0.143, 0.143, 0.143, 0.143, 0.143}),
-      bands({0.067, 0.104, 0.126, 0.142, 0.177, 0.256, 0.347, 0.351, 0.351}));
-  add("quantized", bands({0.014, 0.049, 0.084, 0.173, 0.265, 0.458, 0.663, 0.884, 0.989}),
-      bands({0.012, 0.028, 0.031, 0.031, 0.067, 0.181, 0.382, 0.736, 0.971}), omits);
-  add("quantized+ss", bands({0.196, 0.233, 0.251, 0.259, 0.259, 0.259, 0.259, 0.259, 0.259}),
-      bands({0.012, 0.023, 0.024, 0.024, 0.031, 0.109, 0.224, 0.295, 0.295}));
-  // Normalized diffusion's total is quantized diffusion's (its surface albedo).
-  for (const char* burley : {"burley", "burley-diffuse", "burley-dmfp"})
-    add(burley, bands({0.014, 0.049, 0.084, 0.173, 0.265, 0.458, 0.663, 0.884, 0.989}),
-        bands({0.012, 0.028, 0.031, 0.031, 0.067, 0.181, 0.382, 0.736, 0.971}));
-  return table;
-}
-
-}  // namespace
-
 const DiffusionLimits& measured_limits(std::string_view model_name) {
-  static const auto table = measured();
-  const auto it = table.find(model_name);
-  if (it == table.end()) throw std::out_of_range("no measured accuracy for model " + std::string(model_name));
-  return it->second;
+  const auto* entry = find_model_entry(model_name);
+  if (!entry || !entry->limits) throw std::out_of_range("no measured accuracy for model " + std::string(model_name));
+  return *entry->limits;
 }
 
 double documented_total_error(const DiffusionLimits& limits, double albedo_prime, double g) {

@@ -10,7 +10,7 @@
 //    solution exists;
 //  - fit_gaussians: N shared-variance Gaussians with per-channel non-negative weights fitted to a
 //    profile by minimising int r (R - sum w G)^2 dr (GPU Gems 3 ch. 14);
-//  - fit_burley: Burley's d per channel fitted to a profile (least squares, total fixed).
+//  - fit_burley: Burley's d per channel fitted to a profile (least squares; A fixed to a given total).
 #pragma once
 
 #include <string>
@@ -78,6 +78,10 @@ struct NamedProfile {
 // sampled radii miss part of it (profiles singular at r = 0).
 FitReport fit_gaussians(const std::vector<NamedProfile>& channels, int count, LengthUnit unit, const std::string& source,
                         const std::vector<double>& totals = {});
-FitReport fit_burley(const std::vector<NamedProfile>& channels, LengthUnit unit, const std::string& source);
+// `totals`: when given (one per channel, in (0, 1]), Burley's A is held at it (the energy of the
+// profile, e.g. the physical model's total reflectance) and only d is fitted; without them A is
+// fitted too and absorbs the shape's misfit (for measured profiles of unknown scale).
+FitReport fit_burley(const std::vector<NamedProfile>& channels, LengthUnit unit, const std::string& source,
+                     const std::vector<double>& totals = {});
 
 }  // namespace bssrdf

@@ -9,9 +9,10 @@
 // Parameters are fitted as logarithms (positivity without bounds); eta within [eta_min, eta_max].
 // Residuals are (scale R_model(r_i) - R_i) / sigma_i with sigma_i the file's standard errors, or,
 // without them, relative residuals (sigma_i = R_i): profiles span decades and every radius counts.
-// Without standard errors the covariance is scaled by the reduced chi-square. The dipoles, photon
-// beam diffusion and quantized diffusion (and their +ss forms) are differentiated automatically
-// (ceres::Jet through the same templated code); other models numerically.
+// Without standard errors the covariance is scaled by the reduced chi-square. The forward model is
+// the registry's fit form (model_registry.hpp): the dipoles, photon beam diffusion and quantized
+// diffusion (and their +ss forms) are differentiated automatically (ceres::Jet through the same
+// templated code), a model with a numeric form (the burley models) numerically.
 #pragma once
 
 #include <string>

@@ -37,6 +37,8 @@ struct GaussianMixtureTable {
 };
 
 GaussianMixtureTable quantized_mixture_table(const Medium& medium, const quantized_diffusion::Model& model);
+// The mixture of any model that has its own (model_registry.hpp: own_gaussians); InvalidInput if it has none.
+GaussianMixtureTable own_mixture_table(const Medium& medium, const Model& model);
 // count: 1 to 32; the profile is sampled on `samples` radii (default_radii_mm of profile_report.hpp).
 GaussianMixtureTable fitted_mixture_table(const Medium& medium, const Model& model, int count, std::size_t samples = 128);
 

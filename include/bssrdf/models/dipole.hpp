@@ -52,7 +52,11 @@ class Model final : public bssrdf::Model {
  public:
   std::string name() const override { return "dipole"; }
   std::string description() const override;
-  bool includes_single_scattering() const override { return false; }
+  // Measured: its total matches the full radiative-transfer total (single scattering included)
+  // better than the multiple-scattering part, 29 of 30 cases of alpha' 0.5-0.99, g 0-0.9, eta 1
+  // and 1.4 against adding-doubling; adding the exact single scattering counted it twice (+9 to
+  // +33 % at alpha' >= 0.9, g = 0). So there is no dipole+ss.
+  bool includes_single_scattering() const override { return true; }
   double reflectance(const Reduced<double>& m, double r) const override;
   double total_reflectance(const Reduced<double>& m) const override;
   double cumulative_reflectance(const Reduced<double>& m, double r) const override;
