@@ -154,7 +154,7 @@ const ModelEntry& model_entry(std::string_view name) {
   constexpr std::string_view kSingle = "+ss";
   if (name.size() > kSingle.size() && name.substr(name.size() - kSingle.size()) == kSingle)
     if (const auto* base = find_model_entry(name.substr(0, name.size() - kSingle.size())); base && base->includes_single_scattering)
-      throw InvalidInput("model", "'" + std::string(name) + "'",
+      throw InvalidInput("model", std::string("'").append(name).append("'"),
                          "a model without single scattering: " + base->name + " already includes it");
   std::string known;
   for (const auto& n : model_names()) known.append(known.empty() ? "" : ", ").append(n);

@@ -30,7 +30,7 @@ GaussianMixtureTable quantized_mixture_table(const Medium& medium, const quantiz
 GaussianMixtureTable own_mixture_table(const Medium& medium, const Model& model) {
   medium.validate();
   const auto& own = model_entry(model.name()).own_gaussians;
-  if (!own) throw InvalidInput("model", "'" + model.name() + "'", "a model with its own Gaussian mixture (quantized)");
+  if (!own) throw InvalidInput("model", std::string("'").append(model.name()).append("'"), "a model with its own Gaussian mixture (quantized)");
   const auto start = std::chrono::steady_clock::now();
   GaussianMixtureTable t;
   t.method = "the model's own mixture: " + model.description();

