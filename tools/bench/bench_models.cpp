@@ -14,6 +14,7 @@
 
 #include "bssrdf/fresnel.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/models/photon_beam_diffusion.hpp"
 #include "bssrdf/single_scattering.hpp"
 #include "pbrt_style.hpp"
@@ -35,8 +36,8 @@ int main(int argc, char** argv) {
 
   std::printf("Cost of one R(r) evaluation, median of %d runs (alpha' = 0.9, g = 0, eta = 1.3; r in [0.01, 20] ell)\n", repetitions);
   const auto m = reduce(0.1, 0.9, 0.0, 1.3);
-  auto names = model_names();
-  for (const char* with_single : {"dipole+ss", "better-dipole+ss", "quantized+ss"}) names.push_back(with_single);
+  std::vector<std::string> names;  // every row of the model registry, NAME+ss included
+  for (const auto& e : model_registry()) names.push_back(e.name);
   for (const auto& name : names) {
     const auto model = make_model(name);
     model->reflectance(m, 1.0);  // warm caches (quadrature order, mixture, surface albedo)

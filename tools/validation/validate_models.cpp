@@ -24,6 +24,7 @@
 
 #include "bssrdf/layers.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/montecarlo.hpp"
 #include "bssrdf/reference_comparison.hpp"
 #include "bssrdf/single_scattering.hpp"
@@ -41,8 +42,8 @@ int main(int argc, char** argv) {
   const auto gs = argc > 3 ? list(argv[3]) : std::vector<double>{0.0, 0.9};
   const auto etas = argc > 4 ? list(argv[4]) : std::vector<double>{1.0, 1.3, 1.4};
   const auto albedos = argc > 5 ? list(argv[5]) : std::vector<double>{0.5, 0.8, 0.9, 0.95, 0.99, 0.999};
-  const std::vector<std::string> models = {"dipole", "dipole+ss", "better-dipole", "better-dipole+ss", "pbd",
-                                           "quantized", "quantized+ss", "burley", "burley-diffuse", "burley-dmfp"};
+  std::vector<std::string> models;  // every row of the model registry
+  for (const auto& e : model_registry()) models.push_back(e.name);
   std::ofstream tsv(tsv_path);
   tsv << "albedo_prime\teta\tg\tmc_total\tmc_stderr\tmc_single\tmc_single_stderr\tss_exact\tmc_l2_noise";
   for (const auto& m : models) tsv << '\t' << m << "_total\t" << m << "_l2\t" << m << "_near\t" << m << "_far";
