@@ -3,6 +3,8 @@
 // profile of zeros with a nonzero total, and a single --radii value refused.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <functional>
 #include <nlohmann/json.hpp>
 
 #include "bssrdf/derived_quantities.hpp"
