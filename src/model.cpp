@@ -8,6 +8,7 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/models/better_dipole.hpp"
 #include "bssrdf/models/dipole.hpp"
+#include "bssrdf/models/exact.hpp"
 #include "bssrdf/models/normalized_diffusion.hpp"
 #include "bssrdf/models/photon_beam_diffusion.hpp"
 #include "bssrdf/models/quantized_diffusion.hpp"
@@ -96,6 +97,8 @@ double radius_where(const std::function<double(double)>& cumulative, double targ
 
 ValidityReport Model::validity(const Reduced<double>& m) const {
   auto report = check_validity(m);
+  // A model that cannot evaluate here (a table's domain) has said so; there is no total to check.
+  if (worst(report) == Severity::invalid) return report;
   const double total = total_reflectance(m);
   if (total > 1)
     report.insert(report.begin(), {Severity::invalid, "energy",
@@ -116,6 +119,7 @@ std::unique_ptr<Model> make_model(std::string_view name) {
   constexpr std::string_view kSingle = "+ss";
   if (name.size() > kSingle.size() && name.substr(name.size() - kSingle.size()) == kSingle)
     return std::make_unique<WithSingleScattering>(make_model(name.substr(0, name.size() - kSingle.size())));
+  if (name == "exact") return make_exact_model();
   if (name == "dipole") return std::make_unique<classical_dipole::Model>();
   if (name == "better-dipole") return std::make_unique<better_dipole::Model>();
   if (name == "pbd") return std::make_unique<photon_beam_diffusion::Model>();
