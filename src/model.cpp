@@ -91,6 +91,8 @@ double radius_where(const std::function<double(double)>& cumulative, double targ
 
 ValidityReport Model::validity(const Reduced<double>& m) const {
   auto report = check_validity(m);
+  // A model that cannot evaluate here (a table's domain) has said so; there is no total to check.
+  if (worst(report) == Severity::invalid) return report;
   const double total = total_reflectance(m);
   if (total > 1)
     report.insert(report.begin(), {Severity::invalid, "energy",

@@ -5,6 +5,7 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/models/better_dipole.hpp"
 #include "bssrdf/models/dipole.hpp"
+#include "bssrdf/models/exact.hpp"
 #include "bssrdf/models/normalized_diffusion.hpp"
 #include "bssrdf/models/photon_beam_diffusion.hpp"
 #include "bssrdf/models/quantized_diffusion.hpp"
@@ -118,6 +119,16 @@ std::vector<ModelEntry> build() {
     return dynamic_cast<const quantized_diffusion::Model&>(model).gaussians(m);  // this row's own make()
   };
 
+  // The tabulated radiative-transfer solution (models/exact.hpp): the reference itself inside its
+  // table's domain, which its validity report states.
+  ModelEntry exact;
+  exact.name = "exact";
+  exact.make = [] { return make_exact_model(); };
+  exact.includes_single_scattering = true;
+  exact.cost_ns = 40;
+  exact.fit_form = {fit_forms::Numeric{}};
+  exact.singular_at_origin = true;  // single scattering: R ~ 1/r
+
   table.push_back(dipole);
   table.push_back(better);
   table.push_back(pbd);
@@ -125,6 +136,7 @@ std::vector<ModelEntry> build() {
   table.push_back(burley("burley", normalized_diffusion::Scaling::searchlight_mfp, 28));
   table.push_back(burley("burley-diffuse", normalized_diffusion::Scaling::diffuse_mfp, 28));
   table.push_back(burley("burley-dmfp", normalized_diffusion::Scaling::searchlight_dmfp, 28));
+  table.push_back(exact);
   table.push_back(plus_single_scattering(better, 540,
                                          bands({0.183, 0.183, 0.183, 0.183, 0.183, 0.183, 0.183, 0.183, 0.183},
                                                {0.022, 0.077, 0.118, 0.163, 0.221, 0.325, 0.413, 0.413, 0.413}),

@@ -93,6 +93,13 @@ struct MonteCarloOptions {
   // (reported; nonzero only for nearly non-absorbing media, where it is a bias to watch).
   std::uint64_t max_interactions = 100'000'000;
 
+  // Keep every photon that leaves the top with its radius and number of scatterings
+  // (ChannelResult::reflected_photons). With a non-absorbing medium this is "white" Monte Carlo:
+  // a photon that scattered k times carries weight albedo^k in a medium of any albedo with the same
+  // g (implicit capture multiplies by the albedo at each interaction), so one run gives the
+  // profiles of every albedo (tools/exact_table). Memory: 16 bytes per reflected photon.
+  bool record_reflected_photons = false;
+
   // Called from worker threads (never concurrently) with photons finished and total (all channels).
   std::function<void(std::uint64_t done, std::uint64_t total)> progress;
 
@@ -102,6 +109,13 @@ struct MonteCarloOptions {
 struct Estimate {
   double value = 0;
   double standard_error = 0;
+};
+
+// A photon that left the top surface: where, after how many scatterings, with what weight.
+struct ReflectedPhoton {
+  double radius = 0;             // mm
+  std::uint32_t scatterings = 0;
+  float weight = 0;              // per unit incident flux
 };
 
 // One channel's tallies. Lengths in mm; everything per unit incident flux unless stated.
@@ -124,6 +138,7 @@ struct ChannelResult {
   std::vector<double> absorbed_by_depth;    // absorbed fraction per unit depth, 1/mm
   std::vector<double> absorbed_by_depth_stderr;
   std::uint64_t interactions = 0;           // scattering/absorption events traced
+  std::vector<ReflectedPhoton> reflected_photons;  // with options.record_reflected_photons, batch order
 
   // 1 / (1 - R_sp): multiply per-incident values by this for per-entered ones.
   double entered_scale() const { return 1.0 / (1.0 - specular_reflectance); }

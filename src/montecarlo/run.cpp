@@ -79,8 +79,10 @@ struct ChannelSums {
   double sum[mc::kTotals] = {}, sum_sq[mc::kTotals] = {};
   double lost = 0, r_beyond = 0, t_beyond = 0;
   std::vector<double> r_sum, r_sq, t_sum, t_sq, a_sum, a_batch_sq;
+  std::vector<ReflectedPhoton> reflected;
 
   void add(const mc::BatchTally& t) {
+    reflected.insert(reflected.end(), t.reflected.begin(), t.reflected.end());
     photons += t.photons;
     interactions += t.interactions;
     ++batches;
@@ -151,6 +153,7 @@ MonteCarloResult run_monte_carlo(const LayerStack& stack, const MonteCarloOption
   settings.roulette_threshold = options.roulette_threshold;
   settings.roulette_survival = options.roulette_survival;
   settings.max_interactions = options.max_interactions;
+  settings.record_reflected = options.record_reflected_photons;
 
   const std::size_t channels = stack.channels();
   std::vector<mc::ChannelGeometry> geometry;
@@ -228,6 +231,7 @@ MonteCarloResult run_monte_carlo(const LayerStack& stack, const MonteCarloOption
     ch.reflectance_beyond = s.r_beyond / n;
     ch.transmittance_beyond = s.t_beyond / n;
     ch.interactions = s.interactions;
+    ch.reflected_photons = s.reflected;
     const auto radial = [&](const std::vector<double>& sum, const std::vector<double>& sum_sq,
                             std::vector<double>& value, std::vector<double>& error) {
       for (std::size_t i = 0; i < sum.size(); ++i) {

@@ -93,6 +93,7 @@ void BatchTally::reset(std::size_t radial_bins, bool transmission, std::size_t d
   t_sum.assign(transmission ? radial_bins : 0, 0.0);
   t_sq.assign(transmission ? radial_bins : 0, 0.0);
   a_sum.assign(depth_bins, 0.0);
+  reflected.clear();
 }
 
 namespace {
@@ -210,6 +211,8 @@ template <bool kAnalog, class V>
     const std::size_t bin = binning.index(r);
     const double w = L.w[j], w2 = w * w, scatterings = L.scatterings[j];
     if (top) {
+      if (settings.record_reflected)
+        tally.reflected.push_back({r, static_cast<std::uint32_t>(scatterings), static_cast<float>(w)});
       tally.sum[kR] += w;
       tally.sum_sq[kR] += w2;
       if (scatterings == 1) {

@@ -97,6 +97,7 @@ struct BatchTally {
   double sum[kTotals] = {}, sum_sq[kTotals] = {};
   double lost = 0, r_beyond = 0, t_beyond = 0;
   std::vector<double> r_sum, r_sq, t_sum, t_sq, a_sum;
+  std::vector<ReflectedPhoton> reflected;  // TraceSettings::record_reflected
 
   void reset(std::size_t radial_bins, bool transmission, std::size_t depth_bins);
 };
@@ -114,6 +115,7 @@ struct TraceSettings {
   AbsorptionEstimator absorption = AbsorptionEstimator::implicit_capture;
   double roulette_threshold = 1e-4, roulette_survival = 0.1;
   std::uint64_t max_interactions = 0;
+  bool record_reflected = false;
   SimdLevel simd = SimdLevel::best;
 };
 

@@ -1,0 +1,67 @@
+// The `exact` model: the radiative-transfer solution itself, not an approximation. R(r) for a
+// normally incident pencil beam on a semi-infinite medium with the true Henyey-Greenstein phase
+// function and a smooth boundary, per unit entered flux, single scattering included, read from a
+// precomputed table (exact_table.hpp: project Monte Carlo for multiple scattering, the exact
+// single-scattering integral, adding-doubling totals) and interpolated.
+//
+//   ExactProfile p(bundled_exact_table(), 0.95, 0.9, 1.4);   // alpha', g, eta
+//   double R = p.reflectance(0.5);                          // r in transport mfp, R in 1/mfp^2
+//   double total = p.total();                               // the adding-doubling total
+//
+// Interpolation: cubic Hermite in logit(alpha'), -ln(1 - g) and eta (slopes from three-point
+// differences: continuous first derivatives, so fits through it converge) of ln y, y = 2 pi r^2 R,
+// at each tabulated radius; Catmull-Rom in ln r between radii. The curve is then scaled so that its
+// integral equals the interpolated adding-doubling total, which is what total() returns.
+// Domain: alpha' in [0.001, 0.9999], g in [0, 0.99], eta in [1, 1.6] (the table's axes); outside it
+// the constructor throws InvalidInput naming the parameter: never an extrapolation.
+// Accuracy and speed: README "The exact model" (measured against fresh Monte Carlo off the grid).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bssrdf/models/exact_table.hpp"
+#include "bssrdf/reduced.hpp"
+#include "bssrdf/validity.hpp"
+
+namespace bssrdf {
+
+// The table's domain for one medium: an empty report inside, an "invalid" entry per parameter
+// outside (codes exact_albedo, exact_g, exact_eta), each naming the value and the covered range.
+ValidityReport exact_domain(const ExactTable& table, double albedo_prime, double g, double eta);
+
+// Total diffuse reflectance per unit entered flux at (alpha', g, eta), interpolated from the
+// adding-doubling totals (no profile is built: ~0.1 us). Throws InvalidInput outside the domain.
+double exact_total(const ExactTable& table, double albedo_prime, double g, double eta);
+
+// The reduced albedo whose exact total is `total` at (g, eta): the inverse of exact_total,
+// monotone in alpha'. Throws InvalidInput when `total` is outside [total(0.001), total(0.9999)].
+double exact_albedo_prime_from_total(const ExactTable& table, double total, double g, double eta);
+
+class ExactProfile {
+ public:
+  ExactProfile(const ExactTable& table, double albedo_prime, double g, double eta);
+
+  // Lengths in transport mean free paths (sigma_t' = 1), R in 1/mfp^2.
+  double reflectance(double r) const;
+  double cumulative(double r) const;  // int_0^r 2 pi r' R dr'
+  double total() const { return total_; }
+  double albedo_prime() const { return albedo_prime_; }
+
+ private:
+  double ln_y(double ln_r) const;  // the interpolated, normalised curve
+
+  double albedo_prime_, g_, eta_;
+  double ln_r0_, d_ln_r_;
+  std::vector<double> ln_y_;        // per tabulated radius, normalised
+  std::vector<double> cumulative_;  // int_0^{r_k} y d ln r at each tabulated radius
+  double head_slope_ = 1, tail_slope_ = 0, total_ = 0;
+};
+
+class Model;
+// The `exact` model on the bundled table (loaded on first use), for make_model("exact").
+std::unique_ptr<Model> make_exact_model();
+
+}  // namespace bssrdf

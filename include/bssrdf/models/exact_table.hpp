@@ -1,0 +1,76 @@
+// The tabulated radiative-transfer solution behind the `exact` model: R(r) of a semi-infinite
+// Henyey-Greenstein medium under a normally incident pencil beam, smooth boundary of relative
+// index eta, per unit entered flux, on a grid of (alpha', g, eta) and radii in transport mean free
+// paths. Built by tools/exact_table/generate_exact_table from the project's Monte Carlo (multiple
+// scattering), the exact single-scattering integral and adding-doubling totals; the file format and
+// the provenance are described in data/exact/README.md.
+//
+//   const ExactTable& table = bundled_exact_table();   // loaded once, on first use
+//   float ln_y = table.ln_y[table.index(e, g, a, k)];  // y = 2 pi r^2 R(r), r = radius(k)
+//
+// Values are stored as ln y with y = 2 pi r^2 R(r) = dE/d ln r (dimensionless, lengths in
+// transport mfp): smooth, positive, of modest range, and interpolating its logarithm keeps the
+// exponential far tails exact between albedos.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace bssrdf {
+
+struct ExactTable {
+  std::vector<double> albedo_prime;  // reduced albedo nodes, increasing
+  std::vector<double> g;             // anisotropy nodes, increasing
+  std::vector<double> eta;           // relative index nodes, increasing
+  double ln_r0 = 0;                  // ln of the first radius (transport mfp)
+  double d_ln_r = 0;                 // radius step in ln r
+  std::size_t radii = 0;
+
+  // [eta][g][albedo][radius]
+  std::vector<float> ln_y;
+  // Relative standard error of y, in units of 1e-4; kExtrapolated where the Monte Carlo had too
+  // few photons and the value continues the measured profile (near field below the multiple-
+  // scattering onset, far tail beyond the well-measured radii).
+  std::vector<std::uint16_t> relative_error;
+  static constexpr std::uint16_t kExtrapolated = 65535;
+  // [eta][g][albedo]: total diffuse reflectance per unit entered flux (adding-doubling).
+  std::vector<double> total;
+
+  std::string provenance;  // JSON: photons, seeds, generator version, run time, checks
+
+  // Derived by prepare() (read_exact_table calls it): ln of each total, for the interpolation.
+  std::vector<double> ln_total;
+  void prepare() {
+    validate();
+    ln_total.clear();
+    for (double t : total) ln_total.push_back(std::log(t));
+  }
+
+  double radius(std::size_t k) const { return std::exp(ln_r0 + d_ln_r * static_cast<double>(k)); }
+  std::size_t node(std::size_t e, std::size_t gi, std::size_t a) const {
+    return (e * g.size() + gi) * albedo_prime.size() + a;
+  }
+  std::size_t index(std::size_t e, std::size_t gi, std::size_t a, std::size_t k) const {
+    return node(e, gi, a) * radii + k;
+  }
+  std::size_t nodes() const { return eta.size() * g.size() * albedo_prime.size(); }
+  // Throws InvalidInput naming what is inconsistent (sizes, order, values).
+  void validate() const;
+};
+
+// Binary file: magic "BSSRDFX1", a little-endian uint64 header length, a JSON header (axes,
+// layout, provenance), then ln_y (float32), relative_error (uint16) and total (float64),
+// little-endian. Throws InvalidInput (field "exact table") on a malformed or truncated file.
+ExactTable read_exact_table(const std::string& path);
+void write_exact_table(const ExactTable& table, const std::string& path);
+
+// The table shipped with the project, loaded on first use (thread-safe). Looked up in
+// $BSSRDF_EXACT_TABLE, next to the executable (../share/bssrdf/exact/), the install prefix and the
+// source tree. Throws InvalidInput naming the places searched when none has it.
+const ExactTable& bundled_exact_table();
+std::string bundled_exact_table_path();  // where it was found ("" before the first load)
+
+}  // namespace bssrdf

@@ -1,0 +1,263 @@
+// The exact model's interpolation (models/exact.hpp).
+#include "bssrdf/models/exact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "bssrdf/error.hpp"
+
+namespace bssrdf {
+
+namespace {
+
+// Interpolation coordinates: the profile changes evenly in these (see the generator's grid).
+double albedo_coordinate(double a) { return std::log(a / (1 - a)); }
+double g_coordinate(double g) { return -std::log1p(-g); }
+// eta itself: adding-doubling totals are smooth (near linear) in eta down to 1 (measured: the
+// cosine of the critical angle, which grows as sqrt(eta - 1), interpolated worse).
+double eta_coordinate(double eta) { return eta; }
+
+// Cubic Hermite weights on four nodes for x in [x[i], x[i+1]]: slopes at the interval's ends from
+// the three-point (non-uniform) difference, or the secant at the ends of the axis. The slopes at a
+// node are the same from both sides, so the interpolant has continuous first derivatives.
+struct Weights {
+  std::array<std::size_t, 4> node{};
+  std::array<double, 4> w{};
+  int count = 0;
+};
+
+// `axis` holds the nodes, `f` maps them (and `at`) to the interpolation coordinate.
+Weights hermite_weights(const std::vector<double>& axis, double (*f)(double), double at_value) {
+  Weights out;
+  const std::size_t n = axis.size();
+  if (n == 1) {
+    out.node[0] = 0;
+    out.w[0] = 1;
+    out.count = 1;
+    return out;
+  }
+  std::size_t i = static_cast<std::size_t>(std::upper_bound(axis.begin(), axis.end(), at_value) - axis.begin());
+  i = std::clamp<std::size_t>(i, 1, n - 1) - 1;  // interval [axis[i], axis[i+1]]
+  // The four coordinates around it (only those that exist are read).
+  double xs[4] = {0, f(axis[i]), f(axis[i + 1]), 0};
+  if (i > 0) xs[0] = f(axis[i - 1]);
+  if (i + 2 < n) xs[3] = f(axis[i + 2]);
+  const double at = f(at_value);
+  const auto x = [&](std::size_t j) { return xs[j + 1 - i]; };
+  const double h = x(i + 1) - x(i), t = std::clamp((at - x(i)) / h, 0.0, 1.0);
+  const double h00 = (2 * t - 3) * t * t + 1, h01 = (3 - 2 * t) * t * t;
+  const double h10 = ((t - 2) * t + 1) * t * h, h11 = (t - 1) * t * t * h;
+  // Coefficients of f[i-1], f[i], f[i+1], f[i+2].
+  double c[4] = {0, h00, h01, 0};
+  // Slope at x[i]: secant weights on (f[i+1] - f[i]) / h and, inside, (f[i] - f[i-1]) / h0.
+  if (i > 0) {
+    const double h0 = x(i) - x(i - 1), a = h / (h0 + h), b = h0 / (h0 + h);  // a: left secant
+    c[0] += h10 * (-a / h0);
+    c[1] += h10 * (a / h0 - b / h);
+    c[2] += h10 * (b / h);
+  } else {
+    c[1] += h10 * (-1 / h);
+    c[2] += h10 * (1 / h);
+  }
+  if (i + 2 < n) {
+    const double h2 = x(i + 2) - x(i + 1), a = h2 / (h + h2), b = h / (h + h2);  // a: left secant
+    c[1] += h11 * (-a / h);
+    c[2] += h11 * (a / h - b / h2);
+    c[3] += h11 * (b / h2);
+  } else {
+    c[1] += h11 * (-1 / h);
+    c[2] += h11 * (1 / h);
+  }
+  for (int k = 0; k < 4; ++k) {
+    const std::ptrdiff_t j = static_cast<std::ptrdiff_t>(i) - 1 + k;
+    if (j < 0 || j >= static_cast<std::ptrdiff_t>(n) || c[k] == 0) continue;
+    out.node[out.count] = static_cast<std::size_t>(j);
+    out.w[out.count] = c[k];
+    ++out.count;
+  }
+  return out;
+}
+
+struct NodeWeights {
+  Weights a, g, e;
+};
+
+NodeWeights weights_at(const ExactTable& table, double albedo_prime, double g, double eta) {
+  const ValidityReport outside = exact_domain(table, albedo_prime, g, eta);
+  if (!outside.empty()) {
+    const ValidityNote& note = outside.front();
+    const std::string field = note.code == "exact_albedo" ? "albedo'" : note.code == "exact_g" ? "g" : "eta";
+    const double value = note.code == "exact_albedo" ? albedo_prime : note.code == "exact_g" ? g : eta;
+    const auto& axis = note.code == "exact_albedo" ? table.albedo_prime : note.code == "exact_g" ? table.g : table.eta;
+    throw InvalidInput(field, format_number(value),
+                       format_number(axis.front()) + " to " + format_number(axis.back()) +
+                           " (the exact model's table; outside it use the Monte Carlo reference: bssrdf reference)");
+  }
+  return {hermite_weights(table.albedo_prime, albedo_coordinate, albedo_prime),
+          hermite_weights(table.g, g_coordinate, g), hermite_weights(table.eta, eta_coordinate, eta)};
+}
+
+double interpolated_ln_total(const ExactTable& table, const NodeWeights& w) {
+  double sum = 0;
+  for (int e = 0; e < w.e.count; ++e)
+    for (int gi = 0; gi < w.g.count; ++gi)
+      for (int a = 0; a < w.a.count; ++a)
+        sum += w.e.w[e] * w.g.w[gi] * w.a.w[a] * table.ln_total[table.node(w.e.node[e], w.g.node[gi], w.a.node[a])];
+  return sum;
+}
+
+// A small tolerance on the domain's ends, so that values printed and read back stay inside.
+bool inside(double v, const std::vector<double>& axis) {
+  const double slack = 1e-9 * std::max(1.0, std::abs(axis.back()));
+  return v >= axis.front() - slack && v <= axis.back() + slack;
+}
+
+}  // namespace
+
+ValidityReport exact_domain(const ExactTable& table, double albedo_prime, double g, double eta) {
+  ValidityReport report;
+  const auto check = [&](const char* code, const char* name, double v, const std::vector<double>& axis) {
+    if (!inside(v, axis))
+      report.push_back({Severity::invalid, code,
+                        std::string(name) + " = " + format_number(v) + " is outside the exact table (" +
+                            format_number(axis.front()) + " to " + format_number(axis.back()) + ")"});
+  };
+  check("exact_albedo", "alpha'", albedo_prime, table.albedo_prime);
+  check("exact_g", "g", g, table.g);
+  check("exact_eta", "eta", eta, table.eta);
+  return report;
+}
+
+double exact_total(const ExactTable& table, double albedo_prime, double g, double eta) {
+  return std::exp(interpolated_ln_total(table, weights_at(table, albedo_prime, g, eta)));
+}
+
+double exact_albedo_prime_from_total(const ExactTable& table, double total, double g, double eta) {
+  const double lo_a = table.albedo_prime.front(), hi_a = table.albedo_prime.back();
+  const double lo_t = exact_total(table, lo_a, g, eta), hi_t = exact_total(table, hi_a, g, eta);
+  if (!(total >= lo_t && total <= hi_t))
+    throw InvalidInput("total_reflectance", format_number(total),
+                       "[" + format_number(lo_t) + ", " + format_number(hi_t) + "] for the exact model at g = " +
+                           format_number(g) + ", eta = " + format_number(eta) + " (alpha' 0.001 to 0.9999)");
+  // ln T is smooth and increasing in u = logit(alpha'): regula falsi with the Illinois
+  // modification (superlinear, always bracketed), a handful of evaluations.
+  const auto from = [](double u) { return 1 / (1 + std::exp(-u)); };
+  const double target = std::log(total);
+  const auto residual = [&](double u) {
+    return std::log(exact_total(table, std::clamp(from(u), lo_a, hi_a), g, eta)) - target;
+  };
+  double lo = albedo_coordinate(lo_a), hi = albedo_coordinate(hi_a);
+  double f_lo = std::log(lo_t) - target, f_hi = std::log(hi_t) - target;
+  if (f_lo == 0) return lo_a;
+  if (f_hi == 0) return hi_a;
+  int side = 0;
+  double u = lo;
+  for (int k = 0; k < 100 && hi - lo > 1e-13; ++k) {
+    u = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+    const double f_u = residual(u);
+    if (f_u == 0) break;
+    if ((f_u < 0) == (f_lo < 0)) {
+      lo = u;
+      f_lo = f_u;
+      if (side == -1) f_hi *= 0.5;
+      side = -1;
+    } else {
+      hi = u;
+      f_hi = f_u;
+      if (side == 1) f_lo *= 0.5;
+      side = 1;
+    }
+    if (std::abs(f_u) < 1e-13) break;
+  }
+  return std::clamp(from(u), lo_a, hi_a);
+}
+
+ExactProfile::ExactProfile(const ExactTable& table, double albedo_prime, double g, double eta)
+    : albedo_prime_(albedo_prime), g_(g), eta_(eta), ln_r0_(table.ln_r0), d_ln_r_(table.d_ln_r) {
+  const NodeWeights w = weights_at(table, albedo_prime, g, eta);
+  const std::size_t radii = table.radii;
+  ln_y_.assign(radii, 0.0);
+  for (int e = 0; e < w.e.count; ++e)
+    for (int gi = 0; gi < w.g.count; ++gi)
+      for (int a = 0; a < w.a.count; ++a) {
+        const double weight = w.e.w[e] * w.g.w[gi] * w.a.w[a];
+        const float* row = &table.ln_y[table.index(w.e.node[e], w.g.node[gi], w.a.node[a], 0)];
+        for (std::size_t k = 0; k < radii; ++k) ln_y_[k] += weight * row[k];
+      }
+  // Below the first radius single scattering dominates (y ~ r); beyond the last, an exponential
+  // tail in r: both continue the curve with the slope of its end.
+  head_slope_ = std::max(0.5, (ln_y_[1] - ln_y_[0]) / d_ln_r_);
+  const double r_last = std::exp(ln_r0_ + d_ln_r_ * static_cast<double>(radii - 1));
+  const double r_before = std::exp(ln_r0_ + d_ln_r_ * static_cast<double>(radii - 2));
+  tail_slope_ = std::min(-1e-3, (ln_y_[radii - 1] - ln_y_[radii - 2]) / (r_last - r_before));
+
+  // Normalise to the interpolated adding-doubling total: integrate y over ln r (Simpson on four
+  // sub-intervals per radius step, plus the head and tail in closed form).
+  cumulative_.assign(radii, 0.0);
+  double sum = std::exp(ln_y_[0]) / head_slope_;
+  cumulative_[0] = sum;
+  for (std::size_t k = 0; k + 1 < radii; ++k) {
+    const double x0 = ln_r0_ + d_ln_r_ * static_cast<double>(k), h = d_ln_r_ / 4;
+    double s = std::exp(ln_y_[k]) + std::exp(ln_y_[k + 1]);
+    for (int j = 1; j < 4; ++j) s += (j % 2 ? 4 : 2) * std::exp(ln_y(x0 + h * j));
+    sum += s * h / 3;
+    cumulative_[k + 1] = sum;
+  }
+  // Tail: int_{r_N}^inf y_N e^{b (r - r_N)} dr / r <= y_N / (|b| r_N); the table ends far out
+  // (99.9 % of the energy inside), so the bound is the value.
+  sum += std::exp(ln_y_[radii - 1]) / (-tail_slope_ * r_last);
+  total_ = std::exp(interpolated_ln_total(table, w));
+  const double scale = total_ / sum;
+  for (auto& v : ln_y_) v += std::log(scale);
+  for (auto& c : cumulative_) c *= scale;
+}
+
+double ExactProfile::ln_y(double ln_r) const {
+  const double f = (ln_r - ln_r0_) / d_ln_r_;
+  const std::size_t n = ln_y_.size();
+  if (f <= 0) return ln_y_[0] + head_slope_ * (ln_r - ln_r0_);
+  if (f >= static_cast<double>(n - 1)) {
+    const double r_last = std::exp(ln_r0_ + d_ln_r_ * static_cast<double>(n - 1));
+    return ln_y_[n - 1] + tail_slope_ * (std::exp(ln_r) - r_last);
+  }
+  const auto i = static_cast<std::size_t>(f);
+  const double t = f - static_cast<double>(i);
+  const double p1 = ln_y_[i], p2 = ln_y_[i + 1];
+  // Catmull-Rom slopes (uniform in ln r), one-sided at the ends.
+  const double m1 = i > 0 ? 0.5 * (p2 - ln_y_[i - 1]) : p2 - p1;
+  const double m2 = i + 2 < n ? 0.5 * (ln_y_[i + 2] - p1) : p2 - p1;
+  const double t2 = t * t, t3 = t2 * t;
+  return (2 * t3 - 3 * t2 + 1) * p1 + (t3 - 2 * t2 + t) * m1 + (-2 * t3 + 3 * t2) * p2 + (t3 - t2) * m2;
+}
+
+double ExactProfile::reflectance(double r) const {
+  if (!(r > 0)) return r == 0 ? std::numeric_limits<double>::infinity() : 0.0;
+  return std::exp(ln_y(std::log(r))) / (2 * std::numbers::pi * r * r);
+}
+
+double ExactProfile::cumulative(double r) const {
+  if (!(r > 0)) return 0;
+  const double ln_r = std::log(r);
+  const double f = (ln_r - ln_r0_) / d_ln_r_;
+  const std::size_t n = ln_y_.size();
+  if (f <= 0) return std::exp(ln_y(ln_r)) / head_slope_;
+  if (f >= static_cast<double>(n - 1)) {
+    // Tail from the last radius: the closed form of the normalising bound, less what lies beyond r.
+    const double r_last = std::exp(ln_r0_ + d_ln_r_ * static_cast<double>(n - 1));
+    const double beyond_last = std::exp(ln_y_[n - 1]) / (-tail_slope_ * r_last);
+    const double beyond_r = std::exp(ln_y(ln_r)) / (-tail_slope_ * r);
+    return std::min(total_, cumulative_[n - 1] + std::max(0.0, beyond_last - beyond_r));
+  }
+  const auto i = static_cast<std::size_t>(f);
+  const double x0 = ln_r0_ + d_ln_r_ * static_cast<double>(i), span = ln_r - x0;
+  // Three-point Gauss-Legendre over the part of the step: the integrand is smooth there.
+  static constexpr double kNodes[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
+  static constexpr double kWeights[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+  double s = 0;
+  for (int j = 0; j < 3; ++j) s += kWeights[j] * std::exp(ln_y(x0 + 0.5 * span * (1 + kNodes[j])));
+  return cumulative_[i] + 0.5 * span * s;
+}
+
+}  // namespace bssrdf

@@ -1,0 +1,64 @@
+// The `exact` model's face as a Model (models/exact.hpp): physical units in, the table's transport
+// units inside. Profiles are built once per medium and kept per thread, since callers evaluate
+// many radii of one medium in a row.
+#include <cmath>
+#include <optional>
+
+#include "bssrdf/model.hpp"
+#include "bssrdf/models/exact.hpp"
+
+namespace bssrdf {
+
+namespace {
+
+class ExactModel final : public Model {
+ public:
+  std::string name() const override { return "exact"; }
+  std::string description() const override {
+    return "Radiative-transfer solution, tabulated: project Monte Carlo (multiple scattering), exact single "
+           "scattering and adding-doubling totals for a semi-infinite HG medium, interpolated";
+  }
+  bool includes_single_scattering() const override { return true; }
+
+  double reflectance(const Reduced<double>& m, double r) const override {
+    const double s = m.sigma_t_prime;
+    return s * s * profile(m).reflectance(r * s);
+  }
+  double total_reflectance(const Reduced<double>& m) const override {
+    return exact_total(bundled_exact_table(), m.albedo_prime, m.g, m.eta);
+  }
+  double cumulative_reflectance(const Reduced<double>& m, double r) const override {
+    return profile(m).cumulative(r * m.sigma_t_prime);
+  }
+  // At g = 0, as every model's inversion (reduced_optical); exact_albedo_prime_from_total takes g.
+  double albedo_prime_from_total(double total, double eta) const override {
+    return exact_albedo_prime_from_total(bundled_exact_table(), total, 0.0, eta);
+  }
+
+ protected:
+  ValidityReport check_validity(const Reduced<double>& m) const override {
+    return exact_domain(bundled_exact_table(), m.albedo_prime, m.g, m.eta);
+  }
+
+ private:
+  static const ExactProfile& profile(const Reduced<double>& m) {
+    struct Cached {
+      double albedo_prime = -1, g = -1, eta = -1;
+      std::optional<ExactProfile> profile;
+    };
+    thread_local Cached cache;
+    if (!cache.profile || cache.albedo_prime != m.albedo_prime || cache.g != m.g || cache.eta != m.eta) {
+      cache.profile.emplace(bundled_exact_table(), m.albedo_prime, m.g, m.eta);
+      cache.albedo_prime = m.albedo_prime;
+      cache.g = m.g;
+      cache.eta = m.eta;
+    }
+    return *cache.profile;
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Model> make_exact_model() { return std::make_unique<ExactModel>(); }
+
+}  // namespace bssrdf

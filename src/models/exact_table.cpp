@@ -1,0 +1,164 @@
+// Reading and writing the exact model's table (format: data/exact/README.md), and finding the
+// bundled one.
+#include "bssrdf/models/exact_table.hpp"
+
+#include <bit>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <nlohmann/json.hpp>
+
+#include "../io/data_file.hpp"
+#include "bssrdf/error.hpp"
+
+namespace bssrdf {
+
+static_assert(std::endian::native == std::endian::little, "the exact table is stored little-endian");
+
+namespace {
+
+constexpr char kMagic[8] = {'B', 'S', 'S', 'R', 'D', 'F', 'X', '1'};
+constexpr const char* kField = "exact table";
+
+bool increasing(const std::vector<double>& v) {
+  for (std::size_t i = 1; i < v.size(); ++i)
+    if (!(v[i] > v[i - 1])) return false;
+  return !v.empty();
+}
+
+template <class T>
+void append_bytes(std::string& out, const std::vector<T>& values) {
+  out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
+
+template <class T>
+std::vector<T> take_bytes(const std::string& data, std::size_t& offset, std::size_t count, const std::string& path) {
+  if (count > (data.size() - offset) / sizeof(T))
+    throw InvalidInput(kField, path, "a complete table file (truncated data)");
+  std::vector<T> values(count);
+  std::memcpy(values.data(), data.data() + offset, count * sizeof(T));
+  offset += count * sizeof(T);
+  return values;
+}
+
+}  // namespace
+
+void ExactTable::validate() const {
+  if (!increasing(albedo_prime) || !increasing(g) || !increasing(eta))
+    throw InvalidInput(kField, "axes", "non-empty increasing albedo', g and eta nodes");
+  if (radii < 2 || !(d_ln_r > 0)) throw InvalidInput(kField, "radii", "at least 2 radii with a positive step");
+  const std::size_t n = nodes() * radii;
+  if (ln_y.size() != n || relative_error.size() != n || total.size() != nodes())
+    throw InvalidInput(kField, "array sizes", std::to_string(n) + " values and " + std::to_string(nodes()) + " totals");
+  for (float v : ln_y)
+    if (!std::isfinite(v)) throw InvalidInput(kField, "ln_y", "finite values");
+  for (double t : total)
+    if (!(t > 0 && t < 1)) throw InvalidInput(kField, "total = " + std::to_string(t), "0 < total < 1");
+}
+
+void write_exact_table(const ExactTable& table, const std::string& path) {
+  table.validate();
+  nlohmann::json header;
+  header["format"] = "bssrdf-exact-table";
+  header["version"] = 1;
+  header["albedo_prime"] = table.albedo_prime;
+  header["g"] = table.g;
+  header["eta"] = table.eta;
+  header["ln_r0"] = table.ln_r0;
+  header["d_ln_r"] = table.d_ln_r;
+  header["radii"] = table.radii;
+  header["layout"] = "ln_y float32 [eta][g][albedo_prime][radius], relative_error uint16 (1e-4 units, 65535 = "
+                     "extrapolated) same order, total float64 [eta][g][albedo_prime]; little-endian";
+  header["provenance"] = table.provenance.empty() ? nlohmann::json::object() : nlohmann::json::parse(table.provenance);
+  const std::string text = header.dump();
+  std::string out(kMagic, sizeof kMagic);
+  const std::uint64_t length = text.size();
+  out.append(reinterpret_cast<const char*>(&length), sizeof length);
+  out += text;
+  append_bytes(out, table.ln_y);
+  append_bytes(out, table.relative_error);
+  append_bytes(out, table.total);
+  const std::string temporary = path + ".partial";
+  {
+    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+    file.write(out.data(), static_cast<std::streamsize>(out.size()));
+    if (!file) throw FileError(path, 0, "cannot write the exact table");
+  }
+  std::filesystem::rename(temporary, path);  // never a half-written table under the real name
+}
+
+ExactTable read_exact_table(const std::string& path) {
+  const std::string data = read_data_file(path, "the exact-model table");
+  if (data.size() < 16 || std::memcmp(data.data(), kMagic, sizeof kMagic) != 0)
+    throw InvalidInput(kField, path, "a bssrdf exact table (magic BSSRDFX1)");
+  std::uint64_t length = 0;
+  std::memcpy(&length, data.data() + 8, sizeof length);
+  if (length > data.size() - 16) throw InvalidInput(kField, path, "a complete table file (truncated header)");
+  const nlohmann::json header = parse_json_document(data.substr(16, length), path);
+  ExactTable table;
+  try {
+    if (header.at("format") != "bssrdf-exact-table" || header.at("version") != 1)
+      throw InvalidInput(kField, path, "format bssrdf-exact-table version 1");
+    table.albedo_prime = header.at("albedo_prime").get<std::vector<double>>();
+    table.g = header.at("g").get<std::vector<double>>();
+    table.eta = header.at("eta").get<std::vector<double>>();
+    table.ln_r0 = header.at("ln_r0").get<double>();
+    table.d_ln_r = header.at("d_ln_r").get<double>();
+    table.radii = header.at("radii").get<std::size_t>();
+    table.provenance = header.at("provenance").dump();
+  } catch (const nlohmann::json::exception& e) {
+    throw InvalidInput(kField, path, std::string("a valid header (") + e.what() + ")");
+  }
+  if (table.radii > (1u << 20) || table.albedo_prime.size() * table.g.size() * table.eta.size() > (1u << 24))
+    throw InvalidInput(kField, path, "a table of plausible size");
+  std::size_t offset = 16 + length;
+  const std::size_t n = table.nodes() * table.radii;
+  table.ln_y = take_bytes<float>(data, offset, n, path);
+  table.relative_error = take_bytes<std::uint16_t>(data, offset, n, path);
+  table.total = take_bytes<double>(data, offset, table.nodes(), path);
+  if (offset != data.size()) throw InvalidInput(kField, path, "no data after the totals");
+  table.prepare();
+  return table;
+}
+
+namespace {
+
+std::string found_path;
+
+std::vector<std::filesystem::path> candidate_paths() {
+  std::vector<std::filesystem::path> paths;
+  if (const char* env = std::getenv("BSSRDF_EXACT_TABLE"); env && *env) paths.emplace_back(env);
+  std::error_code ec;
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) paths.push_back(exe.parent_path().parent_path() / "share" / "bssrdf" / "exact" / "exact_profile.bin");
+  paths.emplace_back(std::string(BSSRDF_DATA_INSTALL_DIR) + "/exact/exact_profile.bin");
+  paths.emplace_back(std::string(BSSRDF_SOURCE_DATA_DIR) + "/exact/exact_profile.bin");
+  return paths;
+}
+
+}  // namespace
+
+const ExactTable& bundled_exact_table() {
+  static std::once_flag once;
+  static ExactTable table;
+  std::call_once(once, [] {
+    std::string searched;
+    for (const auto& path : candidate_paths()) {
+      std::error_code ec;
+      if (std::filesystem::is_regular_file(path, ec)) {
+        table = read_exact_table(path.string());
+        found_path = path.string();
+        return;
+      }
+      searched += (searched.empty() ? "" : ", ") + path.string();
+    }
+    throw InvalidInput("exact table", "not found", "a file at one of: " + searched + " (or set $BSSRDF_EXACT_TABLE)");
+  });
+  return table;
+}
+
+std::string bundled_exact_table_path() { return found_path; }
+
+}  // namespace bssrdf

@@ -1,0 +1,215 @@
+// The exact model: the bundled table, its interpolation, and its agreement with references it was
+// not built from at these points: adding-doubling totals and fresh Monte Carlo runs at random
+// parameter points off the table's grid (modest photon counts, statistical tolerances; the long run
+// is tools/validation/validate_exact).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "bssrdf/adding_doubling/slab.hpp"
+#include "bssrdf/error.hpp"
+#include "bssrdf/layers.hpp"
+#include "bssrdf/medium.hpp"
+#include "bssrdf/model.hpp"
+#include "bssrdf/models/exact.hpp"
+#include "bssrdf/montecarlo.hpp"
+#include "bssrdf/reference_comparison.hpp"
+#include "cli_runner.hpp"
+
+using namespace bssrdf;
+using namespace bssrdf::test_cli;
+
+namespace {
+
+const ExactTable& table() { return bundled_exact_table(); }
+
+double adding_doubling_total(double ap, double g, double eta, double* error_estimate = nullptr) {
+  const Reduced<double> m = reduce(1 - ap, ap / (1 - g), g, eta);
+  adding_doubling::Slab slab;
+  slab.layers = {{m.sigma_a, m.sigma_s, g, kSemiInfinite}};
+  slab.n = eta;
+  adding_doubling::Options options;
+  options.tolerance = 1e-6;
+  const auto t = adding_doubling::solve(slab, adding_doubling::Incidence::collimated, options);
+  if (error_estimate) *error_estimate = t.error_estimate * t.entered_scale();
+  return t.diffuse_reflectance * t.entered_scale();
+}
+
+// Random points off the grid: alpha' uniform in logit, g uniform in -ln(1 - g), eta uniform.
+struct Point {
+  double albedo_prime, g, eta;
+};
+std::vector<Point> random_points(int n, unsigned seed, double ap_lo = 0.001, double ap_hi = 0.9999, double g_hi = 0.99) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  const double lo = std::log(ap_lo / (1 - ap_lo)), hi = std::log(ap_hi / (1 - ap_hi)), gh = -std::log1p(-g_hi);
+  std::vector<Point> points;
+  for (int i = 0; i < n; ++i)
+    points.push_back({1 / (1 + std::exp(-(lo + (hi - lo) * u(rng)))), 1 - std::exp(-gh * u(rng)), 1 + 0.6 * u(rng)});
+  return points;
+}
+
+}  // namespace
+
+TEST(ExactTable, BundledTableCoversTheDomainAndRecordsItsProvenance) {
+  const ExactTable& t = table();
+  EXPECT_LE(t.albedo_prime.front(), 0.001);
+  EXPECT_GE(t.albedo_prime.back(), 0.9999);
+  EXPECT_LE(t.g.front(), 0.0);
+  EXPECT_GE(t.g.back(), 0.99);
+  EXPECT_LE(t.eta.front(), 1.0);
+  EXPECT_GE(t.eta.back(), 1.6);
+  EXPECT_LE(t.radius(0), 1e-3 * 1.0001);
+  const auto p = nlohmann::json::parse(t.provenance);
+  EXPECT_GT(p.at("photons_total").get<double>(), 1e6);
+  EXPECT_TRUE(p.contains("seed"));
+  EXPECT_TRUE(p.contains("source_revision"));
+  // The radius holding 99.9 % of the energy lies inside the table at every node.
+  EXPECT_LT(p.at("largest_radius_999").get<double>(), t.radius(t.radii - 1));
+  EXPECT_LE(std::filesystem::file_size(bundled_exact_table_path()), 2u << 20);
+}
+
+TEST(ExactTable, RoundTripsThroughTheFileFormatAndRefusesTruncation) {
+  const auto path = temp("round_trip.bin");
+  write_exact_table(table(), path.string());
+  const ExactTable back = read_exact_table(path.string());
+  EXPECT_EQ(back.ln_y, table().ln_y);
+  EXPECT_EQ(back.total, table().total);
+  std::filesystem::resize_file(path, std::filesystem::file_size(path) - 8);
+  EXPECT_THROW(read_exact_table(path.string()), InvalidInput);
+}
+
+TEST(ExactModel, OutsideTheTableARefusalNamesTheParameter) {
+  const auto refused = [](double ap, double g, double eta) -> std::string {
+    try {
+      ExactProfile p(table(), ap, g, eta);
+    } catch (const InvalidInput& e) {
+      return e.field();
+    }
+    return "";
+  };
+  EXPECT_EQ(refused(0.0005, 0.5, 1.3), "albedo'");
+  EXPECT_EQ(refused(0.99995, 0.5, 1.3), "albedo'");
+  EXPECT_EQ(refused(0.5, 0.995, 1.3), "g");
+  EXPECT_EQ(refused(0.5, -0.1, 1.3), "g");
+  EXPECT_EQ(refused(0.5, 0.5, 1.7), "eta");
+  EXPECT_EQ(refused(0.5, 0.5, 1.3), "");
+  const auto model = make_model("exact");
+  const auto report = model->validity(reduce(0.0, 1.0, 0.0, 1.3));  // alpha' = 1
+  ASSERT_FALSE(report.empty());
+  EXPECT_EQ(worst(report), Severity::invalid);
+  EXPECT_EQ(report.front().code, "exact_albedo");
+}
+
+TEST(ExactModel, TotalsMatchAddingDoublingOffTheGrid) {
+  // The table stores adding-doubling totals at its nodes; between them the interpolation must stay
+  // within half the 1 % goal. Fresh adding-doubling at random points is the reference, where it
+  // converges (its own error estimate within 2e-4 of the total: not at g near 1 with low albedo).
+  double worst = 0;
+  int compared = 0;
+  for (const Point& p : random_points(24, 11)) {
+    const double exact = exact_total(table(), p.albedo_prime, p.g, p.eta);
+    double error_estimate = 0;
+    const double reference = adding_doubling_total(p.albedo_prime, p.g, p.eta, &error_estimate);
+    if (error_estimate > 2e-4 * reference) continue;
+    ++compared;
+    worst = std::max(worst, std::abs(exact / reference - 1));
+    EXPECT_NEAR(exact / reference, 1.0, 5e-3) << p.albedo_prime << " " << p.g << " " << p.eta;
+  }
+  EXPECT_GE(compared, 12);
+  RecordProperty("worst_total_vs_adding_doubling", std::to_string(worst));
+  std::printf("exact totals vs fresh adding-doubling at %d random points: worst %.3f %%\n", compared, 100 * worst);
+}
+
+TEST(ExactModel, ProfileIntegratesToItsTotalAndIsPositive) {
+  for (const Point& p : random_points(8, 5)) {
+    const ExactProfile profile(table(), p.albedo_prime, p.g, p.eta);
+    double previous = 0;
+    for (double r = 1e-4; r < 1e4; r *= 1.7) {
+      const double R = profile.reflectance(r), c = profile.cumulative(r);
+      if (c < 0.999 * profile.total()) ASSERT_GT(R, 0) << r;  // far out the tail may underflow
+      ASSERT_GE(R, 0) << r;
+      ASSERT_GE(c, previous * (1 - 1e-12)) << r;
+      previous = c;
+    }
+    EXPECT_NEAR(profile.cumulative(1e7) / profile.total(), 1.0, 1e-6);
+    // The cumulative is the integral of R: compare one step with a fine trapezoid rule.
+    const double a = 0.3, b = 0.6;
+    double sum = 0;
+    const int n = 2000;
+    for (int i = 0; i <= n; ++i) {
+      const double r = a + (b - a) * i / n;
+      sum += (i == 0 || i == n ? 0.5 : 1.0) * 2 * std::numbers::pi * r * profile.reflectance(r);
+    }
+    EXPECT_NEAR((profile.cumulative(b) - profile.cumulative(a)) / (sum * (b - a) / n), 1.0, 1e-4);
+  }
+}
+
+TEST(ExactModel, ContinuousFirstDerivativesAcrossTableNodes) {
+  // At a node the one-sided derivatives of R(r) in each parameter agree (the interpolation is C1);
+  // a linear interpolation would show a jump of the order of the slope change between cells.
+  const auto R = [](double ap, double g, double eta) { return ExactProfile(table(), ap, g, eta).reflectance(0.7); };
+  const double ap = table().albedo_prime[20], g = table().g[5], eta = table().eta[2];
+  const double h = 1e-6;
+  const auto check = [&](auto f, double x, const char* name) {
+    const double left = (f(x) - f(x - h)) / h, right = (f(x + h) - f(x)) / h;
+    EXPECT_NEAR(left, right, 1e-3 * std::max(1e-3, std::abs(left)) + 1e-5) << name;
+  };
+  check([&](double x) { return R(x, g, eta); }, ap, "albedo'");
+  check([&](double x) { return R(ap, x, eta); }, g, "g");
+  check([&](double x) { return R(ap, g, x); }, eta, "eta");
+}
+
+TEST(ExactModel, AlbedoInversionIsMonotoneAndRoundTrips) {
+  for (const Point& p : random_points(4, 3)) {
+    double previous = 0;
+    for (int i = 0; i <= 400; ++i) {
+      const double u = std::log(0.001 / 0.999) + (std::log(0.9999 / 0.0001) - std::log(0.001 / 0.999)) * i / 400;
+      const double ap = std::clamp(1 / (1 + std::exp(-u)), 0.001, 0.9999);
+      const double total = exact_total(table(), ap, p.g, p.eta);
+      ASSERT_GT(total, previous) << ap;
+      previous = total;
+      EXPECT_NEAR(exact_albedo_prime_from_total(table(), total, p.g, p.eta) / ap, 1.0, 1e-7);
+    }
+  }
+  EXPECT_THROW(exact_albedo_prime_from_total(table(), 0.999, 0.0, 1.3), InvalidInput);
+}
+
+TEST(ExactModel, AgreesWithFreshMonteCarloOffTheGrid) {
+  // Random points in the part of the domain a CI run can afford (g <= 0.9, alpha' <= 0.995):
+  // total within 1 % or 3 standard errors, relative L2 of r R(r) within 3 % plus 3x the run's noise,
+  // inside and beyond one transport mfp.
+  const auto model = make_model("exact");
+  for (const Point& p : random_points(3, 2027, 0.05, 0.995, 0.9)) {
+    const Medium medium = Medium::single_channel(1 - p.albedo_prime, p.albedo_prime / (1 - p.g), p.g, p.eta);
+    const auto m = medium.reduced(0);
+    MonteCarloOptions options;
+    options.photons = 100000;
+    options.seed = 31;
+    options.spacing = BinSpacing::log;
+    options.bins = 60;
+    options.r_max = model->radius_for_fraction(m, 0.999);
+    options.r_min = 1e-3;
+    const auto mc = run_monte_carlo(LayerStack::half_space(medium), options);
+    const auto d = compare_with_monte_carlo(*model, m, mc);
+    const auto entered = mc.channels[0].per_entered_flux();
+    const double sigma = d.total * entered.diffuse_reflectance.value / entered.diffuse_reflectance.standard_error;
+    EXPECT_TRUE(std::abs(d.total) <= 0.01 || std::abs(sigma) <= 3)
+        << p.albedo_prime << " " << p.g << " " << p.eta << ": total " << d.total << " (" << sigma << " sigma)";
+    EXPECT_LE(d.near_r, 0.03 + 3 * d.near_r_noise) << p.albedo_prime << " " << p.g << " " << p.eta;
+    EXPECT_LE(d.far_r, 0.03 + 3 * d.far_r_noise) << p.albedo_prime << " " << p.g << " " << p.eta;
+  }
+}
+
+TEST(ExactModelCli, ProfileServesTheExactModelAndRefusesOutsideItsTable) {
+  const auto ok = run("profile --sigma-a 0.01 --sigma-s 2 --g 0.9 --eta 1.4 --model exact --radii 0.1,1,10 -f json");
+  ASSERT_EQ(ok.status, 0) << ok.err;
+  const auto doc = nlohmann::json::parse(ok.out);
+  EXPECT_NE(ok.out.find("exact"), std::string::npos);
+  const auto bad = run("profile --sigma-a 0.01 --sigma-s 2 --g 0.999 --model exact --radii 0.1,1");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("g"), std::string::npos);
+  EXPECT_EQ(bad.out, "");
+}

@@ -1,0 +1,544 @@
+// Generates the exact model's table (data/exact/exact_profile.bin): the radiative-transfer solution
+// R(r) of a semi-infinite Henyey-Greenstein medium, normal pencil beam, smooth boundary, per unit
+// entered flux, over (alpha', g, eta) and radii in transport mean free paths.
+//
+//   generate_exact_table run   --state DIR [--photons N] [--chunk N] [--hours H]   (resumable)
+//   generate_exact_table build --state DIR --out data/exact/exact_profile.bin
+//
+// Each part is exact or validated:
+//  - multiple scattering (two or more scatterings): the project's Monte Carlo (run_monte_carlo,
+//    validated to 0.1-0.3 % against MCML, adding-doubling and independent Monte Carlo), run once
+//    per (g, eta) in a NON-absorbing medium of sigma_t = 1 that records every reflected photon's
+//    radius and number of scatterings k ("white" Monte Carlo). A medium of albedo alpha and the
+//    same g has the same photon paths with weight alpha^k (implicit capture multiplies the weight by
+//    the albedo at each interaction), so one run gives every albedo node: radius r (in mfp) maps to
+//    r (1 - alpha g) transport mfp. Low albedos come from absorbing runs at a few base albedos
+//    instead (weight (alpha / alpha_base)^k), which sample the rare photons that turn round in a few
+//    scatterings at far less cost (Grid::base_albedo_prime). Photons are stopped after K = 6 / (1 - alpha_max) scatterings,
+//    where the largest albedo's weight is below e^-6 = 0.25 % and the photons still inside (P(k > K)
+//    ~ K^-1/2, under 1 %) carry a fraction of the total of order 1e-5 (the lost part is reported);
+//  - single scattering: the exact integral (single_scattering.hpp), evaluated at each node radius;
+//  - the total: adding-doubling of the semi-infinite medium; the Monte Carlo multiple-scattering
+//    part is scaled to (adding-doubling total - exact single-scattering total), and the scale's
+//    deviation from 1, in standard errors, is recorded for every node as a check of both.
+// Resumable: every (g, eta) node keeps its sums in DIR/node_G_E.bin, rewritten atomically after
+// each chunk of photons; `run` continues until every node has --photons photons (or --hours pass),
+// in passes of one chunk per node, so an interrupted run still leaves a complete, evenly sampled
+// grid. Chunk c of node (g, eta) uses seed splitmix(seed, g, eta, c): results do not depend on how
+// often the run was interrupted nor on the thread count.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "bssrdf/adding_doubling/slab.hpp"
+#include "bssrdf/layers.hpp"
+#include "bssrdf/medium.hpp"
+#include "bssrdf/models/exact_table.hpp"
+#include "bssrdf/montecarlo.hpp"
+#include "bssrdf/reduced.hpp"
+#include "bssrdf/single_scattering.hpp"
+
+namespace {
+
+using namespace bssrdf;
+
+constexpr int kGeneratorVersion = 1;
+
+// ---- the grid ---------------------------------------------------------------------------------
+// alpha': uniform in logit(alpha') from 0.001 to 0.9999 (41 nodes, step 0.40): the profile's
+// shape changes with ln(1 - alpha') near 1 (sigma_tr ~ sqrt(1 - alpha')) and with ln alpha' near 0.
+// g: denser towards 1, where the near field changes fastest; eta: every 0.15, with one more node at
+// 1.05 where the boundary's effect on the near field changes fastest (the Monte Carlo cost is per
+// (g, eta) node, so eta nodes are few).
+// Radii: 12 per decade from 1e-3 transport mfp to 2154 (beyond the radius that holds 99.9 % of the
+// energy at alpha' = 0.9999, eta = 1.6: checked by `build`).
+struct Grid {
+  std::vector<double> albedo_prime, g, eta;
+  double ln_r0 = std::log(1e-3), d_ln_r = std::numbers::ln10 / 12;
+  std::size_t radii = 77;
+
+  Grid() {
+    const double lo = std::log(0.001 / 0.999), hi = std::log(0.9999 / 0.0001);
+    const int n = 41;
+    for (int i = 0; i < n; ++i) {
+      const double u = lo + (hi - lo) * i / (n - 1);
+      albedo_prime.push_back(i == 0 ? 0.001 : i == n - 1 ? 0.9999 : 1 / (1 + std::exp(-u)));
+    }
+    g = {0.0, 0.2, 0.4, 0.55, 0.7, 0.8, 0.87, 0.92, 0.95, 0.97, 0.98, 0.99};
+    eta = {1.0, 1.05, 1.15, 1.3, 1.45, 1.6};
+  }
+  // Monte Carlo runs per (g, eta): a non-absorbing ("white") one, index kWhite, and absorbing ones
+  // at these base alpha'. Node alpha' is taken from the run with the smallest base >= alpha' and
+  // reweighted by (alpha / alpha_base)^k <= 1: a low albedo's multiple scattering comes from the
+  // few photons that turn round in a few scatterings (rare when g is near 1), which an absorbing
+  // run samples at a fraction of the white run's cost per photon, so it gets more photons.
+  std::vector<double> base_albedo_prime = {0.01, 0.1, 0.5, 0.9, 0.99};
+  std::vector<std::uint64_t> base_photon_factor = {512, 512, 128, 32, 8};
+  std::size_t runs() const { return base_albedo_prime.size() + 1; }
+  std::size_t white() const { return base_albedo_prime.size(); }
+  double run_albedo_prime(std::size_t b) const { return b == white() ? 1.0 : base_albedo_prime[b]; }
+  std::uint64_t run_factor(std::size_t b) const { return b == white() ? 1 : base_photon_factor[b]; }
+  std::size_t run_for(double albedo_prime) const {
+    for (std::size_t b = 0; b < base_albedo_prime.size(); ++b)
+      if (albedo_prime <= base_albedo_prime[b]) return b;
+    return white();
+  }
+  // Tally bins per albedo: [0] inside the first edge, [1..radii] one per node radius (edges at the
+  // geometric midpoints), [radii + 1] beyond the last edge.
+  std::size_t bins() const { return radii + 2; }
+  double ln_first_edge() const { return ln_r0 - 0.5 * d_ln_r; }
+};
+
+double single_albedo(double albedo_prime, double g) { return albedo_from_reduced(albedo_prime, g); }
+
+std::uint64_t splitmix(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+// ---- one (g, eta) node's running sums ------------------------------------------------------------
+struct NodeSums {
+  std::uint64_t photons = 0, chunks = 0, interactions = 0;
+  double seconds = 0, lost = 0, specular = 0;
+  std::vector<double> bin_sum, bin_sq;  // [albedo][bin], multiple scattering, per entered flux
+  std::vector<double> ms_sum, ms_sq;    // [albedo] multiple-scattering total
+  std::vector<double> ss_sum, ss_sq;    // [albedo] single-scattering total (a check of the exact one)
+
+  void resize(std::size_t albedos, std::size_t bins) {
+    bin_sum.assign(albedos * bins, 0.0);
+    bin_sq.assign(albedos * bins, 0.0);
+    ms_sum.assign(albedos, 0.0);
+    ms_sq.assign(albedos, 0.0);
+    ss_sum.assign(albedos, 0.0);
+    ss_sq.assign(albedos, 0.0);
+  }
+};
+
+constexpr char kStateMagic[8] = {'E', 'X', 'S', 'T', 'A', 'T', 'E', '1'};
+
+std::filesystem::path node_path(const std::filesystem::path& dir, const Grid& grid, std::size_t gi, std::size_t ei,
+                                std::size_t run) {
+  const std::string base = run == grid.white() ? "" : "_base" + std::to_string(run);
+  return dir / ("node_g" + std::to_string(gi) + "_eta" + std::to_string(ei) + base + ".bin");
+}
+
+void write_vector(std::ofstream& f, const std::vector<double>& v) {
+  f.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(double)));
+}
+void read_vector(std::ifstream& f, std::vector<double>& v) {
+  f.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(double)));
+}
+
+void save(const NodeSums& s, const std::filesystem::path& path) {
+  const auto temporary = path.string() + ".partial";
+  {
+    std::ofstream f(temporary, std::ios::binary | std::ios::trunc);
+    f.write(kStateMagic, 8);
+    const std::uint64_t sizes[3] = {s.photons, s.chunks, s.interactions};
+    f.write(reinterpret_cast<const char*>(sizes), sizeof sizes);
+    const double scalars[3] = {s.seconds, s.lost, s.specular};
+    f.write(reinterpret_cast<const char*>(scalars), sizeof scalars);
+    for (const auto* v : {&s.bin_sum, &s.bin_sq, &s.ms_sum, &s.ms_sq, &s.ss_sum, &s.ss_sq}) write_vector(f, *v);
+    if (!f) throw std::runtime_error("cannot write " + temporary);
+  }
+  std::filesystem::rename(temporary, path);
+}
+
+bool load(NodeSums& s, const std::filesystem::path& path, const Grid& grid) {
+  s.resize(grid.albedo_prime.size(), grid.bins());
+  std::ifstream f(path, std::ios::binary);
+  if (!f) return false;
+  char magic[8];
+  f.read(magic, 8);
+  if (!f || std::memcmp(magic, kStateMagic, 8) != 0) throw std::runtime_error(path.string() + ": not a state file");
+  std::uint64_t sizes[3];
+  double scalars[3];
+  f.read(reinterpret_cast<char*>(sizes), sizeof sizes);
+  f.read(reinterpret_cast<char*>(scalars), sizeof scalars);
+  s.photons = sizes[0];
+  s.chunks = sizes[1];
+  s.interactions = sizes[2];
+  s.seconds = scalars[0];
+  s.lost = scalars[1];
+  s.specular = scalars[2];
+  for (auto* v : {&s.bin_sum, &s.bin_sq, &s.ms_sum, &s.ms_sq, &s.ss_sum, &s.ss_sq}) read_vector(f, *v);
+  if (!f || f.peek() != EOF) throw std::runtime_error(path.string() + ": wrong size for this grid");
+  return true;
+}
+
+// ---- run: one chunk of photons for one (g, eta) node ----------------------------------------------
+void run_chunk(const Grid& grid, std::size_t gi, std::size_t ei, std::size_t run, std::uint64_t photons,
+               std::uint64_t seed, NodeSums& sums) {
+  const double g = grid.g[gi], eta = grid.eta[ei];
+  const std::size_t albedos = grid.albedo_prime.size(), bins = grid.bins();
+  const double alpha_max = single_albedo(grid.albedo_prime.back(), g);
+  MonteCarloOptions options;
+  options.photons = photons;
+  options.seed = splitmix(splitmix(splitmix(seed ^ gi) ^ (ei << 20)) ^ sums.chunks);
+  if (run != grid.white()) options.seed = splitmix(options.seed ^ ((run + 1) << 40));
+  const double base_alpha = run == grid.white() ? 1.0 : single_albedo(grid.run_albedo_prime(run), g);
+  options.batch_size = 256;
+  options.bins = 2;
+  options.r_max = 1;
+  options.record_reflected_photons = true;
+  options.max_interactions = static_cast<std::uint64_t>(std::ceil(6 / (1 - alpha_max)));
+  const MonteCarloResult result =
+      run_monte_carlo(LayerStack::half_space(Medium::single_channel(1 - base_alpha, base_alpha, g, eta)), options);
+  const ChannelResult& channel = result.channels[0];
+  const double entered = 1 / (1 - channel.specular_reflectance);
+
+  // Only the albedos this run serves (alpha' <= its base): the reweighting factor stays <= 1.
+  std::size_t served = 0;
+  while (served < albedos && grid.albedo_prime[served] <= grid.run_albedo_prime(run)) ++served;
+  std::vector<double> ln_alpha(albedos), ln_scale(albedos);
+  for (std::size_t a = 0; a < albedos; ++a) {
+    const double alpha = single_albedo(grid.albedo_prime[a], g);
+    ln_alpha[a] = std::log(alpha) - std::log(base_alpha);  // the weight already carries base_alpha^k
+    ln_scale[a] = std::log(1 - alpha * g);  // sigma_t' / sigma_t: mfp -> transport mfp
+  }
+  const double first = grid.ln_first_edge(), inv_step = 1 / grid.d_ln_r;
+  for (const ReflectedPhoton& p : channel.reflected_photons) {
+    const double w0 = p.weight * entered;
+    const double k = p.scatterings;
+    if (p.scatterings == 1) {
+      for (std::size_t a = 0; a < served; ++a) {
+        const double w = w0 * std::exp(ln_alpha[a]);
+        sums.ss_sum[a] += w;
+        sums.ss_sq[a] += w * w;
+      }
+      continue;
+    }
+    if (p.scatterings < 2) continue;
+    const double ln_r = std::log(p.radius);
+    for (std::size_t a = 0; a < served; ++a) {
+      const double w = w0 * std::exp(k * ln_alpha[a]);
+      if (w == 0) continue;
+      const double f = (ln_r + ln_scale[a] - first) * inv_step;
+      const std::size_t bin = f < 0 ? 0 : std::min(bins - 1, static_cast<std::size_t>(f) + 1);
+      sums.bin_sum[a * bins + bin] += w;
+      sums.bin_sq[a * bins + bin] += w * w;
+      sums.ms_sum[a] += w;
+      sums.ms_sq[a] += w * w;
+    }
+  }
+  sums.photons += photons;
+  sums.chunks += 1;
+  sums.interactions += channel.interactions;
+  sums.seconds += result.seconds;
+  sums.lost += channel.lost * static_cast<double>(photons);
+  sums.specular = channel.specular_reflectance;
+}
+
+std::string describe_node(const Grid& grid, std::size_t gi, std::size_t ei) {
+  char text[64];
+  std::snprintf(text, sizeof text, "g %.2f eta %.2f", grid.g[gi], grid.eta[ei]);
+  return text;
+}
+
+int run(const std::filesystem::path& dir, std::uint64_t target, std::uint64_t chunk, double hours,
+        std::uint64_t seed) {
+  const Grid grid;
+  std::filesystem::create_directories(dir);
+  const auto start = std::chrono::steady_clock::now();
+  const auto elapsed_hours = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / 3600;
+  };
+  for (;;) {
+    bool any = false;
+    for (std::size_t ei = 0; ei < grid.eta.size(); ++ei) {
+      for (std::size_t gi = 0; gi < grid.g.size(); ++gi) {
+       for (std::size_t b = 0; b < grid.runs(); ++b) {
+        NodeSums sums;
+        const auto path = node_path(dir, grid, gi, ei, b);
+        load(sums, path, grid);
+        const std::uint64_t run_target = target * grid.run_factor(b);
+        if (sums.photons >= run_target) continue;
+        any = true;
+        if (elapsed_hours() > hours) {
+          std::cerr << "stopped after " << hours << " h (run again to continue)\n";
+          return 0;
+        }
+        const std::uint64_t n = std::min(chunk * grid.run_factor(b), run_target - sums.photons);
+        const auto t0 = std::chrono::steady_clock::now();
+        run_chunk(grid, gi, ei, b, n, seed, sums);
+        save(sums, path);
+        std::cerr << describe_node(grid, gi, ei) << " base alpha' " << grid.run_albedo_prime(b) << ": " << sums.photons << " photons, "
+                  << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s, "
+                  << static_cast<double>(sums.interactions) / static_cast<double>(sums.photons)
+                  << " scatterings/photon, lost " << sums.lost / static_cast<double>(sums.photons) << "\n";
+       }
+      }
+    }
+    if (!any) break;
+  }
+  std::cerr << "every node has " << target << " photons\n";
+  return 0;
+}
+
+// ---- build: the table from the sums ---------------------------------------------------------------
+std::string git_revision() {
+  std::string out;
+  if (FILE* p = popen("git rev-parse --short HEAD 2>/dev/null", "r")) {
+    char buffer[64];
+    while (std::fgets(buffer, sizeof buffer, p)) out += buffer;
+    pclose(p);
+  }
+  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+  return out.empty() ? "unknown" : out;
+}
+
+int build(const std::filesystem::path& dir, const std::string& out_path, std::uint64_t seed) {
+  const Grid grid;
+  const std::size_t albedos = grid.albedo_prime.size(), bins = grid.bins(), radii = grid.radii;
+  ExactTable table;
+  table.albedo_prime = grid.albedo_prime;
+  table.g = grid.g;
+  table.eta = grid.eta;
+  table.ln_r0 = grid.ln_r0;
+  table.d_ln_r = grid.d_ln_r;
+  table.radii = radii;
+  table.ln_y.assign(table.nodes() * radii, 0.0f);
+  table.relative_error.assign(table.nodes() * radii, 0);
+  table.total.assign(table.nodes(), 0.0);
+
+  std::uint64_t min_photons = UINT64_MAX, max_photons = 0, interactions = 0, photons = 0;
+  double cpu_seconds = 0, worst_scale_sigma = 0, worst_ss_sigma = 0, worst_lost = 0, largest_r999 = 0;
+  std::string worst_scale_at, worst_ss_at;
+  std::size_t extrapolated = 0, monte_carlo_totals = 0;
+  nlohmann::json scale_check = nlohmann::json::array();
+  for (std::size_t ei = 0; ei < grid.eta.size(); ++ei) {
+    for (std::size_t gi = 0; gi < grid.g.size(); ++gi) {
+      std::vector<NodeSums> runs(grid.runs());
+      for (std::size_t b = 0; b < grid.runs(); ++b) {
+        NodeSums& s = runs[b];
+        if (!load(s, node_path(dir, grid, gi, ei, b), grid) || s.photons == 0)
+          throw std::runtime_error("no Monte Carlo for " + describe_node(grid, gi, ei) + ": run first");
+        if (b == grid.white()) {
+          min_photons = std::min(min_photons, s.photons);
+          max_photons = std::max(max_photons, s.photons);
+        }
+        photons += s.photons;
+        interactions += s.interactions;
+        cpu_seconds += s.seconds;
+        worst_lost = std::max(worst_lost, s.lost / static_cast<double>(s.photons));
+      }
+      const double g = grid.g[gi], eta = grid.eta[ei];
+      for (std::size_t a = 0; a < albedos; ++a) {
+        const NodeSums& s = runs[grid.run_for(grid.albedo_prime[a])];
+        const double n = static_cast<double>(s.photons);
+        const double ap = grid.albedo_prime[a];
+        // Transport units: sigma_t' = 1.
+        const Reduced<double> m = reduce(1 - ap, ap / (1 - g), g, eta);
+        adding_doubling::Slab slab;
+        slab.layers = {{m.sigma_a, m.sigma_s, g, kSemiInfinite}};
+        slab.n = eta;
+        adding_doubling::Options ad;
+        ad.tolerance = 1e-5 * ap;  // relative to R_d, which is of order alpha' at low albedo
+        const auto totals = adding_doubling::solve(slab, adding_doubling::Incidence::collimated, ad);
+        const double ad_total = totals.diffuse_reflectance * totals.entered_scale();
+        const double ss_total = single_scattering_total(m.albedo(), g, eta);
+        const auto mean_se = [n](double sum, double sq) {
+          const double mean = sum / n;
+          return std::pair{mean, std::sqrt(std::max(0.0, (sq / n - mean * mean) / (n - 1)))};
+        };
+        const auto [ms_mc, ms_se] = mean_se(s.ms_sum[a], s.ms_sq[a]);
+        const auto [ss_mc, ss_se] = mean_se(s.ss_sum[a], s.ss_sq[a]);
+        // Adding-doubling is the total where it has converged (its own error estimate, from
+        // doubling the angles, within 2e-4 of the total); with g near 1 and low albedo delta-M
+        // with 128 angles does not converge (even negative totals at alpha' 0.001, g 0.99), and
+        // the Monte Carlo total (exact single scattering + multiple scattering) stands.
+        const bool ad_converged = ad_total > ss_total && totals.error_estimate <= 2e-4 * ad_total;
+        const double ms_exact = ad_converged ? ad_total - ss_total : ms_mc;
+        const double total = ss_total + ms_exact;
+        const double scale = ms_mc > 0 ? ms_exact / ms_mc : 0.0;
+        char where[96];
+        std::snprintf(where, sizeof where, "alpha' %.6g, g %.2f, eta %.2f", ap, g, eta);
+        if (ad_converged && ms_se > 0) {
+          const double scale_sigma = (ms_mc - ms_exact) / ms_se;
+          if (std::abs(scale_sigma) > std::abs(worst_scale_sigma)) {
+            worst_scale_sigma = scale_sigma;
+            worst_scale_at = where;
+          }
+        } else {
+          ++monte_carlo_totals;
+        }
+        const double ss_sigma = ss_se > 0 ? (ss_mc - ss_total) / ss_se : 0;
+        if (std::abs(ss_sigma) > std::abs(worst_ss_sigma)) {
+          worst_ss_sigma = ss_sigma;
+          worst_ss_at = where;
+        }
+        scale_check.push_back({ap, g, eta, ms_mc, ms_se, ad_converged ? ms_exact : NAN, totals.error_estimate});
+        table.total[table.node(ei, gi, a)] = total;
+
+        // Multiple scattering per node radius: bin means of dE/d ln r, scaled to the exact total.
+        std::vector<double> mean(radii), se(radii), y_ms(radii, 0.0), y_ss(radii);
+        for (std::size_t k = 0; k < radii; ++k) {
+          const auto [v, e] = mean_se(s.bin_sum[a * bins + k + 1], s.bin_sq[a * bins + k + 1]);
+          mean[k] = v * scale / grid.d_ln_r;
+          se[k] = e * scale / grid.d_ln_r;
+          const double r = std::exp(grid.ln_r0 + grid.d_ln_r * static_cast<double>(k));
+          y_ss[k] = 2 * std::numbers::pi * r * r * single_scattering_reflectance(m, r, 96);
+        }
+        // A bin mean is the average of y over the bin in ln r; the node value differs by the
+        // curvature: y(node) = mean - (mean[k-1] - 2 mean[k] + mean[k+1]) / 24 (fourth order).
+        std::vector<bool> good(radii), continued(radii, false);
+        for (std::size_t k = 0; k < radii; ++k) good[k] = mean[k] > 0 && se[k] < 0.3 * mean[k];
+        if (std::none_of(good.begin(), good.end(), [](bool b) { return b; }))
+          for (std::size_t k = 0; k < radii; ++k) good[k] = mean[k] > 0;  // noisy: relative errors say so
+        const bool any_ms = std::any_of(good.begin(), good.end(), [](bool b) { return b; });
+        std::size_t first_good = 0, last_good = radii - 1;
+        if (any_ms) {
+          while (!good[first_good]) ++first_good;
+          while (!good[last_good]) --last_good;
+          for (std::size_t k = 0; k < radii; ++k) {
+            y_ms[k] = std::max(0.0, mean[k]);
+            if (k > 0 && k + 1 < radii && good[k - 1] && good[k] && good[k + 1])
+              y_ms[k] = mean[k] - (mean[k - 1] - 2 * mean[k] + mean[k + 1]) / 24;
+          }
+          // Near field below the first well-measured radius: multiple scattering is flat in R
+          // there (y ~ r^2) and far below single scattering (y ~ r), so continue it that way.
+          for (std::size_t k = 0; k < first_good; ++k) {
+            y_ms[k] = y_ms[first_good] * std::exp(2 * grid.d_ln_r * (static_cast<double>(k) - static_cast<double>(first_good)));
+            continued[k] = true;
+          }
+          // Between well-measured radii, a bin without photons takes the log-linear interpolation
+          // of its neighbours.
+          for (std::size_t k = first_good; k <= last_good; ++k) {
+            if (y_ss[k] + y_ms[k] > 0) continue;
+            std::size_t lo = k, hi = k;
+            while (lo > first_good && !(y_ss[lo] + y_ms[lo] > 0)) --lo;
+            while (hi < last_good && !(y_ss[hi] + y_ms[hi] > 0)) ++hi;
+            const double t = static_cast<double>(k - lo) / static_cast<double>(hi - lo);
+            y_ms[k] = std::exp((1 - t) * std::log(y_ss[lo] + y_ms[lo]) + t * std::log(y_ss[hi] + y_ms[hi])) - y_ss[k];
+            continued[k] = true;
+          }
+        } else {
+          // No multiple scattering tallied at all: the profile is the exact single scattering,
+          // down to where it underflows.
+          last_good = 0;
+          while (last_good + 1 < radii && y_ss[last_good + 1] > 1e-250) ++last_good;
+        }
+        std::vector<double> ln_y(radii);
+        for (std::size_t k = 0; k <= last_good; ++k) {
+          ln_y[k] = std::log(y_ss[k] + y_ms[k]);
+          const double relative = any_ms ? se[k] / (y_ss[k] + y_ms[k]) : 0.0;
+          table.relative_error[table.index(ei, gi, a, k)] =
+              continued[k] ? ExactTable::kExtrapolated
+                           : static_cast<std::uint16_t>(std::min(65534.0, std::round(relative * 1e4)));
+        }
+        // The far tail past the last well-measured radius: ln y continues linearly in r (an
+        // exponential tail) with the slope of the last well-measured decade.
+        if (last_good + 1 < radii) {
+          const std::size_t from = last_good >= first_good + 12 ? last_good - 12 : first_good;
+          const double r1 = std::exp(grid.ln_r0 + grid.d_ln_r * static_cast<double>(from));
+          const double r2 = std::exp(grid.ln_r0 + grid.d_ln_r * static_cast<double>(last_good));
+          const double slope = from < last_good ? std::min(-1e-3, (ln_y[last_good] - ln_y[from]) / (r2 - r1)) : -1.0;
+          for (std::size_t k = last_good + 1; k < radii; ++k) {
+            const double r = std::exp(grid.ln_r0 + grid.d_ln_r * static_cast<double>(k));
+            ln_y[k] = ln_y[last_good] + slope * (r - r2);
+            table.relative_error[table.index(ei, gi, a, k)] = ExactTable::kExtrapolated;
+          }
+        }
+        double energy = 0, cumulative = 0;
+        for (std::size_t k = 0; k < radii; ++k) energy += std::exp(ln_y[k]);
+        for (std::size_t k = 0; k < radii; ++k) {
+          cumulative += std::exp(ln_y[k]);
+          if (cumulative >= 0.999 * energy) {
+            largest_r999 = std::max(largest_r999, std::exp(grid.ln_r0 + grid.d_ln_r * static_cast<double>(k)));
+            break;
+          }
+        }
+        for (std::size_t k = 0; k < radii; ++k) {
+          table.ln_y[table.index(ei, gi, a, k)] = static_cast<float>(ln_y[k]);
+          if (table.relative_error[table.index(ei, gi, a, k)] == ExactTable::kExtrapolated) ++extrapolated;
+        }
+      }
+    }
+  }
+  char date[32];
+  const std::time_t now = std::time(nullptr);
+  std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  nlohmann::json p;
+  p["generator"] = "tools/exact_table/generate_exact_table";
+  p["generator_version"] = kGeneratorVersion;
+  p["source_revision"] = git_revision();
+  p["built"] = date;
+  p["method"] =
+      "multiple scattering: project Monte Carlo, non-absorbing run per (g, eta) reweighted by albedo^k, scaled to "
+      "adding-doubling total minus exact single scattering; single scattering: exact integral";
+  p["photons_per_g_eta_node_white_run"] = {{"min", min_photons}, {"max", max_photons}};
+  p["absorbing_runs"] = {{"base_albedo_prime", grid.base_albedo_prime}, {"photon_factor", grid.base_photon_factor}};
+  p["photons_total"] = photons;
+  p["scatterings_total"] = interactions;
+  p["monte_carlo_seconds"] = cpu_seconds;
+  p["seed"] = seed;
+  p["seed_rule"] = "chunk c of node (g index, eta index): s = splitmix(splitmix(splitmix(seed ^ g) ^ (eta << 20)) ^ c); "
+                   "absorbing run b: splitmix(s ^ ((b + 1) << 40))";
+  p["adding_doubling_tolerance"] = "1e-5 alpha' absolute";
+  p["totals"] = "adding-doubling where its error estimate is within 2e-4 of the total, else the Monte Carlo total";
+  p["monte_carlo_totals"] = monte_carlo_totals;
+  p["worst_total_check_sigma"] = {{"value", worst_scale_sigma}, {"at", worst_scale_at},
+                                  {"meaning", "(Monte Carlo - exact) multiple-scattering total / its standard error"}};
+  p["worst_single_scattering_check_sigma"] = {{"value", worst_ss_sigma}, {"at", worst_ss_at}};
+  p["largest_lost_fraction"] = worst_lost;
+  p["largest_radius_999"] = largest_r999;
+  p["extrapolated_entries"] = extrapolated;
+  table.provenance = p.dump();
+  write_exact_table(table, out_path);
+  std::cout << p.dump(2) << "\n";
+  // The per-node check, for the record (tools/exact_table/total_check.tsv).
+  std::ofstream check(std::filesystem::path(out_path).parent_path() / "total_check.tsv");
+  check << "# alpha'\tg\teta\tms_monte_carlo\tms_stderr\tms_exact(adding-doubling - single scattering; nan: "
+           "not converged)\tadding_doubling_error_estimate\n";
+  for (const auto& row : scale_check) {
+    for (std::size_t i = 0; i < row.size(); ++i) check << (i ? "\t" : "") << row[i].dump();
+    check << '\n';
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (args.empty() || (args[0] != "run" && args[0] != "build")) {
+      std::cerr << "usage: generate_exact_table run --state DIR [--photons N] [--chunk N] [--hours H] [--seed S]\n"
+                   "       generate_exact_table build --state DIR --out FILE [--seed S]\n";
+      return 2;
+    }
+    std::string state, out;
+    std::uint64_t photons = 1'000'000, chunk = 16384, seed = 20261201;
+    double hours = 1e9;
+    for (std::size_t i = 1; i + 1 < args.size(); i += 2) {
+      if (args[i] == "--state") state = args[i + 1];
+      else if (args[i] == "--out") out = args[i + 1];
+      else if (args[i] == "--photons") photons = std::stoull(args[i + 1]);
+      else if (args[i] == "--chunk") chunk = std::stoull(args[i + 1]);
+      else if (args[i] == "--hours") hours = std::stod(args[i + 1]);
+      else if (args[i] == "--seed") seed = std::stoull(args[i + 1]);
+      else throw std::invalid_argument("unknown option " + args[i]);
+    }
+    if (state.empty()) throw std::invalid_argument("--state DIR is required");
+    if (args[0] == "run") return run(state, photons, chunk, hours, seed);
+    if (out.empty()) throw std::invalid_argument("--out FILE is required");
+    return build(state, out, seed);
+  } catch (const std::exception& e) {
+    std::cerr << "generate_exact_table: " << e.what() << "\n";
+    return 2;
+  }
+}
