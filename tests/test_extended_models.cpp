@@ -3,6 +3,8 @@
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
 
+#include "bssrdf/error.hpp"
+
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -41,6 +43,12 @@ TEST(AllModels, StableWhereMethodsFail) {
         for (double a : {1e-6, 0.01, 0.5, 0.99, 1 - 1e-9, 1.0}) {
           const auto m = reduce(1 - a, a / (1 - g), g, eta);  // sigma_t' = 1
           const auto report = model->validity(m);
+          if (name == "exact" && worst(report) == Severity::invalid) {
+            // A table's domain: the report names the parameter and evaluation refuses, never extrapolates.
+            EXPECT_THROW(model->total_reflectance(m), InvalidInput) << a;
+            EXPECT_THROW(model->reflectance(m, 1.0), InvalidInput) << a;
+            continue;
+          }
           const double total = model->total_reflectance(m);
           EXPECT_TRUE(std::isfinite(total) && total >= 0) << name << " a'=" << a << " total=" << total;
           if (total > 1) EXPECT_EQ(worst(report), Severity::invalid) << name << " a'=" << a << " total " << total;
@@ -55,7 +63,8 @@ TEST(AllModels, StableWhereMethodsFail) {
           const double R0 = model->reflectance(m, 0.0);
           if (!std::isfinite(R0)) EXPECT_TRUE(has_note(report, "singular_at_origin")) << name;
           else EXPECT_GE(R0, 0.0) << name;
-          if (a < 0.1) EXPECT_EQ(worst(report), Severity::invalid) << name << " a'=" << a;
+          // Diffusion fails at low albedo; the transport solution does not.
+          if (a < 0.1 && name != "exact") EXPECT_EQ(worst(report), Severity::invalid) << name << " a'=" << a;
         }
   }
 }

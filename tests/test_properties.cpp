@@ -42,7 +42,12 @@ class ModelProperties : public ::testing::TestWithParam<std::string> {};
 TEST_P(ModelProperties, ProfileIsFiniteNonNegativeAndIntegratesToItsTotal) {
   const auto model = make_model(GetParam());
   int checked = 0;
+  int outside = 0;
   for (const auto& m : random_media(7, 12)) {
+    if (worst(model->validity(m)) == Severity::invalid && GetParam() == "exact") {  // g < 0: outside its table
+      ++outside;
+      continue;
+    }
     const double total = model->total_reflectance(m);
     ASSERT_TRUE(std::isfinite(total) && total >= 0) << GetParam() << " total " << total;
     // Independent quadrature: trapezoid in ln r of 2 pi r^2 R(r) over 1e-6 .. 1e3 transport mfp.
@@ -60,7 +65,8 @@ TEST_P(ModelProperties, ProfileIsFiniteNonNegativeAndIntegratesToItsTotal) {
     EXPECT_NEAR(integral, total, 2e-3 * total + 1e-9) << GetParam() << " alpha' = " << m.albedo_prime << ", eta = " << m.eta;
     ++checked;
   }
-  EXPECT_EQ(checked, 12);
+  EXPECT_EQ(checked + outside, 12);
+  EXPECT_GE(checked, 6);
 }
 
 // Monotone to within the quadrature: models without a closed-form CDF integrate R(r) adaptively to

@@ -37,7 +37,11 @@ class ExactModel final : public Model {
 
  protected:
   ValidityReport check_validity(const Reduced<double>& m) const override {
-    return exact_domain(bundled_exact_table(), m.albedo_prime, m.g, m.eta);
+    ValidityReport report = exact_domain(bundled_exact_table(), m.albedo_prime, m.g, m.eta);
+    if (report.empty())
+      report.push_back({Severity::note, "singular_at_origin",
+                        "R(r) diverges as 1/r at the entry point (single scattering); its integral is finite"});
+    return report;
   }
 
  private:
