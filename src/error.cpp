@@ -1,5 +1,6 @@
 #include "bssrdf/error.hpp"
 
+#include <cstdio>
 #include <charconv>
 #include <cmath>
 
@@ -24,6 +25,12 @@ std::string format_number(double value) {
   char buffer[32];
   auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
   return std::string(buffer, result.ptr);
+}
+
+std::string short_number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", value);
+  return buffer;
 }
 
 }  // namespace bssrdf

@@ -13,6 +13,10 @@
 #include "bssrdf/medium.hpp"
 #include "bssrdf/units.hpp"
 
+namespace bssrdf {
+struct SlabThicknessRange;
+}
+
 namespace bssrdf::cli {
 
 // "1,2.5,3" -> {1, 2.5, 3}; throws InvalidInput naming `field` for anything that is not a number.
@@ -70,6 +74,12 @@ struct ChosenModel {
 ChosenModel resolve_model(const std::string& name, const std::string& accuracy, const Medium& medium);
 // --accuracy: a relative error, 0 < value < 10; empty gives the default 0.1.
 double parse_accuracy(const std::string& text);
+
+// Slab thicknesses in --unit: `list` (--thickness, comma-separated), else `samples` thicknesses
+// log-spaced from --d-min to --d-max, each empty one taken from `defaults` (mm, the library's rule:
+// default_thickness_range). Throws InvalidInput naming the option.
+std::vector<double> slab_thicknesses(const std::string& list, const std::string& d_min, const std::string& d_max, int samples,
+                                     LengthUnit unit, const SlabThicknessRange& defaults);
 
 // For -o and other file options: refuses an empty name, which would otherwise silently mean "no file".
 CLI::Validator file_name(const std::string& field);

@@ -1,13 +1,15 @@
 #include "bssrdf/lut/albedo_radius_table.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/fresnel.hpp"
 #include "bssrdf/lut/interpolation.hpp"
-#include "bssrdf/lut/parallel.hpp"
+#include "bssrdf/parallel.hpp"
 #include "bssrdf/models/photon_beam_diffusion.hpp"
 #include "bssrdf/single_scattering.hpp"
 
@@ -62,7 +64,9 @@ AlbedoRadiusTable build_albedo_radius_table(const AlbedoRadiusLayout& layout, do
     throw InvalidInput("tolerance", format_number(options.tolerance), "0 < tolerance < 1");
   if (!(g > -1 && g < 1)) throw InvalidInput("g", format_number(g), "-1 < g < 1");
   if (!(eta > 0) || !std::isfinite(eta)) throw InvalidInput("eta", format_number(eta), "> 0 and finite");
+  const auto start = std::chrono::steady_clock::now();
   AlbedoRadiusTable t;
+  t.tolerance = options.tolerance;
   t.g = g;
   t.eta = eta;
   t.layout = layout;
@@ -96,6 +100,7 @@ AlbedoRadiusTable build_albedo_radius_table(const AlbedoRadiusLayout& layout, do
     t.effective_albedo[i] = cum.back();
     for (std::size_t j = 0; j < cols; ++j) t.cdf[i * cols + j] = cum.back() > 0 ? cum[j] / cum.back() : 0.0;
   });
+  t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return t;
 }
 
@@ -234,6 +239,22 @@ LookupTable to_lookup_table(const AlbedoRadiusTable& t, const TableContext& cont
   out.add_channel("albedo", "single-scattering albedo rho = sigma_s / sigma_t of the row", albedo);
   out.add_channel("effective_albedo", "rho_eff = int 2 pi r R dr of the row (the albedo inversion table)", rho_eff);
   return out;
+}
+
+std::string summary(const AlbedoRadiusTable& t, const std::string& layout_name) {
+  std::ostringstream s;
+  s << "albedo-radius table (" << layout_name << " layout): " << t.rows() << " albedos x " << t.columns()
+    << " radii, g = " << format_number(t.g) << ", eta = " << format_number(t.eta) << ", photon beam diffusion with "
+    << t.quadrature_order << "-point Gauss-Legendre (tolerance " << format_number(t.tolerance) << "); table in "
+    << format_number(std::round(t.seconds * 1e5) / 100) << " ms\n  effective albedo: " << format_number(t.effective_albedo.front())
+    << " (rho = 0) to " << format_number(t.effective_albedo.back()) << " (rho = 1)\n";
+  return s.str();
+}
+
+std::string summary(const AdaptiveAlbedoRadiusLayout& layout, double table_tolerance) {
+  return "adaptive layout for interpolation tolerance " + format_number(table_tolerance) + ": worst midpoint error " +
+         format_number(std::round(layout.albedo_error * 1e6) / 1e6) + " (albedo), " +
+         format_number(std::round(layout.radius_error * 1e6) / 1e6) + " (radius), relative to each row's peak";
 }
 
 }  // namespace bssrdf

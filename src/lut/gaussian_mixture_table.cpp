@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <sstream>
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/fit/inverse_fits.hpp"
@@ -61,9 +62,7 @@ GaussianMixtureTable fitted_mixture_table(const Medium& medium, const Model& mod
   // From 0.05 transport mfp out (not 1e-3 as default_radii_mm): profiles singular at 0 (single
   // scattering, Burley's 1/r) make int r R^2 dr diverge there, and the fit would spend every
   // Gaussian on the first micrometres and lose the tail's energy.
-  double ell_min = 1e300;
-  for (std::size_t c = 0; c < medium.channels(); ++c) ell_min = std::min(ell_min, medium.reduced(c).ell);
-  const auto radii = log_spaced(kFitInner * ell_min, default_radii_mm(medium, model, 2).back(), samples);
+  const auto radii = log_spaced(kFitInner * transport_mfp_range(medium).min, default_radii_mm(medium, model, 2).back(), samples);
   // Channels without scattering (sigma_s = 0) reflect nothing: weight 0 for every Gaussian, out of the fit.
   std::vector<NamedProfile> profiles;
   std::vector<double> totals;
@@ -147,6 +146,26 @@ LookupTable to_lookup_table(const GaussianMixtureTable& t, const TableContext& c
     }
   }
   return out;
+}
+
+std::string summary(const GaussianMixtureTable& t, const TableContext& context) {
+  const double mm = millimetres_per(context.unit);
+  const std::string u(symbol(context.unit));
+  std::ostringstream s;
+  s << "Gaussian mixture: " << t.count() << " Gaussians (" << (t.shared_variance ? "shared" : "per-channel") << " variances) in "
+    << short_number(t.seconds * 1000) << " ms; " << t.method << '\n';
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c) {
+    if (t.total_reflectance[c] == 0) {
+      s << "  " << t.channel_names[c] << ": does not scatter (total reflectance 0): every weight 0\n";
+      continue;
+    }
+    s << "  " << t.channel_names[c] << ": " << t.weight[c].size() << " Gaussians, variances "
+      << short_number(t.variance[c].front() / (mm * mm)) << " to " << short_number(t.variance[c].back() / (mm * mm)) << ' ' << u
+      << "^2; sum of weights / total reflectance - 1 = " << short_number(t.conservation_error[c]);
+    if (t.shared_variance) s << "; relative L2 error " << short_number(t.relative_l2_error[c]);
+    s << '\n';
+  }
+  return s.str();
 }
 
 }  // namespace bssrdf

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "bssrdf/lut/albedo_radius_table.hpp"
-#include "bssrdf/lut/parallel.hpp"
+#include "bssrdf/parallel.hpp"
 #include "bssrdf/lut/radial_table.hpp"
 #include "bssrdf/materials.hpp"
 #include "bssrdf/models/photon_beam_diffusion.hpp"

@@ -37,7 +37,7 @@
 #include "bssrdf/layers.hpp"
 #include "bssrdf/lut/albedo_radius_table.hpp"
 #include "bssrdf/lut/interpolation.hpp"
-#include "bssrdf/lut/parallel.hpp"
+#include "bssrdf/parallel.hpp"
 #include "bssrdf/models/photon_beam_diffusion.hpp"
 #include "bssrdf/montecarlo.hpp"
 
