@@ -1,8 +1,10 @@
 #include "bssrdf/error.hpp"
 
-#include <cstdio>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+
+#include "bssrdf/check.hpp"
 
 namespace bssrdf {
 
@@ -31,6 +33,11 @@ std::string short_number(double value) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.4g", value);
   return buffer;
+}
+
+void check_failed(const char* condition, const char* file, int line) {
+  throw InternalError(std::string("internal check failed: ") + condition + " (" + file + ":" + std::to_string(line) +
+                      "); please report this as a bug");
 }
 
 }  // namespace bssrdf

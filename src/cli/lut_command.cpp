@@ -24,7 +24,7 @@ namespace {
 
 std::string encode(const Built& built, const std::string& format, bool half) {
   const auto other = built.other_formats.find(format);
-  if (other != built.other_formats.end()) return other->second;
+  if (other != built.other_formats.end()) return other->second();
   if (format == "exr") return encode_exr(built.table, half ? ExrPixelType::half : ExrPixelType::float32);
   if (format == "json") return to_json(built.table);
   if (format == "csv") return to_csv(built.table);

@@ -227,8 +227,14 @@ Built build_separable(const LutOptions& o) {
       throw InvalidInput("--taps", std::to_string(options.taps), "an odd number from 3 to 255 (Jimenez: 11, 17, 25)");
     const auto k = build_separable_kernel(resolved.medium, model, options);
     Built b{to_lookup_table(k, context), summary(k, context), {}};
-    b.other_formats["glsl"] = to_shader(k, context, ShaderLanguage::glsl);
-    b.other_formats["hlsl"] = to_shader(k, context, ShaderLanguage::hlsl);
+    for (const auto language : {ShaderLanguage::glsl, ShaderLanguage::hlsl}) {
+      const std::string name = language == ShaderLanguage::glsl ? "glsl" : "hlsl";
+      try {
+        b.other_formats[name] = [text = to_shader(k, context, language)] { return text; };
+      } catch (const InvalidInput& e) {  // e.g. not three channels: an error only when that format is asked for
+        b.other_formats[name] = [e]() -> std::string { throw InvalidInput("--format", e.value(), e.accepted()); };
+      }
+    }
     return b;
   });
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <span>
 #include <string>
@@ -43,7 +44,7 @@ struct LutOptions {
 struct Built {
   LookupTable table;
   std::string summary;
-  std::map<std::string, std::string> other_formats;  // e.g. "glsl", "hlsl" for kernels
+  std::map<std::string, std::function<std::string()>> other_formats;  // e.g. "glsl", "hlsl" for kernels, on demand
 };
 
 struct TableKind {

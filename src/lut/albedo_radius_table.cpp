@@ -6,6 +6,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "bssrdf/check.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/fresnel.hpp"
 #include "bssrdf/lut/interpolation.hpp"
@@ -22,6 +23,7 @@ constexpr double kTwoPi = 2 * std::numbers::pi;
 // with the spline's slopes d (centred differences, one-sided at the ends). cumulative[j] at x_j.
 std::vector<double> catmull_rom_cumulative(const std::vector<double>& x, const double* f) {
   const std::size_t n = x.size();
+  BSSRDF_CHECK(n >= 2);  // layouts have at least 4 radii
   const auto slope = [&](std::size_t j) {
     if (j == 0) return (f[1] - f[0]) / (x[1] - x[0]);
     if (j + 1 == n) return (f[n - 1] - f[n - 2]) / (x[n - 1] - x[n - 2]);
@@ -75,7 +77,7 @@ AlbedoRadiusTable build_albedo_radius_table(const AlbedoRadiusLayout& layout, do
 
   // One quadrature order for the table: the largest any of a few albedos needs (optical units).
   for (double rho : {0.3, 0.9, 0.99, 0.999})
-    t.quadrature_order = std::max(t.quadrature_order, photon_beam_diffusion::samples_for_tolerance(rho * (1 - g) / (1 - rho * g), g, eta, options.tolerance));
+    t.quadrature_order = std::max(t.quadrature_order, photon_beam_diffusion::samples_for_tolerance(reduced_albedo(rho, g), g, eta, options.tolerance));
 
   // Single scattering with sigma_t = 1 is rho * S(r): one integral per column.
   const auto unit_scattering = reduce(0.0, 1.0, g, eta);
@@ -84,12 +86,13 @@ AlbedoRadiusTable build_albedo_radius_table(const AlbedoRadiusLayout& layout, do
     if (layout.radius[j] > 0)
       single[j] = kTwoPi * layout.radius[j] * single_scattering_reflectance(unit_scattering, layout.radius[j], t.quadrature_order);
 
+  BSSRDF_CHECK(rows >= 1 && cols >= 2 && std::is_sorted(layout.radius.begin(), layout.radius.end()));
   t.profile.assign(rows * cols, 0.0);
   t.cdf.assign(rows * cols, 0.0);
   t.effective_albedo.assign(rows, 0.0);
   parallel_for(rows, options.threads, [&](std::size_t i) {
     const double rho = layout.albedo[i];
-    const auto m = reduce(1 - rho, rho, g, eta);  // sigma_t = 1
+    const auto m = reduced_unit_extinction(rho, g, eta);
     double* row = &t.profile[i * cols];
     for (std::size_t j = 0; j < cols; ++j) {
       const double r = layout.radius[j];

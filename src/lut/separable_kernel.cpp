@@ -114,7 +114,7 @@ std::string float_literal(double v) {
 
 std::string to_shader(const SeparableKernel& k, const TableContext& context, ShaderLanguage language) {
   if (k.channel_names.size() != 3)
-    throw InvalidInput("--format", language == ShaderLanguage::glsl ? "glsl" : "hlsl",
+    throw InvalidInput("format", language == ShaderLanguage::glsl ? "glsl" : "hlsl",
                        "a medium with three channels (it has " + std::to_string(k.channel_names.size()) + ")");
   const double mm = millimetres_per(context.unit);
   const std::string u(symbol(context.unit));
