@@ -4,9 +4,9 @@
 // Results never depend on the thread count as long as each item writes only its own output (or, as
 // the Monte Carlo batches do, folds its result in item order under its own lock).
 //
-// An exception thrown by f stops the loop (no new items start) and is rethrown on the calling thread
-// once every running item has finished; when several items throw, the one with the smallest index
-// wins, so the error too is independent of the thread count.
+// An exception thrown by f stops the loop (no item after it starts) and is rethrown on the calling
+// thread once every running item has finished; when several items throw, the one with the smallest
+// index wins, so the error too is independent of the thread count (and is the sequential loop's).
 //
 //   std::vector<double> out(n);
 //   parallel_for(n, threads, [&](std::size_t i) { out[i] = expensive(i); });
@@ -35,19 +35,21 @@ void parallel_for(std::size_t n, unsigned threads, F&& f) {
     for (std::size_t i = 0; i < n; ++i) f(i);
     return;
   }
-  std::atomic<std::size_t> next{0};
-  std::atomic<bool> failed{false};
+  std::atomic<std::size_t> next{0}, failed_index{n};
   std::mutex failure_mutex;
-  std::size_t failed_index = n;
   std::exception_ptr failure;
   const auto work = [&] {
-    for (std::size_t i; !failed.load(std::memory_order_relaxed) && (i = next.fetch_add(1)) < n;) {
+    // Items are claimed in increasing order, so when item k fails every item below k has already
+    // been claimed and still runs: the smallest failing index is always found.
+    for (std::size_t i; (i = next.fetch_add(1)) < n && i < failed_index.load();) {
       try {
         f(i);
       } catch (...) {
         std::lock_guard lock(failure_mutex);
-        if (i < failed_index) failed_index = i, failure = std::current_exception();
-        failed = true;
+        if (i < failed_index.load()) {
+          failed_index = i;
+          failure = std::current_exception();
+        }
       }
     }
   };

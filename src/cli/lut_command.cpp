@@ -145,8 +145,8 @@ Action register_lut(CLI::App& app) {
   sub->add_flag("-q,--quiet", o->quiet, "Print nothing on stdout");
   sub->add_option("--thickness", o->thickness, "transmission: slab thicknesses in --unit, comma-separated");
   sub->add_option("--d-min", o->d_min,
-                  "transmission: smallest thickness [0.1 transport mfp of the clearest channel; 2 with --model multipole alone]");
-  sub->add_option("--d-max", o->d_max, "transmission: largest thickness [40 transport mfp of the most scattering-sparse channel]");
+                  "transmission: smallest thickness [0.1 of the shortest transport mfp over the channels; --model multipole alone: 2 of the longest]");
+  sub->add_option("--d-max", o->d_max, "transmission: largest thickness [40 of the longest transport mfp over the channels]");
   add_count_option(*sub, "--samples", o->samples, 2, kMaxThicknessSamples,
                    "transmission: thicknesses, log-spaced from --d-min to --d-max [" + std::to_string(kThicknessSamples) + "]");
   sub->add_flag("--reference", o->reference,

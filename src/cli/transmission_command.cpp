@@ -34,8 +34,8 @@ Action register_transmission(CLI::App& app) {
       ->check(CLI::IsMember({"adding-doubling", "multipole"}));
   // The default range is the library's rule (default_thickness_range), shared with lut --kind transmission.
   auto* lo = sub->add_option("--d-min", options->d_min,
-                             "Smallest thickness [0.1 transport mfp of the clearest channel; multipole: 2]");
-  auto* hi = sub->add_option("--d-max", options->d_max, "Largest thickness [40 transport mfp of the most scattering-sparse channel]");
+                             "Smallest thickness [0.1 of the shortest transport mfp over the channels; multipole: 2 of the longest]");
+  auto* hi = sub->add_option("--d-max", options->d_max, "Largest thickness [40 of the longest transport mfp over the channels]");
   auto* n = add_count_option(*sub, "--samples", options->samples, 2, kMaxThicknessSamples,
                              "Number of thicknesses, log-spaced [" + std::to_string(kThicknessSamples) + "]");
   list->excludes(lo)->excludes(hi)->excludes(n);

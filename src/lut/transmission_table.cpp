@@ -25,7 +25,7 @@ std::string_view to_string(TransmissionSource source) {
 SlabThicknessRange default_thickness_range(const Medium& medium, const TransmissionTableOptions& options) {
   const bool every_thickness_valued = options.model == "adding-doubling" || options.reference || options.reference_everywhere;
   const auto ell = transport_mfp_range(medium);
-  return {(every_thickness_valued ? 0.1 : 2.0) * ell.min, 40 * ell.max};
+  return {every_thickness_valued ? 0.1 * ell.min : 2 * ell.max, 40 * ell.max};
 }
 
 std::string multipole_invalid_code(const multipole::Model& model, const Reduced<double>& m) {

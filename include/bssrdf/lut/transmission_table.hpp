@@ -59,8 +59,8 @@ struct TransmissionTable {
 // --kind transmission`. kThicknessSamples thicknesses, log-spaced from
 //   d_min = 0.1 ell_min when every thickness gets a value (adding-doubling is exact at every thickness;
 //           with options.reference the Monte Carlo reference fills what the multipole cannot), else
-//           2 ell_min, below which the multipole is invalid (Donner & Jensen 2005: the dipole sources
-//           leave the slab), so the default curve holds no omitted thickness;
+//           2 ell_max: the multipole is invalid below 2 ell of a channel (Donner & Jensen 2005: the
+//           dipole sources leave the slab), so from there it holds in every channel;
 //   d_max = 40 ell_max, the thick end, where the transmittance decays as exp(-sigma_tr d),
 // ell = 1 / sigma_t' the transport mean free path, over the channels (transport_mfp_range).
 struct SlabThicknessRange {
