@@ -106,7 +106,7 @@ TEST(CliValidityMap, WritesEveryModelsPanelAndTheCheapestMap) {
 
 TEST(CliValidityMap, BadInputExitsTwoWithoutAFile) {
   const auto file = test_cli::temp("bad.svg");
-  for (const std::string args : {"--map " + file.string() + " --over albedo,sigma", "--map " + file.string() + " --metric image",
+  for (const std::string& args : {"--map " + file.string() + " --over albedo,sigma", "--map " + file.string() + " --metric image",
                                  "--map " + test_cli::temp("map.png").string(), "--map " + file.string() + " --accuracy -1"}) {
     const auto r = run("models " + args);
     EXPECT_EQ(r.status, 2) << args << ": " << r.err;

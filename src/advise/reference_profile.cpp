@@ -29,13 +29,8 @@ MonteCarloOptions bins_for(const std::vector<double>& edges) {
 }  // namespace
 
 std::vector<double> reference_annuli(const Medium& medium, std::size_t bins_per_decade) {
-  double ell_min = INFINITY, ell_max = 0;
-  for (std::size_t c = 0; c < medium.channels(); ++c) {
-    const double ell = medium.reduced(c).ell;
-    ell_min = std::min(ell_min, ell);
-    ell_max = std::max(ell_max, ell);
-  }
-  const double r_min = 1e-3 * ell_min, r_max = 30 * ell_max;
+  const auto ell = transport_mfp_range(medium);
+  const double r_min = 1e-3 * ell.min, r_max = 30 * ell.max;
   const auto geometric = static_cast<std::size_t>(std::ceil(std::log10(r_max / r_min) * static_cast<double>(bins_per_decade)));
   std::vector<double> edges{0.0};
   for (std::size_t j = 0; j <= geometric; ++j)

@@ -1,7 +1,8 @@
 # ctest install.find_package_consumer: cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -DCXX=... -P THIS
 # Installs the build into WORK_DIR/prefix; checks that the exported interface carries no build
-# flag, no version define and no header-only dependency; builds tests/consumer with
-# find_package(bssrdf) and again with pkg-config; and checks that both print what the installed
+# flag, no version define and no header-only dependency, and bssrdf::core no Ceres; builds
+# tests/consumer with find_package(bssrdf) (against bssrdf::bssrdf and bssrdf::core) and again with
+# pkg-config; and checks that both print what the installed
 # CLI computes for the same medium.
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -28,12 +29,23 @@ foreach(leak "march=native" "BSSRDF_VERSION" "nlohmann" "Eigen3")
   endif()
 endforeach()
 
+# The core library's exported link interface carries no Ceres (that is the fitting library's).
+string(REGEX MATCH "set_target_properties\\(bssrdf::core[^)]*\\)" core_block "${exported}")
+string(FIND "${core_block}" "INTERFACE_LINK_LIBRARIES" has_links)
+string(TOLOWER "${core_block}" core_lower)
+string(FIND "${core_lower}" "ceres" core_ceres)
+if(has_links EQUAL -1 OR NOT core_ceres EQUAL -1)
+  message(FATAL_ERROR "bssrdf::core should link OpenEXR and Threads but not Ceres:\n${core_block}")
+endif()
+
 # find_package
 run(${CMAKE_COMMAND} -S "${SOURCE_DIR}" -B "${WORK_DIR}/build" -DCMAKE_PREFIX_PATH=${prefix}
     -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_BUILD_TYPE=Release)
 run(${CMAKE_COMMAND} --build "${WORK_DIR}/build")
 run("${WORK_DIR}/build/consumer")
 string(STRIP "${out}" from_cmake)
+run("${WORK_DIR}/build/consumer_core")
+string(STRIP "${out}" from_core)
 
 # pkg-config (a static library: --static lists its private dependencies)
 file(GLOB pc_dir "${prefix}/lib*/pkgconfig")
@@ -49,7 +61,7 @@ string(STRIP "${out}" from_pkg_config)
 run("${prefix}/bin/bssrdf" profile --sigma-a 0.032 --sigma-s 0.74 --eta 1.3 --model better-dipole --format json)
 string(JSON total GET "${out}" channels 0 total_reflectance)
 execute_process(COMMAND printf "%.6f" "${total}" OUTPUT_VARIABLE expected)
-foreach(got from_cmake from_pkg_config)
+foreach(got from_cmake from_core from_pkg_config)
   if(NOT "${${got}}" STREQUAL "${expected}")
     message(FATAL_ERROR "${got}: consumer printed '${${got}}', the installed CLI gives ${expected}")
   endif()
