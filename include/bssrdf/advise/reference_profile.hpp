@@ -5,9 +5,9 @@
 //   ReferenceProfiles ref = mc.profiles(skin);       // one AnnularProfile per channel, with stderr
 //   ModelReference exact(make_model("pbd"));         // a formula as the reference: no noise, fast
 //
-// Annuli: the first [0, r_min), then geometric from r_min = 1e-3 ell to r_max = 30 ell (ell: the
-// transport mean free path, smallest and largest over the channels), 48 per decade, then
-// [r_max, 2 r_max] for the light beyond. All channels share them. Spreading each annulus's light
+// Annuli: the first [0, r_min), then geometric from r_min = 1e-3 ell (ell: the transport mean free
+// path, smallest over the channels) to r_max, the largest over the channels of 30 ell and 15
+// diffusion lengths 1/sigma_tr, 48 per decade, then [r_max, 2 r_max] for the light beyond. All channels share them. Spreading each annulus's light
 // evenly over it is the image error's one approximation: for a Gaussian profile it is measured at
 // 0.6 code values with 24 annuli per decade, 0.15 with 48 (second order; tests/test_image_error.cpp).
 #pragma once
