@@ -30,17 +30,12 @@ const Medium& material(const std::string& name) {
 // The model as the reference, rendered on its annuli: what a table of that model converges to.
 struct Judged {
   ReferenceProfiles reference;
-  ImageErrorMeter meter;
   RealtimeJudge judge;
+  const ImageErrorMeter& meter;
   Judged(const Medium& medium, const Model& model, double pixel)
       : reference(ModelReference(make_model(model.name())).profiles(medium)),
-        meter(reference.channels.front().edges, pixel),
-        judge{meter, {}, {}} {
-    for (const auto& p : reference.channels) {
-      judge.reference.push_back(meter.render(p));
-      judge.albedo.push_back(p.total());
-    }
-  }
+        judge(judge_against(medium, ModelReference(make_model(model.name())), pixel)),
+        meter(judge.meter) {}
 };
 
 }  // namespace

@@ -78,11 +78,10 @@ Advice advise(const Medium& medium, const ReferenceProfile& reference, const Adv
   advice.reference = ref.description;
   advice.reference_seconds = ref.seconds;
   const auto& edges = ref.channels.front().edges;
-  const ImageErrorMeter meter(edges, options.pixel);
   const std::size_t channels = medium.channels();
-  RealtimeJudge judge{meter, {}, {}};
+  RealtimeJudge judge{ImageErrorMeter(edges, options.pixel), {}, {}};
   for (const auto& p : ref.channels) {
-    judge.reference.push_back(meter.render(p));
+    judge.reference.push_back(judge.meter.render(p));
     judge.albedo.push_back(p.total());
   }
   advice.diffuse_reflectance = judge.albedo;

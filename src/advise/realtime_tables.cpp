@@ -9,6 +9,41 @@
 
 namespace bssrdf {
 
+namespace {
+
+// A sum of Gaussians on annuli: the light of one inside radius r is w (1 - exp(-r^2 / 2v)), so
+// each annulus's share is exact.
+std::vector<AnnularProfile> gaussian_annuli(const GaussianMixtureTable& table, const std::vector<double>& edges) {
+  std::vector<AnnularProfile> profiles;
+  for (std::size_t c = 0; c < table.weight.size(); ++c) {
+    AnnularProfile p{edges, std::vector<double>(edges.size() - 1, 0.0), std::vector<double>(edges.size() - 1, 0.0)};
+    const auto& w = table.weight[c];
+    const auto& v = table.variance[c];
+    for (std::size_t k = 0; k < w.size(); ++k) {
+      double inside = 0;
+      for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
+        const double next = w[k] * -std::expm1(-edges[i + 1] * edges[i + 1] / (2 * v[k]));
+        p.energy[i] += next - inside;
+        inside = next;
+      }
+    }
+    profiles.push_back(std::move(p));
+  }
+  return profiles;
+}
+
+}  // namespace
+
+RealtimeJudge judge_against(const Medium& medium, const ReferenceProfile& reference, double pixel) {
+  const ReferenceProfiles ref = reference.profiles(medium);
+  RealtimeJudge judge{ImageErrorMeter(ref.channels.front().edges, pixel), {}, {}};
+  for (const auto& p : ref.channels) {
+    judge.reference.push_back(judge.meter.render(p));
+    judge.albedo.push_back(p.total());
+  }
+  return judge;
+}
+
 ImageError RealtimeJudge::error(const std::vector<AnnularProfile>& candidate) const {
   std::vector<PatternImage> images;
   for (const auto& p : candidate) images.push_back(meter.render(p));
@@ -75,8 +110,27 @@ double preintegrated_table_error(const PreintegratedTable& table, const Preinteg
   return worst;
 }
 
+namespace {
+
+// On the flat patterns no light crosses the edge; the lit side shows albedo x the texel a flat,
+// fully lit surface reads (N.L = 1 and curvature 0 clamp to the last column of row 0). The error is
+// the larger of that image's and the table's interpolation error.
+ImageError preintegrated_image(const RealtimeJudge& judge, const PreintegratedTable& table, double table_error) {
+  std::vector<AnnularProfile> flat;
+  for (std::size_t c = 0; c < judge.albedo.size(); ++c)
+    flat.push_back(point_profile(judge.meter.edges(), judge.albedo[c] * table.value[c][table.options.width - 1]));
+  ImageError image = judge.error(flat);
+  if (table_error > image.error) {
+    image.error = table_error;
+    image.pattern = "curvature table";
+  }
+  return image;
+}
+
+}  // namespace
+
 PreintegratedChoice choose_preintegrated_table(const Medium& medium, const std::vector<std::optional<ProjectedProfile>>& profiles,
-                                               const RealtimeJudge& judge, double tolerance) {
+                                               const RealtimeJudge& judge, double tolerance, bool stop_at_flat_error) {
   const auto build = [&](std::size_t n, double curvature_max) {
     PreintegratedOptions options;
     options.width = options.height = n;
@@ -93,20 +147,12 @@ PreintegratedChoice choose_preintegrated_table(const Medium& medium, const std::
     choice.size = n;
     choice.curvature_max = curvature_max;
     choice.table_error = preintegrated_table_error(table, finer, judge.albedo);
-    // On the flat patterns: no light crosses the edge; the lit side shows albedo x the texel a
-    // flat, fully lit surface reads (N.L = 1 and curvature 0 clamp to the last column of row 0).
-    std::vector<AnnularProfile> flat;
-    for (std::size_t c = 0; c < judge.albedo.size(); ++c)
-      flat.push_back(point_profile(judge.meter.edges(), judge.albedo[c] * table.value[c][n - 1]));
-    choice.image = judge.error(flat);
-    if (choice.table_error > choice.image.error) {
-      choice.image.error = choice.table_error;
-      choice.image.pattern = "curvature table";
-    }
+    choice.image = preintegrated_image(judge, table, choice.table_error);
     choice.meets_tolerance = choice.image.error <= tolerance;
     // A larger table cannot help once its interpolation is within the tolerance or below the flat
     // patterns' error (which no table size changes: the LUT does not carry light across the edge).
-    if (choice.table_error <= std::max(tolerance, choice.image.error) || n == kPreintegratedSizes.back()) return choice;
+    if (choice.table_error <= (stop_at_flat_error ? std::max(tolerance, choice.image.error) : tolerance) || n == kPreintegratedSizes.back())
+      return choice;
     if (choice.image.error < best.image.error) best = choice;
     table = std::move(finer);
   }
@@ -114,24 +160,7 @@ PreintegratedChoice choose_preintegrated_table(const Medium& medium, const std::
 }
 
 std::vector<AnnularProfile> gaussian_sum_profiles(const Medium& medium, const Model& model, int count, const std::vector<double>& edges) {
-  const GaussianMixtureTable fit = fitted_mixture_table(medium, model, count);
-  std::vector<AnnularProfile> profiles;
-  for (std::size_t c = 0; c < medium.channels(); ++c) {
-    const auto& w = fit.weight[c];
-    const auto& v = fit.variance[c];
-    // The light of a Gaussian inside radius r is w (1 - exp(-r^2 / 2v)): exact per annulus.
-    AnnularProfile p{edges, std::vector<double>(edges.size() - 1, 0.0), std::vector<double>(edges.size() - 1, 0.0)};
-    for (std::size_t k = 0; k < w.size(); ++k) {
-      double inside = 0;
-      for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
-        const double next = w[k] * -std::expm1(-edges[i + 1] * edges[i + 1] / (2 * v[k]));
-        p.energy[i] += next - inside;
-        inside = next;
-      }
-    }
-    profiles.push_back(std::move(p));
-  }
-  return profiles;
+  return gaussian_annuli(fitted_mixture_table(medium, model, count), edges);
 }
 
 std::vector<AnnularProfile> radial_table_profiles(const Medium& medium, const Model& model, std::size_t radii, const std::vector<double>& edges) {
@@ -169,6 +198,40 @@ CountChoice choose_gaussian_count(const Medium& medium, const Model& model, cons
 CountChoice choose_radial_table_size(const Medium& medium, const Model& model, const RealtimeJudge& judge, double tolerance) {
   return smallest_within(kRadialTableSizes, judge, tolerance, false,
                          [&](std::size_t n) { return radial_table_profiles(medium, model, n, judge.meter.edges()); });
+}
+
+ImageError image_error_of(const RealtimeJudge& judge, const SeparableKernel& kernel) { return judge.error(render_separable(judge.meter, kernel)); }
+
+ImageError image_error_of(const RealtimeJudge& judge, const GaussianMixtureTable& table) {
+  return judge.error(gaussian_annuli(table, judge.meter.edges()));
+}
+
+ImageError image_error_of(const RealtimeJudge& judge, const RadialTable& table) {
+  std::vector<AnnularProfile> profiles;
+  for (std::size_t c = 0; c < table.channel_names.size(); ++c)
+    profiles.push_back(annuli_of(judge.meter.edges(), [&](double r) { return table.interpolate(c, r); }, 0));
+  return judge.error(profiles);
+}
+
+ImageError image_error_of(const RealtimeJudge& judge, const PreintegratedTable& table, const Medium& medium,
+                          const std::vector<std::optional<ProjectedProfile>>& profiles) {
+  PreintegratedOptions finer = table.options;
+  finer.width = std::min<std::size_t>(2 * finer.width, 8192);
+  finer.height = std::min<std::size_t>(2 * finer.height, 8192);
+  return preintegrated_image(judge, table, preintegrated_table_error(table, build_preintegrated_table(medium, profiles, finer), judge.albedo));
+}
+
+RadialToleranceChoice choose_radial_tolerance(const Medium& medium, const Model& model, const RealtimeJudge& judge, double tolerance,
+                                              RadialTableOptions options) {
+  RadialToleranceChoice best;
+  best.image.error = INFINITY;
+  for (double relative : {1e-1, 3e-2, 1e-2, 3e-3, 1e-3, 3e-4, 1e-4}) {
+    options.tolerance = relative;
+    const ImageError e = image_error_of(judge, build_radial_table(medium, model, options));
+    if (e.error <= tolerance) return {relative, e, true};
+    if (e.error < best.image.error) best = {relative, e, false};
+  }
+  return best;
 }
 
 }  // namespace bssrdf

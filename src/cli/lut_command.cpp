@@ -13,6 +13,7 @@
 #include <optional>
 #include <sstream>
 
+#include "bssrdf/advise/realtime_tables.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/io/atomic_file.hpp"
 #include "bssrdf/io/exr_table.hpp"
@@ -57,7 +58,53 @@ struct LutOptions {
   // gaussians
   int count = 0;  // 0: quantized diffusion's own mixture with --model quantized, else 6
   std::string preview;  // PNG file
+  // --pixel: how wrong the table looks at that pixel size (with --tolerance: sized by it)
+  std::string pixel;
+  bool taps_given = false, range_given = false, size_given = false, count_given = false;
 };
+
+// --pixel [--tolerance]: the image-space judge of the tabulated model (advise/realtime_tables.hpp),
+// the tolerance in code values (nullopt: none given), and what a table records about its error.
+struct PixelJudge {
+  RealtimeJudge judge;
+  double pixel = 0;  // mm
+  std::optional<double> tolerance;
+};
+
+std::optional<PixelJudge> pixel_judge(const LutOptions& o, const MediumOptions::Resolved& resolved, const Model& model) {
+  if (o.pixel.empty()) {
+    if (!o.tolerance.empty() && (o.kind == "separable" || o.kind == "preintegrated" || o.kind == "gaussians"))
+      throw InvalidInput("--tolerance", o.tolerance, "a value only with --pixel for --kind " + o.kind + " (an image error, 8-bit sRGB code values)");
+    return std::nullopt;
+  }
+  const double pixel = parse_length(o.pixel, "--pixel") * millimetres_per(resolved.unit);
+  if (!(pixel > 0) || !std::isfinite(pixel)) throw InvalidInput("--pixel", o.pixel, "a pixel size > 0 in --unit");
+  std::optional<double> tolerance;
+  if (!o.tolerance.empty()) {
+    tolerance = parse_number(o.tolerance, "--tolerance");
+    if (!(*tolerance > 0) || !std::isfinite(*tolerance)) throw InvalidInput("--tolerance", o.tolerance, "> 0 (8-bit sRGB code values, with --pixel)");
+  }
+  return PixelJudge{judge_against(resolved.medium, ModelReference(make_model(model.name())), pixel), pixel, tolerance};
+}
+
+// Records the table's image error (metadata and a summary line).
+void record_image_error(LookupTable& table, std::string& summary, const PixelJudge& j, const ImageError& e, const Model& model,
+                        const std::string& sized) {
+  table.set("bssrdf:image_error", e.error);
+  table.set("bssrdf:image_error_pixel_mm", j.pixel);
+  table.set("bssrdf:image_error_definition",
+            "largest 8-bit sRGB code-value difference between this table and the model " + model.name() +
+                " it tabulates at a shadow edge, a one-pixel light line and a flat lit region, pixels of " + format_number(j.pixel) +
+                " mm (bssrdf advise; the model's own error against the truth is not included)");
+  if (!sized.empty()) table.set("bssrdf:sized_by", sized);
+  summary += "  image error at " + format_number(j.pixel) + " mm pixels: " + format_number(std::round(e.error * 1000) / 1000) +
+             " code values against " + model.name() + " (worst at the " + e.pattern + ")" + (sized.empty() ? "" : "; " + sized) + "\n";
+}
+
+std::string sized_note(const std::optional<double>& tolerance, bool meets, const std::string& what) {
+  return what + (meets ? " chosen for" : " (the most accurate tried: none meets") + " --tolerance " + format_number(*tolerance) +
+         " code values" + (meets ? "" : ")");
+}
 
 const std::vector<std::string>& kinds() {
   static const std::vector<std::string> k = {"radial", "albedo-radius", "transmission", "preintegrated", "penumbra", "separable", "gaussians"};
@@ -242,7 +289,16 @@ Built build_preintegrated(const LutOptions& o, const MediumOptions::Resolved& re
     options.curvature_max = c / mm;
   }
   options.threads = o.threads;
-  const auto t = build_preintegrated_table(resolved.medium, model, options);
+  const auto judge = pixel_judge(o, resolved, model);
+  const auto projections = project_channels(resolved.medium, model);
+  std::string sized;
+  if (judge && judge->tolerance && !o.size_given) {  // --size overrides
+    const auto choice = choose_preintegrated_table(resolved.medium, projections, judge->judge, *judge->tolerance, false);
+    options.width = options.height = choice.size;
+    if (o.curvature_max.empty()) options.curvature_max = choice.curvature_max;
+    sized = sized_note(judge->tolerance, choice.meets_tolerance, "size " + std::to_string(choice.size) + "x" + std::to_string(choice.size));
+  }
+  const auto t = build_preintegrated_table(resolved.medium, projections, options);
   const std::string u(symbol(resolved.unit));
   std::ostringstream s;
   s << "pre-integrated table: " << options.width << " N.L x " << options.height << " curvatures from 0 to "
@@ -254,7 +310,9 @@ Built build_preintegrated(const LutOptions& o, const MediumOptions::Resolved& re
       << short_number(t.value[c][W / 2]) << " (flattest row) to " << short_number(t.value[c][(H - 1) * W + W / 2])
       << " (most curved); at N.L = " << short_number(t.n_dot_l[0]) << ": " << short_number(t.value[c][0]) << " to "
       << short_number(t.value[c][(H - 1) * W]) << '\n';
-  return {to_lookup_table(t, context), s.str(), {}};
+  Built b{to_lookup_table(t, context), s.str(), {}};
+  if (judge) record_image_error(b.table, b.summary, *judge, image_error_of(judge->judge, t, resolved.medium, projections), model, sized);
+  return b;
 }
 
 Built build_penumbra(const LutOptions& o, const MediumOptions::Resolved& resolved, const Model& model, const TableContext& context) {
@@ -300,9 +358,18 @@ Built build_separable(const LutOptions& o, const MediumOptions::Resolved& resolv
   options.band = positive_fraction(o.band, "--band");
   if (options.taps < 3 || options.taps % 2 == 0 || options.taps > 255)
     throw InvalidInput("--taps", std::to_string(options.taps), "an odd number from 3 to 255 (Jimenez: 11, 17, 25)");
-  const auto k = build_separable_kernel(resolved.medium, model, options);
+  const auto judge = pixel_judge(o, resolved, model);
+  const auto projections = project_channels(resolved.medium, model);
+  std::string sized;
+  if (judge && judge->tolerance && !o.taps_given && !o.range_given) {  // --taps or --range override
+    const auto choice = choose_separable_kernel(resolved.medium, projections, judge->judge, *judge->tolerance);
+    options = choice.options;
+    sized = sized_note(judge->tolerance, choice.meets_tolerance, std::to_string(options.taps) + " taps and the range holding " +
+                                                                     short_number(100 * options.band) + " % of the light");
+  }
+  const auto k = build_separable_kernel(resolved.medium, projections, options);
   std::ostringstream s;
-  s << "separable kernel: " << o.taps << " taps over +-" << short_number(k.options.range / mm) << ' ' << u
+  s << "separable kernel: " << options.taps << " taps over +-" << short_number(k.options.range / mm) << ' ' << u
     << (k.range_from_band ? " (the band holding " + short_number(100 * options.band) + " % of the widest channel's light)"
                           : o.range == "jimenez" ? std::string(" (Jimenez's range)") : std::string())
     << ", offsets warped quadratically, centre tap first\n";
@@ -320,6 +387,7 @@ Built build_separable(const LutOptions& o, const MediumOptions::Resolved& resolv
     s << "  note: the range holds less than 90 % of a channel's light; a wider --range (e.g. "
       << short_number(1.5 * k.options.range / mm) << " " << u << ") keeps more of it\n";
   Built b{to_lookup_table(k, context), s.str(), {}};
+  if (judge) record_image_error(b.table, b.summary, *judge, image_error_of(judge->judge, k), model, sized);
   b.other_formats["glsl"] = to_shader(k, context, ShaderLanguage::glsl);
   b.other_formats["hlsl"] = to_shader(k, context, ShaderLanguage::hlsl);
   return b;
@@ -327,7 +395,13 @@ Built build_separable(const LutOptions& o, const MediumOptions::Resolved& resolv
 
 Built build_gaussians(const LutOptions& o, const MediumOptions::Resolved& resolved, const Model& model, const TableContext& context) {
   GaussianMixtureTable t;
-  if (o.count == 0 && model.name() == "quantized") {
+  const auto judge = pixel_judge(o, resolved, model);
+  std::string sized;
+  if (judge && judge->tolerance && !o.count_given) {  // --count overrides
+    const auto choice = choose_gaussian_count(resolved.medium, model, judge->judge, *judge->tolerance);
+    t = fitted_mixture_table(resolved.medium, model, static_cast<int>(choice.count));
+    sized = sized_note(judge->tolerance, choice.meets_tolerance, std::to_string(choice.count) + " Gaussians");
+  } else if (o.count == 0 && model.name() == "quantized") {
     t = quantized_mixture_table(resolved.medium, dynamic_cast<const quantized_diffusion::Model&>(model));
   } else {
     const int count = o.count == 0 ? 6 : o.count;
@@ -350,7 +424,9 @@ Built build_gaussians(const LutOptions& o, const MediumOptions::Resolved& resolv
     if (t.shared_variance) s << "; relative L2 error " << short_number(t.relative_l2_error[c]);
     s << '\n';
   }
-  return {to_lookup_table(t, context), s.str(), {}};
+  Built b{to_lookup_table(t, context), s.str(), {}};
+  if (judge) record_image_error(b.table, b.summary, *judge, image_error_of(judge->judge, t), model, sized);
+  return b;
 }
 
 // The PNG preview (any kind; the model is --model where given, else pbd) and a line about it.
@@ -385,10 +461,19 @@ Built build_with(const LutOptions& o, const MediumOptions::Resolved& resolved, s
   const double mm = millimetres_per(resolved.unit);
   if (o.kind == "radial") {
     RadialTableOptions options;
-    options.tolerance = o.tolerance.empty() ? 1e-3 : positive_fraction(o.tolerance, "--tolerance");
+    // With --pixel, --tolerance is an image error (code values) and sizes the table through the
+    // relative interpolation tolerance; without, it is that relative tolerance.
+    const auto judge = pixel_judge(o, resolved, *model);
+    options.tolerance = o.tolerance.empty() || judge ? 1e-3 : positive_fraction(o.tolerance, "--tolerance");
     options.energy = positive_fraction(o.energy, "--energy");
     options.interpolation = parse_interpolation(o.interpolation, "--interpolation");
     options.threads = o.threads;
+    std::string sized;
+    if (judge && judge->tolerance) {
+      const auto choice = choose_radial_tolerance(resolved.medium, *model, judge->judge, *judge->tolerance, options);
+      options.tolerance = choice.relative_tolerance;
+      sized = sized_note(judge->tolerance, choice.meets_tolerance, "relative interpolation tolerance " + format_number(choice.relative_tolerance));
+    }
     const auto t = build_radial_table(resolved.medium, *model, options);
     s << "radial table: " << t.size() << " radii from " << short_number(t.radius.front() / mm) << " to "
       << short_number(t.radius.back() / mm) << ' ' << u << ", uniform in ln r + r/" << short_number(t.decay_length / mm)
@@ -400,7 +485,9 @@ Built build_with(const LutOptions& o, const MediumOptions::Resolved& resolved, s
       else
         s << "  " << t.channel_names[c] << ": total reflectance " << short_number(t.total_reflectance[c])
           << ", range " << short_number(t.range_min[c] / mm) << " to " << short_number(t.range_max[c] / mm) << ' ' << u << '\n';
-    return {to_lookup_table(t, context), s.str(), {}};
+    Built b{to_lookup_table(t, context), s.str(), {}};
+    if (judge) record_image_error(b.table, b.summary, *judge, image_error_of(judge->judge, t), *model, sized);
+    return b;
   }
   std::string known;
   for (const auto& k : kinds()) known += (known.empty() ? "" : ", ") + k;
@@ -494,7 +581,13 @@ Action register_lut(CLI::App& app) {
   auto* model_option = sub->add_option("--model", o->model,
                                        "Profile model (see 'bssrdf models'), or auto: the cheapest measured within --accuracy of Monte Carlo here [pbd]");
   sub->add_option("--accuracy", o->accuracy, "With --model auto: relative error allowed in the total and in R(r) (L2) [0.1]");
-  sub->add_option("--tolerance", o->tolerance, "radial: relative interpolation error bound [1e-3]; albedo-radius: beam-integral quadrature tolerance [1e-2]");
+  sub->add_option("--tolerance", o->tolerance,
+                  "radial: relative interpolation error bound [1e-3]; albedo-radius: beam-integral quadrature tolerance [1e-2]; "
+                  "with --pixel (radial, separable, preintegrated, gaussians): the largest image error, 8-bit sRGB code values, "
+                  "that sizes the table (--taps/--range, --size, --count override)");
+  sub->add_option("--pixel", o->pixel,
+                  "radial, separable, preintegrated, gaussians: pixel size in --unit; the table records how wrong it looks there "
+                  "(bssrdf:image_error, code values against the model it tabulates)");
   sub->add_option("--energy", o->energy, "Fraction of each channel's total inside the checked radius range [0.999]");
   sub->add_option("--interpolation", o->interpolation, "How the consumer interpolates: catmull-rom or linear [catmull-rom]");
   sub->add_option("-o,--output", o->output, "Output file: .exr, .json or .csv")->check(file_name("-o"));
@@ -526,9 +619,13 @@ Action register_lut(CLI::App& app) {
   sub->add_option("--curvature-max", o->curvature_max, "preintegrated: largest curvature 1/r, in 1/--unit [1/r_50 of the widest channel]");
   sub->add_option("--width-max", o->width_max, "penumbra: widest penumbra, in --unit [8 r_50 of the widest channel]");
 
-  return [o, model_option, photons_option] {
+  return [o, model_option, photons_option, sub] {
     o->model_given = model_option->count() > 0;
     o->photons_given = photons_option->count() > 0;
+    o->taps_given = sub->count("--taps") > 0;
+    o->range_given = sub->count("--range") > 0;
+    o->size_given = sub->count("--size") > 0;
+    o->count_given = sub->count("--count") > 0;
     if (o->all) {
       if (!o->medium.material.empty() || !o->medium.sigma_a.empty())
         throw InvalidInput("--all: give no --material or coefficients with --all");

@@ -37,6 +37,9 @@
 #include <vector>
 
 #include "bssrdf/advise/image_error.hpp"
+#include "bssrdf/advise/reference_profile.hpp"
+#include "bssrdf/lut/gaussian_mixture_table.hpp"
+#include "bssrdf/lut/radial_table.hpp"
 #include "bssrdf/lut/preintegrated_table.hpp"
 #include "bssrdf/lut/projected_profile.hpp"
 #include "bssrdf/lut/separable_kernel.hpp"
@@ -54,12 +57,15 @@ inline constexpr std::array<std::size_t, 6> kRadialTableSizes = {8, 16, 32, 64, 
 // The reference as rendered once, with the meter that rendered it and the albedo (diffuse
 // reflectance per channel) a representation without its own colour is shown with.
 struct RealtimeJudge {
-  const ImageErrorMeter& meter;
+  ImageErrorMeter meter;
   std::vector<PatternImage> reference;
   std::vector<double> albedo;
   ImageError error(const std::vector<AnnularProfile>& candidate) const;
   ImageError error(const std::vector<PatternImage>& candidate) const { return meter.error(reference, candidate); }
 };
+
+// The reference's profiles for `medium`, rendered once at `pixel` (mm), its albedo its totals.
+RealtimeJudge judge_against(const Medium& medium, const ReferenceProfile& reference, double pixel);
 
 struct SeparableChoice {
   SeparableKernelOptions options;  // taps, range (mm) and the band it holds
@@ -81,8 +87,11 @@ struct PreintegratedChoice {
 // The interpolation error of `table` against `finer` (the same model, twice the size, the same
 // curvature_max), in code values of albedo x D, largest over texels and channels.
 double preintegrated_table_error(const PreintegratedTable& table, const PreintegratedTable& finer, const std::vector<double>& albedo);
+// stop_at_flat_error: stop growing once the interpolation error is below the flat patterns' (the
+// candidate cannot meet the tolerance then; `advise`); false: grow until the interpolation alone is
+// within the tolerance (`lut --kind preintegrated`, whose LUT is wanted for curvature anyway).
 PreintegratedChoice choose_preintegrated_table(const Medium& medium, const std::vector<std::optional<ProjectedProfile>>& profiles,
-                                               const RealtimeJudge& judge, double tolerance);
+                                               const RealtimeJudge& judge, double tolerance, bool stop_at_flat_error = true);
 
 struct CountChoice {
   std::size_t count = 0;  // Gaussians, or radii
@@ -95,5 +104,25 @@ CountChoice choose_radial_table_size(const Medium& medium, const Model& model, c
 // The profiles on the judge's annuli of K fitted Gaussians and of an N-radius table.
 std::vector<AnnularProfile> gaussian_sum_profiles(const Medium& medium, const Model& model, int count, const std::vector<double>& edges);
 std::vector<AnnularProfile> radial_table_profiles(const Medium& medium, const Model& model, std::size_t radii, const std::vector<double>& edges);
+
+// `bssrdf lut --pixel P [--tolerance T]`: how wrong a written table looks, and (with T) its size
+// chosen by it. The judge is the model the table tabulates (ModelReference): the table's own error
+// at that pixel size; the model's error against the truth is what `bssrdf advise` adds.
+ImageError image_error_of(const RealtimeJudge& judge, const SeparableKernel& kernel);
+ImageError image_error_of(const RealtimeJudge& judge, const GaussianMixtureTable& table);
+ImageError image_error_of(const RealtimeJudge& judge, const RadialTable& table);
+// The pre-integrated LUT: the larger of its flat patterns' and its interpolation error (against the
+// table twice as fine, built from `profiles` over the same curvature range).
+ImageError image_error_of(const RealtimeJudge& judge, const PreintegratedTable& table, const Medium& medium,
+                          const std::vector<std::optional<ProjectedProfile>>& profiles);
+// The loosest relative interpolation tolerance of build_radial_table (1e-1 to 1e-4 in steps of
+// about 3) whose table is within `tolerance` code values; else the tightest.
+struct RadialToleranceChoice {
+  double relative_tolerance = 1e-3;
+  ImageError image;
+  bool meets_tolerance = false;
+};
+RadialToleranceChoice choose_radial_tolerance(const Medium& medium, const Model& model, const RealtimeJudge& judge, double tolerance,
+                                              RadialTableOptions options);
 
 }  // namespace bssrdf
