@@ -24,9 +24,8 @@ bool closed_form(const std::string& model) {
 RadialTableNodes radial_table_nodes(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell, double hi_ell) {
   if (n < 2) throw InvalidInput("radial table radii", std::to_string(n), ">= 2");
   const double lo = lo_ell * m.ell;
-  // By default far enough that the light left out is invisible (1e-5 of it: 0.03 code values in
-  // the dark, where sRGB is steepest), and at least 30 ell.
-  const double hi = hi_ell > 0 ? hi_ell * m.ell : std::max(30 * m.ell, model.radius_for_fraction(m, 1 - 1e-5));
+  // By default as far as the reference's annuli reach (profile_extent: the light left out is invisible).
+  const double hi = hi_ell > 0 ? hi_ell * m.ell : profile_extent(m);
   RadialTableNodes nodes;
   for (std::size_t j = 0; j < n; ++j) {
     nodes.radius.push_back(lo * std::pow(hi / lo, static_cast<double>(j) / static_cast<double>(n - 1)));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bssrdf/advise/realtime_tables.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/io/atomic_file.hpp"
 #include "bssrdf/layers.hpp"
@@ -70,7 +71,7 @@ std::filesystem::path write_advised_file(const std::filesystem::path& dir, const
       table = to_lookup_table(build_preintegrated_table(medium, *model, options), context);
     }
   } else if (head.rfind("gaussians-", 0) == 0) {
-    table = to_lookup_table(fitted_mixture_table(medium, *model, std::stoi(head.substr(10))), context);
+    table = to_lookup_table(fitted_mixture_table(medium, *model, std::stoi(head.substr(10)), kGaussianFitSamples), context);
   } else if (representation == "reference-table") {
     ReferenceRadialOptions options;
     options.photons = reference.photons;

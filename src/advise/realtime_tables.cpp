@@ -160,7 +160,7 @@ PreintegratedChoice choose_preintegrated_table(const Medium& medium, const std::
 }
 
 std::vector<AnnularProfile> gaussian_sum_profiles(const Medium& medium, const Model& model, int count, const std::vector<double>& edges) {
-  return gaussian_annuli(fitted_mixture_table(medium, model, count), edges);
+  return gaussian_annuli(fitted_mixture_table(medium, model, count, kGaussianFitSamples), edges);
 }
 
 std::vector<AnnularProfile> radial_table_profiles(const Medium& medium, const Model& model, std::size_t radii, const std::vector<double>& edges) {

@@ -28,14 +28,14 @@ MonteCarloOptions bins_for(const std::vector<double>& edges) {
 
 }  // namespace
 
+double profile_extent(const Reduced<double>& m) { return std::max(30 * m.ell, m.sigma_tr > 0 ? 15 / m.sigma_tr : 0.0); }
+
 std::vector<double> reference_annuli(const Medium& medium, std::size_t bins_per_decade) {
   double ell_min = INFINITY, r_max = 0;
   for (std::size_t c = 0; c < medium.channels(); ++c) {
     const auto m = medium.reduced(c);
     ell_min = std::min(ell_min, m.ell);
-    // 30 ell, or 15 diffusion lengths where those are longer (high albedo: Marble's red 1/sigma_tr
-    // is 19 ell, and 30 ell left a visible part of its light beyond the annuli).
-    r_max = std::max({r_max, 30 * m.ell, m.sigma_tr > 0 ? 15 / m.sigma_tr : 0.0});
+    r_max = std::max(r_max, profile_extent(m));
   }
   const double r_min = 1e-3 * ell_min;
   const auto geometric = static_cast<std::size_t>(std::ceil(std::log10(r_max / r_min) * static_cast<double>(bins_per_decade)));

@@ -399,7 +399,7 @@ Built build_gaussians(const LutOptions& o, const MediumOptions::Resolved& resolv
   std::string sized;
   if (judge && judge->tolerance && !o.count_given) {  // --count overrides
     const auto choice = choose_gaussian_count(resolved.medium, model, judge->judge, *judge->tolerance);
-    t = fitted_mixture_table(resolved.medium, model, static_cast<int>(choice.count));
+    t = fitted_mixture_table(resolved.medium, model, static_cast<int>(choice.count), kGaussianFitSamples);  // as judged
     sized = sized_note(judge->tolerance, choice.meets_tolerance, std::to_string(choice.count) + " Gaussians");
   } else if (o.count == 0 && model.name() == "quantized") {
     t = quantized_mixture_table(resolved.medium, dynamic_cast<const quantized_diffusion::Model&>(model));

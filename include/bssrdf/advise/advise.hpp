@@ -84,8 +84,8 @@ struct Advice {
 };
 
 // The radial-table candidate: R(r) of `model` at n >= 2 radii geometric over [lo_ell ell, outer]
-// (ell: transport mean free path; outer: hi_ell ell, or with hi_ell = 0 the larger of 30 ell and the
-// radius holding all but 1e-5 of the model's light), linear in (ln r, ln R) between them, R(r_0)
+// (ell: transport mean free path; outer: hi_ell ell, or with hi_ell = 0 profile_extent(m), as far
+// as the reference's annuli reach), linear in (ln r, ln R) between them, R(r_0)
 // below and 0 beyond (the table a renderer loads; `advise --write` writes these nodes).
 struct RadialTableNodes {
   std::vector<double> radius, value;  // mm, 1/mm^2

@@ -51,6 +51,9 @@ namespace bssrdf {
 inline constexpr std::array<int, 15> kSeparableTaps = {5, 7, 9, 11, 13, 17, 21, 25, 33, 49, 65, 97, 129, 193, 255};
 inline constexpr std::array<double, 5> kSeparableBands = {0.95, 0.99, 0.999, 0.9999, 0.99999};
 inline constexpr std::array<std::size_t, 5> kPreintegratedSizes = {16, 32, 64, 128, 256};
+// Radii the Gaussian sums are fitted on (fitted_mixture_table's samples): 32 fit as well as 128 in
+// relative L2 (Chicken1, 8 Gaussians: 0.0064 and 0.0063) in a tenth of the time (0.05 s, 0.58 s).
+inline constexpr std::size_t kGaussianFitSamples = 32;
 inline constexpr std::array<int, 5> kGaussianCounts = {1, 2, 4, 6, 8};  // 16: a 3 s fit, no better
 inline constexpr std::array<std::size_t, 6> kRadialTableSizes = {8, 16, 32, 64, 128, 256};
 
