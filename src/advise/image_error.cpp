@@ -144,6 +144,11 @@ PatternImage ImageErrorMeter::render_taps(const std::vector<double>& offset, con
   const double half = pixel_ / 2;
   for (std::size_t k = 0; k < pixels; ++k) {
     const double x = pixel_centre(k);
+    // Beyond the kernel's reach every tap reads the same side.
+    if (o.empty() || x + o.front() >= half || x + o.back() <= -half) {
+      image.edge[k] = o.empty() || x + o.back() <= -half ? 0.0 : albedo * W.back();
+      continue;
+    }
     // Taps with x + o <= -p/2 read 0; with x + o >= p/2 read 1; between, (x + o) / p + 1/2.
     const auto lo = static_cast<std::size_t>(std::upper_bound(o.begin(), o.end(), -half - x) - o.begin());
     const auto hi = static_cast<std::size_t>(std::lower_bound(o.begin(), o.end(), half - x) - o.begin());
@@ -171,10 +176,16 @@ ImageError ImageErrorMeter::error(const std::vector<PatternImage>& reference, co
   for (std::size_t c = 0; c < reference.size(); ++c) {
     const PatternImage &ref = reference[c], &cand = candidate[c];
     const auto compare = [&](const std::vector<double>& a, const std::vector<double>& a_err, const std::vector<double>& b, const char* name) {
+      // sRGB's slope is largest (12.92) at black, so 255 x 12.92 x a linear difference bounds the
+      // code difference: pixels whose bound cannot raise the maximum skip the two pow()s.
+      constexpr double kMaxCodeSlope = 255 * 12.92;
       for (std::size_t k = 0; k < a.size(); ++k) {
+        const double linear = std::abs(a[k] - b[k]);
+        result.linear_error = std::max(result.linear_error, linear);
+        if (kMaxCodeSlope * a_err[k] > result.reference_noise)
+          result.reference_noise = std::max(result.reference_noise, 255 * srgb_slope(a[k]) * a_err[k]);
+        if (kMaxCodeSlope * linear <= result.error) continue;
         const double d = 255 * std::abs(srgb_encode(a[k]) - srgb_encode(b[k]));
-        result.linear_error = std::max(result.linear_error, std::abs(a[k] - b[k]));
-        result.reference_noise = std::max(result.reference_noise, 255 * srgb_slope(a[k]) * a_err[k]);
         if (d > result.error) {
           result.error = d;
           result.pattern = name;

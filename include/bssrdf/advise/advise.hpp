@@ -46,9 +46,10 @@ namespace bssrdf {
 inline constexpr double kTableLookupNs = 13;
 inline constexpr double kGaussianTermNs = 4.5;
 // One tap of a separable screen-space kernel (a linearly interpolated read of an RGB irradiance row
-// and a multiply-add), measured the same way by bench_advise; a kernel of N taps costs 2 N taps a
+// and a multiply-add), measured the same way by bench_advise (0.14-0.25 of the dipole on the loaded
+// machine, so 2.7-4.7 ns); a kernel of N taps costs 2 N taps a
 // pixel (a horizontal and a vertical pass).
-inline constexpr double kKernelTapNs = 2;
+inline constexpr double kKernelTapNs = 4;
 
 enum class AdviseTarget { realtime, offline, any };
 AdviseTarget parse_advise_target(const std::string& text);  // throws InvalidInput naming "--target"
