@@ -2,6 +2,9 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+
+#include "bssrdf/check.hpp"
 
 namespace bssrdf {
 
@@ -24,6 +27,17 @@ std::string format_number(double value) {
   char buffer[32];
   auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
   return std::string(buffer, result.ptr);
+}
+
+std::string short_number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", value);
+  return buffer;
+}
+
+void check_failed(const char* condition, const char* file, int line) {
+  throw InternalError(std::string("internal check failed: ") + condition + " (" + file + ":" + std::to_string(line) +
+                      "); please report this as a bug");
 }
 
 }  // namespace bssrdf

@@ -1,6 +1,8 @@
 #include "bssrdf/layers.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "bssrdf/error.hpp"
@@ -82,6 +84,19 @@ LayerStack LayerStack::slab(const Medium& medium, double thickness_mm) {
   stack.layers.push_back(Layer::of(medium, thickness_mm));
   stack.validate();
   return stack;
+}
+
+TransportMfpRange transport_mfp_range(const LayerStack& stack) {
+  TransportMfpRange range{std::numeric_limits<double>::infinity(), 0};
+  for (const Layer& layer : stack.layers)
+    for (std::size_t c = 0; c < stack.channels(); ++c) {
+      if (layer.clear(c)) continue;
+      const double ell = reduce(layer.sigma_a[c], layer.sigma_s[c], layer.g[c], layer.n).ell;
+      range.min = std::min(range.min, ell);
+      range.max = std::max(range.max, ell);
+    }
+  if (range.max == 0) range.min = 0;
+  return range;
 }
 
 }  // namespace bssrdf

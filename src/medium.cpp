@@ -1,6 +1,8 @@
 #include "bssrdf/medium.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "bssrdf/error.hpp"
@@ -62,6 +64,16 @@ Medium Medium::single_channel(double sigma_a, double sigma_s, double g, double e
 
 Reduced<double> Medium::reduced(std::size_t channel) const {
   return reduce(sigma_a.at(channel), sigma_s.at(channel), g.at(channel), eta);
+}
+
+TransportMfpRange transport_mfp_range(const Medium& medium) {
+  TransportMfpRange range{std::numeric_limits<double>::infinity(), 0};
+  for (std::size_t c = 0; c < medium.channels(); ++c) {
+    const double ell = medium.reduced(c).ell;
+    range.min = std::min(range.min, ell);
+    range.max = std::max(range.max, ell);
+  }
+  return range;
 }
 
 }  // namespace bssrdf

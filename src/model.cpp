@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 
+#include "bssrdf/check.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/models/better_dipole.hpp"
 #include "bssrdf/models/dipole.hpp"
@@ -63,6 +64,7 @@ double Model::radius_for_fraction(const Reduced<double>& m, double fraction) con
     c_lo = c_hi - piece(lo, hi);
   }
   if (c_lo >= target) return lo;
+  BSSRDF_CHECK(lo < hi && c_lo < target && target <= c_hi);  // the bracket the two searches above built
   // Newton on C(r) = target (C' = 2 pi r R) from the secant point, bisecting in log r whenever a
   // step would leave the bracket.
   double r = lo + (target - c_lo) / (c_hi - c_lo) * (hi - lo), c = c_lo + piece(lo, r);
@@ -87,6 +89,7 @@ double radius_where(const std::function<double(double)>& cumulative, double targ
   }
   // Bisect in log r: radii span decades.
   if (lo == 0) lo = hi * precision;
+  BSSRDF_CHECK(lo < hi);
   while (hi / lo - 1 > precision) {
     const double mid = std::sqrt(lo * hi);
     (cumulative(mid) < target ? lo : hi) = mid;

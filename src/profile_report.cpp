@@ -31,6 +31,38 @@ ChannelProfile channel_coefficients(const std::string& name, const Reduced<doubl
   return ch;
 }
 
+// The postcondition of every report: no negative or infinite profile. Far in the tail the
+// multipole's dipole pairs cancel to rounding noise of either sign: that is 0, and a note says so.
+// Anything else is refused (an infinite value names the radius; a real negative value points to the
+// Monte Carlo reference).
+void settle_rounding_tail(ProfileReport& report) {
+  for (auto& ch : report.channels) {
+    const auto settle = [&](std::vector<double>& values, const char* what) {
+      double peak = 0;
+      for (double v : values) peak = std::isfinite(v) ? std::max(peak, std::abs(v)) : peak;
+      double first_rounded = -1;
+      for (std::size_t i = 0; i < values.size(); ++i) {
+        const double r = ch.profile.radius[i];
+        if (!std::isfinite(values[i]))
+          throw InvalidInput("radii", format_number(r),
+                             std::string("> 0 for ") + report.model + ": its " + what + " is infinite at r = " + format_number(r));
+        if (values[i] >= 0) continue;
+        if (-values[i] > 1e-9 * peak)
+          throw InvalidInput(std::string(what) + "[" + ch.name + "] at r = " + format_number(r) + ": the model gives " +
+                             format_number(values[i]) + " here; use 'bssrdf reference' (Monte Carlo)");
+        if (first_rounded < 0) first_rounded = r;
+        values[i] = 0;
+      }
+      if (first_rounded >= 0)
+        ch.validity.push_back({Severity::note, "rounding_tail",
+                               std::string(what) + " below 1e-9 of its peak from r = " + format_number(first_rounded) +
+                                   " is the rounding noise of the dipole-pair sum: written as 0"});
+    };
+    settle(ch.profile.value, "R(r)");
+    settle(ch.transmittance, "T(r)");
+  }
+}
+
 }  // namespace
 
 std::vector<double> default_radii_mm(const Medium& medium, const Model& model, std::size_t samples) {
@@ -81,6 +113,7 @@ ProfileReport compute_profile_report(const Medium& medium, const Model& model,
     }
     report.channels.push_back(std::move(ch));
   }
+  settle_rounding_tail(report);
   return report;
 }
 
@@ -122,6 +155,7 @@ ProfileReport compute_stack_report(const LayerStack& stack, const std::vector<do
     ch.validity = model.validity();
     report.channels.push_back(std::move(ch));
   }
+  settle_rounding_tail(report);
   return report;
 }
 

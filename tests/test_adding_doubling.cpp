@@ -95,7 +95,7 @@ TEST(AddingDoubling, DiffusionFailsAtLowAlbedoAndSaysSo) {
     for (const auto& c : cases()) {
       const auto m = reduce(1 - c.albedo, c.albedo, c.g, c.eta);
       const double error = std::abs(model->total_reflectance(m) / c.reference - 1);
-      if (error > 0.45) EXPECT_EQ(worst(model->validity(m)), Severity::invalid) << name << " alpha'=" << c.albedo_prime;
+      if (error > 0.45) { EXPECT_EQ(worst(model->validity(m)), Severity::invalid) << name << " alpha'=" << c.albedo_prime; }
     }
   }
 }

@@ -49,7 +49,7 @@ TEST(CyclesSubsurface, InputsGiveBackTheMediumForEveryMethod) {
       const auto in = cycles_inputs(m.medium, derived, mapping, 1.0);
       for (std::size_t c = 0; c < 3; ++c) {
         EXPECT_NEAR(in.simulated.sigma_t[c] / in.target_sigma_t[c], 1.0, 2e-5) << name << " " << to_string(mapping) << c;
-        if (in.target_alpha[c] >= 0.2) EXPECT_NEAR(in.simulated.alpha[c], in.target_alpha[c], 1e-5) << name << c;
+        if (in.target_alpha[c] >= 0.2) { EXPECT_NEAR(in.simulated.alpha[c], in.target_alpha[c], 1e-5) << name << c; }
         EXPECT_GE(in.albedo_color[c], 0.0);
         EXPECT_LE(in.albedo_color[c], 1.0);
       }

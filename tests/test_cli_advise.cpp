@@ -131,7 +131,7 @@ TEST(CliValidityMap, WritesPngAndTheImageMetric) {
 
 TEST(CliValidityMap, BadInputExitsTwoWithoutAFile) {
   const auto file = test_cli::temp("bad.svg");
-  for (const std::string args : {"--map " + file.string() + " --over albedo,sigma", "--map " + file.string() + " --metric speed",
+  for (const std::string& args : {"--map " + file.string() + " --over albedo,sigma", "--map " + file.string() + " --metric speed",
                                  "--map " + test_cli::temp("map.gif").string(), "--map " + file.string() + " --accuracy -1",
                                  "--map " + file.string() + " --metric image --pixel 0", "--map " + file.string() + " --metric image --tolerance -2"}) {
     const auto r = run("models " + args);

@@ -210,10 +210,11 @@ TEST(Hardening, MultipoleFarTailIsNeverAnInternalError) {
   EXPECT_TRUE(r.status == 0 || r.status == 2) << r.err;
   EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
   const auto doc = r.status == 0 ? json::parse(r.out) : json();
-  if (r.status == 0)
+  if (r.status == 0) {
     for (const auto& ch : doc["channels"])
       for (const char* key : {"reflectance", "transmittance"})
         for (const auto& v : ch[key]) EXPECT_GE(v.get<double>(), 0.0) << key;
+  }
 }
 
 // Burley's R(0) was written as null in a numeric array: r = 0 is refused where R(r) diverges.

@@ -196,8 +196,9 @@ TEST(CliMaterials, BlenderExportIsPythonForRandomWalk) {
   const std::string text = test_cli::slurp(path);
   EXPECT_NE(text.find("METHODS = {3: 'RANDOM_WALK_FIXED_RADIUS', 4: 'RANDOM_WALK'}"), std::string::npos);
   EXPECT_NE(text.find("R / (4 pi) = 1 / (sigma_t (1 - g))"), std::string::npos);
-  if (std::system("python3 -c pass >/dev/null 2>&1") == 0)
+  if (std::system("python3 -c pass >/dev/null 2>&1") == 0) {
     EXPECT_EQ(std::system(("python3 -c \"import ast,sys; ast.parse(open(sys.argv[1]).read())\" " + path.string()).c_str()), 0);
+  }
   // Skin1 in mm with the fixed radius: R = 4 pi / sigma_t (g = 0), sigma_t = 0.772 1/mm in red.
   r = run("materials export skin1 --to blender --unit mm");
   EXPECT_NE(r.out.find("radius=(" + format_number(4 * M_PI / 0.772).substr(0, 6)), std::string::npos) << r.out;

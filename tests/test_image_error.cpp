@@ -60,7 +60,7 @@ TEST(ImageError, EdgeImageOfAGaussianMatchesTheClosedForm) {
       for (std::size_t k = 0; k < image.edge.size(); ++k) {
         const double a = meter.pixel_centre(k) - pixel / 2, exact = (F(a + pixel) - F(a)) / pixel;
         worst_code[per_decade] = std::max(worst_code[per_decade], 255 * std::abs(srgb_encode(image.edge[k]) - srgb_encode(exact)));
-        if (k > 0) EXPECT_NEAR(image.line[k], image.edge[k] - image.edge[k - 1], 1e-15);
+        if (k > 0) { EXPECT_NEAR(image.line[k], image.edge[k] - image.edge[k - 1], 1e-15); }
       }
     }
   }
@@ -135,7 +135,7 @@ TEST(ImageError, MeetingAToleranceAtAPixelSizeMeansMeetingItAtCoarserOnes) {
     double previous = INFINITY;
     for (double pixel = 0.01; pixel <= 1000; pixel *= 1.25) {
       const double e = ImageErrorMeter(edges, pixel).error(ref.channels, profiles).error;
-      if (pixel >= radius) EXPECT_LE(e, previous * (1 + 1e-6)) << name << " at " << pixel << " mm";
+      if (pixel >= radius) { EXPECT_LE(e, previous * (1 + 1e-6)) << name << " at " << pixel << " mm"; }
       else code_error_grew_below_profile |= e > previous;
       previous = e;
     }

@@ -52,7 +52,7 @@ TEST(AlbedoRadiusTable, CellsMatchTheConvergedModelAndAreFinite) {
       // 2 % of the model's accurately integrated total (the grid ends at 203 mfp and is coarse there).
       const double total = photon_beam_diffusion::Model(1e-6).total_reflectance(m);
       // Above rho ~ 0.999 the profile reaches beyond the layout's 203 mfp and the row loses more.
-      if (rho < 0.999) EXPECT_NEAR(t.effective_albedo[i], total, 2e-2 * total + 1e-6) << rho;
+      if (rho < 0.999) { EXPECT_NEAR(t.effective_albedo[i], total, 2e-2 * total + 1e-6) << rho; }
     }
     for (std::size_t i = 1; i < t.rows(); ++i) EXPECT_GT(t.effective_albedo[i], t.effective_albedo[i - 1]);
   }

@@ -36,7 +36,7 @@ TEST(AlbedoRadiusVsMonteCarlo, DefaultToleranceRowsMatchTheDocumentedError) {
     const double rho = layout.albedo[row];
     ASSERT_NEAR(rho, doc.rho, 1e-4);
     std::vector<double> pbrt(cols);
-    const auto m = reduce(1 - rho, rho, g, eta);
+    const auto m = reduced_unit_extinction(rho, g, eta);
     for (std::size_t j = 0; j < cols; ++j) pbrt[j] = 2 * std::numbers::pi * layout.radius[j] * bench::pbrt_style_pbd(m, b, layout.radius[j]);
     // The radii holding 99.9 % of the row's energy, as the validation driver chooses them.
     const std::span<const double> cdf(&ours.cdf[row * cols], cols);

@@ -216,8 +216,8 @@ TEST(RadialTable, JsonCarriesTheSameContentInTheOutputUnit) {
   EXPECT_EQ(doc["attributes"]["bssrdf:unit"], "cm");
   EXPECT_EQ(doc["width"], t.size());
   for (const auto& c : doc["channels"]) {
-    if (c["name"] == "radius") EXPECT_NEAR(c["values"][3].get<double>(), t.radius[3] / 10, 1e-15);
-    if (c["name"] == "R") EXPECT_NEAR(c["values"][3].get<double>(), t.reflectance[0][3] * 100, 1e-12 * t.reflectance[0][3] * 100);
+    if (c["name"] == "radius") { EXPECT_NEAR(c["values"][3].get<double>(), t.radius[3] / 10, 1e-15); }
+    if (c["name"] == "R") { EXPECT_NEAR(c["values"][3].get<double>(), t.reflectance[0][3] * 100, 1e-12 * t.reflectance[0][3] * 100); }
   }
 }
 

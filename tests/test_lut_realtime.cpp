@@ -376,7 +376,7 @@ TEST(CliLutRealtime, PreviewIsAPngAndBadPathsWriteNothing) {
   const auto bytes = test_cli::slurp(png);
   ASSERT_GT(bytes.size(), 100u);
   EXPECT_EQ(bytes.substr(1, 3), "PNG");
-  for (const std::string args : std::vector<std::string>{"--preview " + temp("x.jpg").string(), "--preview /nonexistent-dir/x.png",
+  for (const std::string& args : std::vector<std::string>{"--preview " + temp("x.jpg").string(), "--preview /nonexistent-dir/x.png",
                                  "--sigma-a 0.1,0.2 --sigma-s 1,1 --preview " + temp("two.png").string()}) {
     r = test_cli::run("lut " + std::string(args.find("sigma") == std::string::npos ? "--material Skin1 " : "") + args);
     EXPECT_EQ(r.status, 2) << args << ": " << r.err;

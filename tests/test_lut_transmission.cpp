@@ -33,7 +33,7 @@ TEST(TransmissionTable, MatchesTheMultipoleAndDecreasesWhereItHolds) {
     for (std::size_t c = 0; c < medium.channels(); ++c) {
       EXPECT_EQ(t.transmittance[c][j], model.total_transmittance(medium.reduced(c)));
       EXPECT_TRUE(multipole_invalid_code(model, medium.reduced(c)).empty());
-      if (j > 0) EXPECT_LT(t.transmittance[c][j], t.transmittance[c][j - 1]);
+      if (j > 0) { EXPECT_LT(t.transmittance[c][j], t.transmittance[c][j - 1]); }
     }
   }
   for (double d : t.omitted_thickness) EXPECT_LT(d, 2 * medium.reduced(0).ell + 1e-12);

@@ -142,7 +142,7 @@ TEST(Materials, BundledNarasimhanTableMatchesTheReference) {
       EXPECT_DOUBLE_EQ(m.medium.sigma_s[c], s[c]) << name;
       EXPECT_DOUBLE_EQ(m.medium.sigma_a[c], a[c]) << name;
       EXPECT_DOUBLE_EQ(m.medium.g[c], g[c]) << name;
-      if (s[c] == 0) EXPECT_EQ(g[c], 0.0) << name;  // the TSV's convention
+      if (s[c] == 0) { EXPECT_EQ(g[c], 0.0) << name; }  // the TSV's convention
     }
     EXPECT_FALSE(m.reduced_scattering_only);
     ++compared;

@@ -112,7 +112,7 @@ TEST(Mco, WrittenForEachRunAndReadBackAsMcmlReadsIt) {
     for (double v : m.A_z) a_z += v * m.dz;
     for (double v : m.A_l) a_l += v;
     EXPECT_NEAR(rd / m.Rd, 1.0, 2e-4);
-    if (k == 0) EXPECT_NEAR(tt / m.Tt, 1.0, 2e-4);
+    if (k == 0) { EXPECT_NEAR(tt / m.Tt, 1.0, 2e-4); }
     EXPECT_NEAR(a_z / m.A, 1.0, 2e-4);
     EXPECT_NEAR(a_l / m.A, 1.0, 2e-4);
     const double da = std::numbers::pi / 2;

@@ -97,7 +97,7 @@ TEST(ModelChoice, PicksTheCheapestWithinTheAccuracyForEveryChannel) {
     for (std::size_t c = 0; c < 3; ++c) {
       const auto estimates = estimate_model_errors(skin.reduced(c));  // named: a range-for over *temporary dangles
       for (const auto& e : *estimates)
-        if (e.model == choice.model) EXPECT_LE(e.error(), accuracy);
+        if (e.model == choice.model) { EXPECT_LE(e.error(), accuracy); }
     }
   }
   EXPECT_EQ(choose_model(skin, 0.1).model, "pbd");

@@ -269,7 +269,7 @@ TEST(Multipole, ThinSlabsProduceTheValidityReport) {
   EXPECT_EQ(at_ten.find("thin_slab"), std::string::npos) << at_ten;
   EXPECT_NE(at_ten.find("slab_accuracy/note"), std::string::npos) << at_ten;
   for (const auto& note : multipole::Model(10.0).validity(m))
-    if (note.code == "slab_accuracy") EXPECT_NE(note.message.find("10.6 %"), std::string::npos) << note.message;
+    if (note.code == "slab_accuracy") { EXPECT_NE(note.message.find("10.6 %"), std::string::npos) << note.message; }
 }
 
 TEST(Multipole, BadConstructionIsInvalidInput) {

@@ -141,8 +141,9 @@ TEST(RealtimeTables, GaussianCountAndRadialSizeAreTheSmallestWithinTolerance) {
   ASSERT_GT(radial.count, kRadialTableSizes.front());
   EXPECT_GT(j.judge.error(radial_table_profiles(marble, *model, radial.count / 2, j.meter.edges())).error, 1);
   const auto gaussians = choose_gaussian_count(marble, *model, j.judge, 5);
-  if (gaussians.meets_tolerance && gaussians.count > 1)
+  if (gaussians.meets_tolerance && gaussians.count > 1) {
     EXPECT_GT(j.judge.error(gaussian_sum_profiles(marble, *model, static_cast<int>(gaussians.count) / 2, j.meter.edges())).error, 5);
+  }
   EXPECT_GE(gaussians.image.error, choose_gaussian_count(marble, *model, j.judge, 1e-3).image.error - 1e-9);  // the most accurate
 }
 

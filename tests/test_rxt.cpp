@@ -106,7 +106,7 @@ TEST(Rxt, RoundTripsThroughOneAndTwoSpheresAndTheUnscatteredBeam) {
         EXPECT_EQ(r.row.wavelength, 500 + 100 * k);
         EXPECT_NEAR(r.mu_a / truth[k][0], 1, 5e-3) << spheres << " spheres, M_U " << with_u << ", row " << k;
         EXPECT_NEAR(r.mu_s_prime / truth[k][1], 1, 5e-3) << spheres << " spheres, M_U " << with_u << ", row " << k;
-        if (with_u) EXPECT_NEAR(r.g, truth[k][2], 5e-3);
+        if (with_u) { EXPECT_NEAR(r.g, truth[k][2], 5e-3); }
         EXPECT_TRUE(std::isfinite(r.mu_a_stderr) && r.mu_a_stderr > 0);
       }
     }

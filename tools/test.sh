@@ -3,6 +3,6 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/setup.sh
-bash tools/build.sh
+bash tools/build.sh -DBSSRDF_WERROR=ON  # CI: warnings are errors here, not in a user's build
 cd build
 ctest --output-on-failure -j "$(nproc)"

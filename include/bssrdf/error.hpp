@@ -40,5 +40,7 @@ class FileError : public InvalidInput {
 
 // Formats a double the way messages and tables show it: shortest round-trip representation.
 std::string format_number(double value);
+// Four significant digits, for the summary lines people read (files keep full precision).
+std::string short_number(double value);
 
 }  // namespace bssrdf

@@ -62,4 +62,8 @@ struct LayerStack {
   static LayerStack half_space(const Medium& medium) { return slab(medium, kSemiInfinite); }
 };
 
+// transport_mfp_range over the layers and channels that attenuate (a clear layer has no ell); both
+// 0 when none does.
+TransportMfpRange transport_mfp_range(const LayerStack& stack);
+
 }  // namespace bssrdf

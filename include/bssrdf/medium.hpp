@@ -42,6 +42,13 @@ struct Medium {
   static Medium single_channel(double sigma_a, double sigma_s, double g, double eta);
 };
 
+// The shortest and longest transport mean free path ell = 1 / sigma_t' over the channels, mm: the
+// length every default range (radii, slab thicknesses) scales with.
+struct TransportMfpRange {
+  double min = 0, max = 0;
+};
+TransportMfpRange transport_mfp_range(const Medium& medium);
+
 // Channel names for n channels: R, G, B for three, c0, c1, ... otherwise.
 std::vector<std::string> default_channel_names(std::size_t count);
 

@@ -59,6 +59,14 @@ Reduced<T> reduce_prime(T sigma_a, T sigma_s_prime, T eta) {
   return reduce(sigma_a, sigma_s_prime, T(0), eta);
 }
 
+// The similarity relation: the reduced albedo alpha' = alpha (1 - g) / (1 - alpha g) of a medium of
+// single-scattering albedo alpha and anisotropy g (Wyman, Patterson & Wilson 1989);
+// albedo_from_reduced below is its inverse.
+template <class T>
+T reduced_albedo(T albedo, T g) {
+  return albedo * (T(1) - g) / (T(1) - albedo * g);
+}
+
 // The single-scattering albedo alpha whose similarity-reduced albedo is alpha' at anisotropy g:
 // the inverse of alpha' = alpha (1 - g) / (1 - alpha g).
 template <class T>
@@ -70,6 +78,18 @@ T albedo_from_reduced(T albedo_prime, T g) {
 template <class T>
 Reduced<T> reduced_optical(T albedo_prime, T eta) {
   return reduce_prime(T(1) - albedo_prime, albedo_prime, eta);
+}
+
+// The same at anisotropy g: sigma_s' = alpha', sigma_a = 1 - alpha', sigma_s = alpha' / (1 - g).
+template <class T>
+Reduced<T> reduced_optical(T albedo_prime, T g, T eta) {
+  return reduce(T(1) - albedo_prime, albedo_prime / (T(1) - g), g, eta);
+}
+
+// Units of the (unreduced) extinction: sigma_t = 1, lengths in mean free paths, for albedo alpha.
+template <class T>
+Reduced<T> reduced_unit_extinction(T albedo, T g, T eta) {
+  return reduce(T(1) - albedo, albedo, g, eta);
 }
 
 }  // namespace bssrdf

@@ -11,7 +11,9 @@
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/io/atomic_file.hpp"
+#include "bssrdf/lut/transmission_table.hpp"
 #include "bssrdf/model_choice.hpp"
+#include "bssrdf/profile.hpp"
 
 namespace bssrdf::cli {
 namespace {
@@ -168,6 +170,26 @@ MediumOptions::Resolved MediumOptions::resolve() const {
     for (auto& v : out.medium.sigma_s) v = coefficient_to_per_mm(v, out.unit);
   }
   return out;
+}
+
+std::vector<double> slab_thicknesses(const std::string& list, const std::string& d_min, const std::string& d_max, int samples,
+                                     LengthUnit unit, const SlabThicknessRange& defaults) {
+  if (!list.empty()) {
+    if (!d_min.empty() || !d_max.empty()) throw InvalidInput("--thickness: give either --thickness or --d-min/--d-max");
+    auto thickness = parse_length_list(list, "--thickness");
+    for (double d : thickness)
+      if (!(d > 0)) throw InvalidInput("--thickness", format_number(d), "> 0");
+    return thickness;
+  }
+  const double mm = millimetres_per(unit);
+  const double a = d_min.empty() ? defaults.d_min / mm : parse_length(d_min, "--d-min");
+  const double b = d_max.empty() ? defaults.d_max / mm : parse_length(d_max, "--d-max");
+  if (!(a > 0)) throw InvalidInput("--d-min", format_number(a), "> 0");
+  if (!(b > a)) throw InvalidInput("--d-max", format_number(b), "> --d-min = " + format_number(a));
+  if (samples == 0) samples = kThicknessSamples;
+  if (samples < 2 || samples > kMaxThicknessSamples)
+    throw InvalidInput("--samples", std::to_string(samples), count_range(2, kMaxThicknessSamples));
+  return log_spaced(a, b, static_cast<std::size_t>(samples));
 }
 
 CLI::Validator file_name(const std::string& field) {

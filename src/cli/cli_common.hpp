@@ -5,13 +5,21 @@
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <functional>
+#include <initializer_list>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
+#include "bssrdf/error.hpp"
 #include "bssrdf/materials.hpp"
 #include "bssrdf/medium.hpp"
 #include "bssrdf/units.hpp"
+
+namespace bssrdf {
+struct SlabThicknessRange;
+}
 
 namespace bssrdf::cli {
 
@@ -70,6 +78,25 @@ struct ChosenModel {
 ChosenModel resolve_model(const std::string& name, const std::string& accuracy, const Medium& medium);
 // --accuracy: a relative error, 0 < value < 10; empty gives the default 0.1.
 double parse_accuracy(const std::string& text);
+
+// Slab thicknesses in --unit: `list` (--thickness, comma-separated), else `samples` thicknesses
+// log-spaced from --d-min to --d-max, each empty one taken from `defaults` (mm, the library's rule:
+// default_thickness_range). Throws InvalidInput naming the option.
+std::vector<double> slab_thicknesses(const std::string& list, const std::string& d_min, const std::string& d_max, int samples,
+                                     LengthUnit unit, const SlabThicknessRange& defaults);
+
+// The library's errors name its own fields ("radii", "to", "format"), never a flag: runs f, and an
+// InvalidInput naming a field of `flags` is rethrown naming the command line's flag instead.
+template <class F>
+auto with_flag_names(std::initializer_list<std::pair<std::string_view, std::string_view>> flags, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const InvalidInput& e) {
+    for (const auto& [field, flag] : flags)
+      if (e.field() == field) throw InvalidInput(std::string(flag), e.value(), e.accepted());
+    throw;
+  }
+}
 
 // For -o and other file options: refuses an empty name, which would otherwise silently mean "no file".
 CLI::Validator file_name(const std::string& field);

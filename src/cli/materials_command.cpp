@@ -202,7 +202,7 @@ Action register_materials(CLI::App& app) {
       const auto q = derive_quantities(m.medium, options);
       std::cout << (o->format == "json" ? show_json(m, q, unit).dump(2) + "\n" : show_table(m, q, unit));
     } else if (exp->parsed()) {
-      const auto target = parse_renderer_target(o->to);
+      const auto target = with_flag_names({{"to", "--to"}}, [&] { return parse_renderer_target(o->to); });
       if (o->name.empty() && !o->all) throw InvalidInput("materials export: give a material NAME or --all");
       const auto unit = parse_length_unit(
           o->unit.empty() ? (target == RendererTarget::json ? "mm" : "m") : o->unit, "--unit");

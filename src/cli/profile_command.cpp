@@ -165,37 +165,12 @@ Action register_profile(CLI::App& app) {
       if (!(hi > lo)) throw InvalidInput("--r-max", format_number(hi / mm), "> --r-min = " + format_number(lo / mm));
       radii_mm = options->spacing == "log" ? log_spaced(lo, hi, n) : linear_spaced(lo, hi, n);
     }
-    auto report = stack_file ? compute_stack_report(stack_file->stack, radii_mm, resolved.unit)
-                             : compute_profile_report(resolved.medium, *model, radii_mm, resolved.unit);
+    auto report = with_flag_names({{"radii", "--radii"}}, [&] {
+      return stack_file ? compute_stack_report(stack_file->stack, radii_mm, resolved.unit)
+                        : compute_profile_report(resolved.medium, *model, radii_mm, resolved.unit);
+    });
     report.material = resolved.material;
     report.model_choice = auto_note;
-    // Never print a negative or infinite profile. Far in the tail the multipole's dipole pairs cancel
-    // to rounding noise of either sign: that is 0, and the note says so. Anything else is refused.
-    for (auto& ch : report.channels) {
-      const auto settle = [&](std::vector<double>& values, const char* what) {
-        double peak = 0;
-        for (double v : values) peak = std::isfinite(v) ? std::max(peak, std::abs(v)) : peak;
-        double first_rounded = -1;
-        for (std::size_t i = 0; i < values.size(); ++i) {
-          const double r = ch.profile.radius[i];
-          if (!std::isfinite(values[i]))
-            throw InvalidInput("--radii", format_number(r), std::string("> 0 for ") + report.model + ": its " + what +
-                                                                 " is infinite at r = " + format_number(r));
-          if (values[i] >= 0) continue;
-          if (-values[i] > 1e-9 * peak)
-            throw InvalidInput(std::string(what) + "[" + ch.name + "] at r = " + format_number(r) + ": the model gives " +
-                               format_number(values[i]) + " here; use 'bssrdf reference' (Monte Carlo)");
-          if (first_rounded < 0) first_rounded = r;
-          values[i] = 0;
-        }
-        if (first_rounded >= 0)
-          ch.validity.push_back({Severity::note, "rounding_tail",
-                                 std::string(what) + " below 1e-9 of its peak from r = " + format_number(first_rounded) +
-                                     " is the rounding noise of the dipole-pair sum: written as 0"});
-      };
-      settle(ch.profile.value, "R(r)");
-      settle(ch.transmittance, "T(r)");
-    }
     std::string content;
     switch (options->output.file_format()) {
       case Format::json: content = to_json(report); break;

@@ -10,6 +10,7 @@
 #include "bssrdf/adding_doubling/slab.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/layers.hpp"
+#include "bssrdf/lut/transmission_table.hpp"
 #include "bssrdf/models/multipole.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -21,7 +22,7 @@ Action register_transmission(CLI::App& app) {
     MediumOptions medium;
     OutputOptions output;
     std::string thickness, d_min, d_max, model = "adding-doubling";
-    int samples = 24;
+    int samples = 0;  // 0: kThicknessSamples
   };
   auto options = std::make_shared<Options>();
   auto* sub = app.add_subcommand("transmission",
@@ -31,10 +32,12 @@ Action register_transmission(CLI::App& app) {
   auto* list = sub->add_option("--thickness", options->thickness, "Thicknesses in --unit, comma-separated");
   sub->add_option("--model", options->model, "adding-doubling (exact) or multipole (for comparison) [adding-doubling]")
       ->check(CLI::IsMember({"adding-doubling", "multipole"}));
+  // The default range is the library's rule (default_thickness_range), shared with lut --kind transmission.
   auto* lo = sub->add_option("--d-min", options->d_min,
-                             "Smallest thickness [2 transport mfp of the clearest channel; adding-doubling: 0.1]");
+                             "Smallest thickness [0.1 transport mfp of the clearest channel; multipole: 2]");
   auto* hi = sub->add_option("--d-max", options->d_max, "Largest thickness [40 transport mfp of the most scattering-sparse channel]");
-  auto* n = add_count_option(*sub, "--samples", options->samples, 2, 100000, "Number of thicknesses, log-spaced [24]");
+  auto* n = add_count_option(*sub, "--samples", options->samples, 2, kMaxThicknessSamples,
+                             "Number of thicknesses, log-spaced [" + std::to_string(kThicknessSamples) + "]");
   list->excludes(lo)->excludes(hi)->excludes(n);
   options->output.add_to(*sub);
   return [options] {
@@ -42,25 +45,10 @@ Action register_transmission(CLI::App& app) {
     const auto& medium = resolved.medium;
     const double mm = millimetres_per(resolved.unit);
     const bool ad = options->model == "adding-doubling";
-    std::vector<double> thickness;  // in unit
-    if (!options->thickness.empty()) {
-      thickness = parse_length_list(options->thickness, "--thickness");
-      for (double d : thickness)
-        if (!(d > 0)) throw InvalidInput("--thickness", format_number(d), "> 0");
-    } else {
-      double ell_min = 1e300, ell_max = 0;
-      for (std::size_t c = 0; c < medium.channels(); ++c) {
-        ell_min = std::min(ell_min, medium.reduced(c).ell / mm);
-        ell_max = std::max(ell_max, medium.reduced(c).ell / mm);
-      }
-      const double a = options->d_min.empty() ? (ad ? 0.1 : 2) * ell_min : parse_length(options->d_min, "--d-min");
-      const double b = options->d_max.empty() ? 40 * ell_max : parse_length(options->d_max, "--d-max");
-      if (!(a > 0)) throw InvalidInput("--d-min", format_number(a), "> 0");
-      if (!(b > a)) throw InvalidInput("--d-max", format_number(b), "> --d-min = " + format_number(a));
-      if (options->samples < 2 || options->samples > 100000)
-        throw InvalidInput("--samples", std::to_string(options->samples), "2 to 100000");
-      thickness = log_spaced(a, b, static_cast<std::size_t>(options->samples));
-    }
+    TransmissionTableOptions rule;
+    rule.model = options->model;
+    const auto thickness = slab_thicknesses(options->thickness, options->d_min, options->d_max, options->samples, resolved.unit,
+                                            default_thickness_range(medium, rule));  // in unit
     struct Cell {
       double R, T;
       std::string invalid;  // the first invalid code, empty when valid

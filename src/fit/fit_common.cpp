@@ -41,7 +41,7 @@ std::optional<Eigen::MatrixXd> parameter_covariance(ceres::Problem& problem, con
 }
 
 double albedo_prime_for_total(const Model& model, double total, double eta, double g) {
-  const auto total_at = [&](double a) { return model.total_reflectance(reduce(1 - a, a / (1 - g), g, eta)); };
+  const auto total_at = [&](double a) { return model.total_reflectance(reduced_optical(a, g, eta)); };
   double lo = 0, hi = 1;
   double f_lo = total_at(lo) - total, f_hi = total_at(hi) - total;
   if (!(f_lo <= 0 && f_hi >= 0) || !std::isfinite(total))

@@ -33,7 +33,8 @@ std::string from_fit(const nlohmann::json& fit, const std::string& fit_file, con
       if (!c.contains(key) || !c.at(key).contains("value") || !c.at(key).at("value").is_number())
         throw FileError(fit_file, 0, where + "." + key + ": missing (only fits of sigma_a and sigma_s' - profile, albedo, "
                                                           "slab - give a material)");
-    channels.push_back(c.value("name", "c" + std::to_string(i)));
+    // std::string("c") + ...: "c" + std::string&& trips GCC 12's -Wrestrict false positive (GCC bug 105329).
+    channels.push_back(c.value("name", std::string("c") + std::to_string(i)));
     sigma_a.push_back(c.at("sigma_a").at("value").get<double>());
     sigma_s_prime.push_back(c.at("sigma_s_prime").at("value").get<double>());
     const std::string u = c.at("sigma_a").value("unit", "1/mm");

@@ -164,7 +164,7 @@ FitReport fit_profile(const MeasuredProfile& data, const ProfileFitOptions& opti
       a = std::clamp(albedo_prime_for_total(*model, total, options.eta, channels[c].g), 0.05, 0.999);
     } catch (const InvalidInput&) {
     }
-    const auto unit_medium = reduce(1 - a, a / (1 - channels[c].g), channels[c].g, options.eta);
+    const auto unit_medium = reduced_optical(a, channels[c].g, options.eta);
     const double r_model = model->radius_for_fraction(unit_medium, 0.5), r_data = p.radius_for_fraction(0.5);
     const double sigma_t_prime = std::isfinite(r_model) && r_data > 0 ? r_model / r_data : 1.0;
     x[c] = {std::log((1 - a) * sigma_t_prime), std::log(a * sigma_t_prime)};

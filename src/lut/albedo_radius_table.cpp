@@ -1,13 +1,16 @@
 #include "bssrdf/lut/albedo_radius_table.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
+#include "bssrdf/check.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/fresnel.hpp"
 #include "bssrdf/lut/interpolation.hpp"
-#include "bssrdf/lut/parallel.hpp"
+#include "bssrdf/parallel.hpp"
 #include "bssrdf/models/photon_beam_diffusion.hpp"
 #include "bssrdf/single_scattering.hpp"
 
@@ -20,6 +23,7 @@ constexpr double kTwoPi = 2 * std::numbers::pi;
 // with the spline's slopes d (centred differences, one-sided at the ends). cumulative[j] at x_j.
 std::vector<double> catmull_rom_cumulative(const std::vector<double>& x, const double* f) {
   const std::size_t n = x.size();
+  BSSRDF_CHECK(n >= 2);  // layouts have at least 4 radii
   const auto slope = [&](std::size_t j) {
     if (j == 0) return (f[1] - f[0]) / (x[1] - x[0]);
     if (j + 1 == n) return (f[n - 1] - f[n - 2]) / (x[n - 1] - x[n - 2]);
@@ -62,7 +66,9 @@ AlbedoRadiusTable build_albedo_radius_table(const AlbedoRadiusLayout& layout, do
     throw InvalidInput("tolerance", format_number(options.tolerance), "0 < tolerance < 1");
   if (!(g > -1 && g < 1)) throw InvalidInput("g", format_number(g), "-1 < g < 1");
   if (!(eta > 0) || !std::isfinite(eta)) throw InvalidInput("eta", format_number(eta), "> 0 and finite");
+  const auto start = std::chrono::steady_clock::now();
   AlbedoRadiusTable t;
+  t.tolerance = options.tolerance;
   t.g = g;
   t.eta = eta;
   t.layout = layout;
@@ -71,7 +77,7 @@ AlbedoRadiusTable build_albedo_radius_table(const AlbedoRadiusLayout& layout, do
 
   // One quadrature order for the table: the largest any of a few albedos needs (optical units).
   for (double rho : {0.3, 0.9, 0.99, 0.999})
-    t.quadrature_order = std::max(t.quadrature_order, photon_beam_diffusion::samples_for_tolerance(rho * (1 - g) / (1 - rho * g), g, eta, options.tolerance));
+    t.quadrature_order = std::max(t.quadrature_order, photon_beam_diffusion::samples_for_tolerance(reduced_albedo(rho, g), g, eta, options.tolerance));
 
   // Single scattering with sigma_t = 1 is rho * S(r): one integral per column.
   const auto unit_scattering = reduce(0.0, 1.0, g, eta);
@@ -80,12 +86,13 @@ AlbedoRadiusTable build_albedo_radius_table(const AlbedoRadiusLayout& layout, do
     if (layout.radius[j] > 0)
       single[j] = kTwoPi * layout.radius[j] * single_scattering_reflectance(unit_scattering, layout.radius[j], t.quadrature_order);
 
+  BSSRDF_CHECK(rows >= 1 && cols >= 2 && std::is_sorted(layout.radius.begin(), layout.radius.end()));
   t.profile.assign(rows * cols, 0.0);
   t.cdf.assign(rows * cols, 0.0);
   t.effective_albedo.assign(rows, 0.0);
   parallel_for(rows, options.threads, [&](std::size_t i) {
     const double rho = layout.albedo[i];
-    const auto m = reduce(1 - rho, rho, g, eta);  // sigma_t = 1
+    const auto m = reduced_unit_extinction(rho, g, eta);
     double* row = &t.profile[i * cols];
     for (std::size_t j = 0; j < cols; ++j) {
       const double r = layout.radius[j];
@@ -96,6 +103,7 @@ AlbedoRadiusTable build_albedo_radius_table(const AlbedoRadiusLayout& layout, do
     t.effective_albedo[i] = cum.back();
     for (std::size_t j = 0; j < cols; ++j) t.cdf[i * cols + j] = cum.back() > 0 ? cum[j] / cum.back() : 0.0;
   });
+  t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return t;
 }
 
@@ -234,6 +242,22 @@ LookupTable to_lookup_table(const AlbedoRadiusTable& t, const TableContext& cont
   out.add_channel("albedo", "single-scattering albedo rho = sigma_s / sigma_t of the row", albedo);
   out.add_channel("effective_albedo", "rho_eff = int 2 pi r R dr of the row (the albedo inversion table)", rho_eff);
   return out;
+}
+
+std::string summary(const AlbedoRadiusTable& t, const std::string& layout_name) {
+  std::ostringstream s;
+  s << "albedo-radius table (" << layout_name << " layout): " << t.rows() << " albedos x " << t.columns()
+    << " radii, g = " << format_number(t.g) << ", eta = " << format_number(t.eta) << ", photon beam diffusion with "
+    << t.quadrature_order << "-point Gauss-Legendre (tolerance " << format_number(t.tolerance) << "); table in "
+    << format_number(std::round(t.seconds * 1e5) / 100) << " ms\n  effective albedo: " << format_number(t.effective_albedo.front())
+    << " (rho = 0) to " << format_number(t.effective_albedo.back()) << " (rho = 1)\n";
+  return s.str();
+}
+
+std::string summary(const AdaptiveAlbedoRadiusLayout& layout, double table_tolerance) {
+  return "adaptive layout for interpolation tolerance " + format_number(table_tolerance) + ": worst midpoint error " +
+         format_number(std::round(layout.albedo_error * 1e6) / 1e6) + " (albedo), " +
+         format_number(std::round(layout.radius_error * 1e6) / 1e6) + " (radius), relative to each row's peak";
 }
 
 }  // namespace bssrdf

@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "bssrdf/error.hpp"
-#include "bssrdf/lut/parallel.hpp"
+#include "bssrdf/parallel.hpp"
 #include "bssrdf/lut/projected_profile.hpp"
 
 namespace bssrdf {
@@ -28,7 +29,8 @@ PenumbraTable build_penumbra_table(const Medium& medium, const Model& model, con
     t.scatters.push_back(p.has_value());
     if (p) t.widest_r50 = std::max(t.widest_r50, p->radius_for_fraction(0.5));
   }
-  if (t.options.width_max == 0) t.options.width_max = 8 * t.widest_r50;
+  t.width_from_widest = t.options.width_max == 0;
+  if (t.width_from_widest) t.options.width_max = 8 * t.widest_r50;
   for (std::size_t i = 0; i < W; ++i) t.shadow.push_back((static_cast<double>(i) + 0.5) / static_cast<double>(W));
   for (std::size_t j = 0; j < H; ++j)
     t.penumbra_width.push_back(t.options.width_max * (static_cast<double>(j) + 0.5) / static_cast<double>(H));
@@ -74,6 +76,24 @@ LookupTable to_lookup_table(const PenumbraTable& t, const TableContext& context)
   for (std::size_t c = 0; c < t.channel_names.size(); ++c)
     out.add_channel(t.channel_names[c], "diffused light across a penumbra D(s, w), dimensionless", t.value[c]);
   return out;
+}
+
+std::string summary(const PenumbraTable& t, const TableContext& context) {
+  const double mm = millimetres_per(context.unit);
+  const std::string u(symbol(context.unit));
+  const std::size_t W = t.options.width, H = t.options.height;
+  std::ostringstream s;
+  s << "penumbra table: " << W << " shadow values x " << H << " penumbra widths from 0 to " << short_number(t.options.width_max / mm)
+    << ' ' << u << (t.width_from_widest ? " (8 r_50 of the widest channel)" : "") << ", texel centres\n";
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c) {
+    if (!t.scatters[c]) {
+      s << "  " << t.channel_names[c] << ": does not scatter (total reflectance 0): D = s\n";
+      continue;
+    }
+    s << "  " << t.channel_names[c] << ": D at s = " << short_number(t.shadow[W / 8]) << ": " << short_number(t.value[c][W / 8])
+      << " (narrowest penumbra) to " << short_number(t.value[c][(H - 1) * W + W / 8]) << " (widest)\n";
+  }
+  return s.str();
 }
 
 }  // namespace bssrdf

@@ -4,9 +4,10 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 #include "bssrdf/error.hpp"
-#include "bssrdf/lut/parallel.hpp"
+#include "bssrdf/parallel.hpp"
 #include "bssrdf/lut/projected_profile.hpp"
 
 namespace bssrdf {
@@ -135,6 +136,21 @@ LookupTable to_lookup_table(const PreintegratedTable& t, const TableContext& con
   for (std::size_t c = 0; c < t.channel_names.size(); ++c)
     out.add_channel(t.channel_names[c], "pre-integrated diffuse D(N.L, curvature), dimensionless", t.value[c]);
   return out;
+}
+
+std::string summary(const PreintegratedTable& t, const TableContext& context) {
+  const double mm = millimetres_per(context.unit);
+  const std::string u(symbol(context.unit));
+  const std::size_t W = t.options.width, H = t.options.height;
+  std::ostringstream s;
+  s << "pre-integrated table: " << W << " N.L x " << H << " curvatures from 0 to " << short_number(t.options.curvature_max * mm)
+    << " 1/" << u << " (sphere radius down to " << short_number(1 / (t.options.curvature_max * mm)) << ' ' << u
+    << ", the widest channel's r_50), texel centres\n";
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
+    s << "  " << t.channel_names[c] << ": D at N.L = " << short_number(t.n_dot_l[W / 2]) << ": " << short_number(t.value[c][W / 2])
+      << " (flattest row) to " << short_number(t.value[c][(H - 1) * W + W / 2]) << " (most curved); at N.L = "
+      << short_number(t.n_dot_l[0]) << ": " << short_number(t.value[c][0]) << " to " << short_number(t.value[c][(H - 1) * W]) << '\n';
+  return s.str();
 }
 
 }  // namespace bssrdf

@@ -1,11 +1,12 @@
 #include "bssrdf/lut/radial_table.hpp"
 
+#include <sstream>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "bssrdf/error.hpp"
-#include "bssrdf/lut/parallel.hpp"
+#include "bssrdf/parallel.hpp"
 
 namespace bssrdf {
 namespace {
@@ -432,6 +433,24 @@ void add_sampling_channels(LookupTable& out, const std::vector<std::string>& cha
   out.add_channel("u", "CDF value u_j = j / (N - 1) of the inverse_cdf channels", u);
   for (std::size_t c = 0; c < channel_names.size(); ++c)
     out.add_channel("inverse_cdf." + channel_names[c], "radius r with cdf(r) = u_j, " + symbol_u, scaled(inverse_cdf[c], 1 / mm));
+}
+
+std::string summary(const RadialTable& t, const TableContext& context) {
+  const double mm = millimetres_per(context.unit);
+  const std::string u(symbol(context.unit));
+  std::ostringstream s;
+  s << "radial table: " << t.size() << " radii from " << short_number(t.radius.front() / mm) << " to "
+    << short_number(t.radius.back() / mm) << ' ' << u << ", uniform in ln r + r/" << short_number(t.decay_length / mm) << " ("
+    << to_string(t.options.interpolation) << "; worst error " << short_number(t.max_error) << " <= tolerance "
+    << short_number(t.options.tolerance) << " over the range holding " << short_number(t.options.energy)
+    << " of each channel's total; " << t.evaluations << " model evaluations)\n";
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
+    if (t.range_max[c] == 0)
+      s << "  " << t.channel_names[c] << ": does not scatter (total reflectance 0): R = 0, all of its CDF at r = 0\n";
+    else
+      s << "  " << t.channel_names[c] << ": total reflectance " << short_number(t.total_reflectance[c]) << ", range "
+        << short_number(t.range_min[c] / mm) << " to " << short_number(t.range_max[c] / mm) << ' ' << u << '\n';
+  return s.str();
 }
 
 }  // namespace bssrdf

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/lut/interpolation.hpp"
@@ -15,15 +16,8 @@ ReferenceRadialTable build_reference_radial_table(const LayerStack& stack, const
   stack.validate();
   if (options.bins < 4 || options.bins > 4096) throw InvalidInput("bins", std::to_string(options.bins), "4 to 4096");
   if (options.photons < 1000) throw InvalidInput("photons", std::to_string(options.photons), ">= 1000");
-  double ell_min = INFINITY, ell_max = 0;
-  for (const auto& layer : stack.layers)
-    for (std::size_t c = 0; c < stack.channels(); ++c) {
-      const double sigma_t_prime = layer.sigma_a[c] + layer.sigma_s[c] * (1 - layer.g[c]);
-      if (!(sigma_t_prime > 0)) continue;
-      ell_min = std::min(ell_min, 1 / sigma_t_prime);
-      ell_max = std::max(ell_max, 1 / sigma_t_prime);
-    }
-  if (!(ell_max > 0)) throw InvalidInput("layers", "no attenuation in any layer or channel", "sigma_a + sigma_s > 0 somewhere");
+  const auto ell = transport_mfp_range(stack);
+  if (!(ell.max > 0)) throw InvalidInput("layers", "no attenuation in any layer or channel", "sigma_a + sigma_s > 0 somewhere");
   MonteCarloOptions mc;
   mc.photons = options.photons;
   mc.seed = options.seed;
@@ -31,8 +25,8 @@ ReferenceRadialTable build_reference_radial_table(const LayerStack& stack, const
   mc.progress = options.progress;
   mc.spacing = BinSpacing::log;
   mc.bins = options.bins;
-  mc.r_min = 1e-3 * ell_min;
-  mc.r_max = std::max(30 * ell_max, 10 * mc.r_min);
+  mc.r_min = 1e-3 * ell.min;
+  mc.r_max = std::max(30 * ell.max, 10 * mc.r_min);
   const auto run = run_monte_carlo(stack, mc);
 
   ReferenceRadialTable t;
@@ -107,6 +101,21 @@ LookupTable to_lookup_table(const ReferenceRadialTable& t, const TableContext& c
     out.add_channel("stderr." + t.channel_names[c], "standard error of R, 1/" + u + "^2", scaled(t.reflectance_stderr[c], mm * mm));
   add_sampling_channels(out, t.channel_names, t.ring, t.cdf, t.u, t.inverse_cdf, "CDF of 2 pi r R(r) at r_outer", context.unit);
   return out;
+}
+
+std::string summary(const ReferenceRadialTable& t, const TableContext& context) {
+  const double mm = millimetres_per(context.unit);
+  const std::string u(symbol(context.unit));
+  std::ostringstream s;
+  s << "radial table from the Monte Carlo reference: " << t.size() << " bins from " << short_number(t.r_outer.front() / mm) << " to "
+    << short_number(t.r_outer.back() / mm) << ' ' << u << " (logarithmic), " << t.options.photons << " photons per channel, seed "
+    << t.options.seed << "; values are bin averages with standard errors (stderr.<c>)\n";
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
+    s << "  " << t.channel_names[c] << ": total reflectance " << short_number(t.total_reflectance[c]) << " +- "
+      << short_number(t.total_stderr[c]) << ", "
+      << short_number(100 * (t.total_reflectance[c] > 0 ? t.table_reflectance[c] / t.total_reflectance[c] : 1))
+      << " % of it inside the table\n";
+  return s.str();
 }
 
 }  // namespace bssrdf

@@ -119,7 +119,7 @@ std::string float_literal(double v) {
 
 std::string to_shader(const SeparableKernel& k, const TableContext& context, ShaderLanguage language) {
   if (k.channel_names.size() != 3)
-    throw InvalidInput("--format", language == ShaderLanguage::glsl ? "glsl" : "hlsl",
+    throw InvalidInput("format", language == ShaderLanguage::glsl ? "glsl" : "hlsl",
                        "a medium with three channels (it has " + std::to_string(k.channel_names.size()) + ")");
   const double mm = millimetres_per(context.unit);
   const std::string u(symbol(context.unit));
@@ -144,6 +144,31 @@ std::string to_shader(const SeparableKernel& k, const TableContext& context, Sha
     s << "    " << (glsl ? "vec4(" : "float4(") << float_literal(k.weight[0][i]) << ", " << float_literal(k.weight[1][i]) << ", "
       << float_literal(k.weight[2][i]) << ", " << float_literal(k.offset[i]) << ")" << (i + 1 < N ? "," : "") << "\n";
   s << (glsl ? ");\n" : "};\n");
+  return s.str();
+}
+
+std::string summary(const SeparableKernel& k, const TableContext& context) {
+  const double mm = millimetres_per(context.unit);
+  const std::string u(symbol(context.unit));
+  std::ostringstream s;
+  s << "separable kernel: " << k.options.taps << " taps over +-" << short_number(k.options.range / mm) << ' ' << u
+    << (k.range_from_band ? " (the band holding " + short_number(100 * k.options.band) + " % of the widest channel's light)"
+        : k.options.range == jimenez_range(k.options.taps) ? std::string(" (Jimenez's range)")
+                                                            : std::string())
+    << ", offsets warped quadratically, centre tap first\n";
+  double worst = 1;
+  for (std::size_t c = 0; c < k.channel_names.size(); ++c) {
+    if (k.total_reflectance[c] == 0) {
+      s << "  " << k.channel_names[c] << ": does not scatter (total reflectance 0): identity kernel, centre weight 1\n";
+      continue;
+    }
+    s << "  " << k.channel_names[c] << ": centre weight " << short_number(k.weight[c][0]) << ", the band |x| < range holds "
+      << short_number(100 * k.captured[c]) << " % of the total reflectance " << short_number(k.total_reflectance[c]) << '\n';
+    worst = std::min(worst, k.captured[c]);
+  }
+  if (worst < 0.9)
+    s << "  note: the range holds less than 90 % of a channel's light; a wider --range (e.g. " << short_number(1.5 * k.options.range / mm)
+      << " " << u << ") keeps more of it\n";
   return s.str();
 }
 

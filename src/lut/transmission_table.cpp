@@ -1,5 +1,6 @@
 #include "bssrdf/lut/transmission_table.hpp"
 
+#include <sstream>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -19,6 +20,12 @@ void TransmissionTableOptions::validate() const {
 
 std::string_view to_string(TransmissionSource source) {
   return source == TransmissionSource::multipole ? "multipole" : source == TransmissionSource::monte_carlo ? "monte_carlo" : "adding_doubling";
+}
+
+SlabThicknessRange default_thickness_range(const Medium& medium, const TransmissionTableOptions& options) {
+  const bool every_thickness_valued = options.model == "adding-doubling" || options.reference || options.reference_everywhere;
+  const auto ell = transport_mfp_range(medium);
+  return {(every_thickness_valued ? 0.1 : 2.0) * ell.min, 40 * ell.max};
 }
 
 std::string multipole_invalid_code(const multipole::Model& model, const Reduced<double>& m) {
@@ -169,6 +176,31 @@ LookupTable to_lookup_table(const TransmissionTable& t, const TableContext& cont
       out.add_channel("stderr." + t.channel_names[c], "standard error of T (0 for the multipole)", t.standard_error[c]);
   }
   return out;
+}
+
+std::string summary(const TransmissionTable& t, const TableContext& context) {
+  const double mm = millimetres_per(context.unit);
+  const std::string u(symbol(context.unit));
+  std::ostringstream s;
+  std::size_t mc = 0;
+  for (auto x : t.source) mc += x == TransmissionSource::monte_carlo;
+  s << "transmission table: " << t.size() << " thicknesses from " << short_number(t.thickness.front() / mm) << " to "
+    << short_number(t.thickness.back() / mm) << ' ' << u << " (" << t.size() - mc
+    << (t.options.model == "adding-doubling" ? " adding-doubling, " : " multipole, ") << mc << " Monte Carlo with "
+    << t.options.photons << " photons per channel";
+  if (mc) s << ", " << format_number(std::round(t.monte_carlo_seconds * 100) / 100) << " s";
+  s << "); diffuse T per entered flux, ballistic excluded\n";
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c)
+    s << "  " << t.channel_names[c] << ": T = " << short_number(t.transmittance[c].front()) << " at "
+      << short_number(t.thickness.front() / mm) << ' ' << u << ", " << short_number(t.transmittance[c].back()) << " at "
+      << short_number(t.thickness.back() / mm) << ' ' << u << '\n';
+  if (!t.omitted_thickness.empty()) {
+    s << "  omitted " << t.omitted_thickness.size()
+      << " thicknesses where the multipole is invalid (recorded in bssrdf:omitted; --reference fills them):";
+    for (double d : t.omitted_thickness) s << ' ' << short_number(d / mm);
+    s << ' ' << u << '\n';
+  }
+  return s.str();
 }
 
 }  // namespace bssrdf

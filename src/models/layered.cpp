@@ -7,6 +7,7 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/hankel.hpp"
 #include "bssrdf/models/diffusion_validity.hpp"
+#include "bssrdf/models/image_source.hpp"
 #include "bssrdf/quadrature.hpp"
 
 namespace bssrdf::layered {
@@ -37,8 +38,8 @@ StackSpectra Stack::spectra(double k) const {
   std::size_t i = n;
   if (semi_infinite_) {
     const auto& m = media_.back();
-    const double s = std::sqrt(m.sigma_tr * m.sigma_tr + k * k), z_b = 2 * slabs_.back().A_top * m.D;
-    below = {m.albedo_prime * 0.5 * (std::exp(-m.ell * s) + std::exp(-(m.ell + 2 * z_b) * s)), 0.0};
+    const double s = std::sqrt(m.sigma_tr * m.sigma_tr + k * k), z_b = extrapolation_distance(slabs_.back().A_top, m.D);
+    below = {m.albedo_prime * 0.5 * (std::exp(-m.ell * s) + std::exp(image_depth(m.ell, z_b) * s)), 0.0};
     --i;
   }
   bool first = !semi_infinite_;

@@ -39,7 +39,7 @@ double Model::surface_albedo(const Reduced<double>& m) const {
   std::lock_guard lock(mutex);
   auto it = cache.find(key);
   if (it == cache.end()) {
-    const auto optical = reduce(1 - m.albedo_prime, m.albedo_prime / (1 - m.g), m.g, m.eta);
+    const auto optical = reduced_optical(m.albedo_prime, m.g, m.eta);
     it = cache.emplace(key, make_model("quantized")->total_reflectance(optical)).first;
   }
   return it->second;

@@ -16,8 +16,7 @@ constexpr int kOrders[] = {8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256};
 
 int samples_for_tolerance(double albedo_prime, double g, double eta, double tolerance) {
   // Optical units (sigma_t' = 1); the unreduced coefficients keep g for the single-scattering part.
-  const double sigma_s = albedo_prime / (1 - g);
-  const auto m = reduce(1 - albedo_prime, sigma_s, g, eta);
+  const auto m = reduced_optical(albedo_prime, g, eta);
   const auto& b = improved_boundary(eta);
   const double radii[] = {1e-3, 1e-2, 0.1, 0.3, 1, 3, 10, 30};
   std::vector<double> previous;

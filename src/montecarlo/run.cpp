@@ -1,18 +1,16 @@
 // Runs the tracer over batches on worker threads and folds the batch tallies, in batch order,
 // into per-channel estimates with standard errors.
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <map>
 #include <mutex>
 #include <numbers>
-#include <thread>
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/montecarlo.hpp"
+#include "bssrdf/parallel.hpp"
 #include "tracer.hpp"
 
 namespace bssrdf {
@@ -66,10 +64,7 @@ namespace {
 // spreads as far as the most open layer lets it, and that is often a deep one (a thin, dense
 // epidermis over dermis set the top layer's 10 ell at a radius holding only 85 % of the red).
 double largest_transport_mfp(const LayerStack& stack) {
-  double ell = 0;
-  for (std::size_t c = 0; c < stack.channels(); ++c)
-    for (const Layer& layer : stack.layers)
-      if (!layer.clear(c)) ell = std::max(ell, 1 / (layer.sigma_a[c] + layer.sigma_s[c] * (1 - layer.g[c])));
+  const double ell = transport_mfp_range(stack).max;
   return ell > 0 ? ell : 1.0;
 }
 
@@ -159,57 +154,33 @@ MonteCarloResult run_monte_carlo(const LayerStack& stack, const MonteCarloOption
   const std::uint64_t batches_per_channel = (options.photons + options.batch_size - 1) / options.batch_size;
   const std::uint64_t total_batches = batches_per_channel * channels;
   const std::uint64_t total_photons = options.photons * channels;
-  unsigned threads = options.threads != 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
-  threads = static_cast<unsigned>(std::min<std::uint64_t>(threads, total_batches));
-  result.threads = threads;
+  result.threads = worker_count(total_batches, options.threads);
 
   std::vector<ChannelSums> sums(channels);
-  std::atomic<std::uint64_t> next_batch{0};
   std::mutex fold_mutex;
   std::map<std::uint64_t, mc::BatchTally> pending;  // finished, waiting for earlier batches
   std::uint64_t next_fold = 0, photons_done = 0;
-  std::exception_ptr failure;
-  std::atomic<bool> failed{false};
-
-  const auto worker = [&] {
-    try {
-      while (!failed.load(std::memory_order_relaxed)) {
-        const std::uint64_t index = next_batch.fetch_add(1);
-        if (index >= total_batches) break;
-        const std::uint64_t channel = index / batches_per_channel, batch = index % batches_per_channel;
-        const std::uint64_t count = std::min(options.batch_size, options.photons - batch * options.batch_size);
-        mc::BatchTally tally;
-        tally.reset(binning.bins, settings.transmission_bins, settings.depth_bins);
-        mc::Rng rng(options.seed, channel, batch);
-        mc::trace_batch(geometry[channel], settings, rng, count, tally);
-        std::lock_guard<std::mutex> lock(fold_mutex);
-        pending.emplace(index, std::move(tally));
-        // Fold in batch order only: floating-point sums then never depend on the thread count.
-        while (!pending.empty() && pending.begin()->first == next_fold) {
-          sums[next_fold / batches_per_channel].add(pending.begin()->second);
-          pending.erase(pending.begin());
-          ++next_fold;
-        }
-        photons_done += count;
-        if (options_in.progress) options_in.progress(photons_done, total_photons);
-      }
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(fold_mutex);
-      if (!failure) failure = std::current_exception();
-      failed = true;
-    }
-  };
 
   const auto start = std::chrono::steady_clock::now();
-  if (threads == 1) {
-    worker();
-  } else {
-    std::vector<std::thread> pool;
-    for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
-    for (auto& thread : pool) thread.join();
-  }
+  parallel_for(total_batches, options.threads, [&](std::size_t index) {
+    const std::uint64_t channel = index / batches_per_channel, batch = index % batches_per_channel;
+    const std::uint64_t count = std::min(options.batch_size, options.photons - batch * options.batch_size);
+    mc::BatchTally tally;
+    tally.reset(binning.bins, settings.transmission_bins, settings.depth_bins);
+    mc::Rng rng(options.seed, channel, batch);
+    mc::trace_batch(geometry[channel], settings, rng, count, tally);
+    std::lock_guard<std::mutex> lock(fold_mutex);
+    pending.emplace(index, std::move(tally));
+    // Fold in batch order only: floating-point sums then never depend on the thread count.
+    while (!pending.empty() && pending.begin()->first == next_fold) {
+      sums[next_fold / batches_per_channel].add(pending.begin()->second);
+      pending.erase(pending.begin());
+      ++next_fold;
+    }
+    photons_done += count;
+    if (options_in.progress) options_in.progress(photons_done, total_photons);
+  });
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (failure) std::rethrow_exception(failure);
   result.photons_per_second = result.seconds > 0 ? static_cast<double>(total_photons) / result.seconds : 0;
 
   for (std::size_t c = 0; c < channels; ++c) {

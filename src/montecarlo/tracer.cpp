@@ -11,6 +11,7 @@
 #include <limits>
 #include <string_view>
 
+#include "bssrdf/check.hpp"
 #include "bssrdf/fresnel.hpp"
 #include "fastmath.hpp"
 
@@ -258,6 +259,7 @@ template <bool kAnalog, class V>
   // The free path of lane j (optical depth L.tau[j]) reaches an interface of its layer: move there
   // and reflect, refract or leave. Returns false when the photon has ended.
   const auto cross = [&](int j) -> bool {
+    BSSRDF_DCHECK(L.layer[j] >= 0 && L.layer[j] < layer_count && L.w[j] >= 0);  // a live lane: in a layer, with weight
     const LayerCoefficients& l = layers[L.layer[j]];
     const double uz = L.uz[j];
     const double to_boundary = uz > 0 ? (l.z_bottom - L.z[j]) / uz : uz < 0 ? (l.z_top - L.z[j]) / uz : kInfinity;

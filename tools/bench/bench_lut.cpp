@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "bssrdf/lut/albedo_radius_table.hpp"
-#include "bssrdf/lut/parallel.hpp"
+#include "bssrdf/parallel.hpp"
 #include "bssrdf/lut/radial_table.hpp"
 #include "bssrdf/materials.hpp"
 #include "bssrdf/models/photon_beam_diffusion.hpp"
@@ -33,7 +33,7 @@ std::vector<double> pbrt_style_table(const AlbedoRadiusLayout& layout, double g,
   std::vector<double> profile(rows * cols);
   const auto b = improved_boundary(eta);
   parallel_for(rows, threads, [&](std::size_t i) {
-    const auto m = reduce(1 - layout.albedo[i], layout.albedo[i], g, eta);
+    const auto m = reduced_unit_extinction(layout.albedo[i], g, eta);
     for (std::size_t j = 0; j < cols; ++j)
       profile[i * cols + j] = 2 * std::numbers::pi * layout.radius[j] * bench::pbrt_style_pbd(m, b, layout.radius[j]);
   });
@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
     {
       const auto b = improved_boundary(eta);
       parallel_for(layout.albedo.size(), 0, [&](std::size_t i) {
-        const auto m = reduce(1 - layout.albedo[i], layout.albedo[i], g, eta);
+        const auto m = reduced_unit_extinction(layout.albedo[i], g, eta);
         for (std::size_t j = 0; j < cols; ++j)
           reference[i * cols + j] = layout.radius[j] > 0 ? 2 * std::numbers::pi * layout.radius[j] * photon_beam_diffusion::reflectance(m, b, layout.radius[j], 1024) : 0.0;
       });

@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
   std::printf("\nPhoton beam diffusion: ours vs pbrt's 100 + 100 midpoint samples (same process)\n");
   std::printf("  case                     pbrt ns   pbrt worst err   ours n  ours ns   ours worst err   speed-up\n");
   for (const auto& [alpha, g, eta] : {std::tuple{0.99, 0.0, 1.3}, std::tuple{0.9, 0.0, 1.0}, std::tuple{0.999, 0.9, 1.4}, std::tuple{0.5, 0.0, 1.4}}) {
-    const auto c = reduce(1 - alpha, alpha, g, eta);
+    const auto c = reduced_unit_extinction(alpha, g, eta);
     const auto b = improved_boundary(eta);
     const photon_beam_diffusion::Model model;
     const int n = model.samples(c);

@@ -181,7 +181,7 @@ int main(int argc, char** argv) {
     return s.substr(0, s.find(' ', s.find(' ', s.find(' ') + 1) + 1));
   };
   std::string command;
-  for (int i = 0; i < argc; ++i) command += (i ? " " : "") + std::string(argv[i]);
+  for (int i = 0; i < argc; ++i) command += std::string(i ? " " : "") + argv[i];  // not const char* + string&&: GCC 12 -Wrestrict false positive (bug 105329)
   const MonteCarloOptions defaults;
   std::printf("command: %s\n", command.c_str());
   std::printf("machine: %u hardware threads; load average (1, 5, 15 min) at start: %s\n", cores, load().c_str());

@@ -37,7 +37,7 @@
 #include "bssrdf/layers.hpp"
 #include "bssrdf/lut/albedo_radius_table.hpp"
 #include "bssrdf/lut/interpolation.hpp"
-#include "bssrdf/lut/parallel.hpp"
+#include "bssrdf/parallel.hpp"
 #include "bssrdf/models/photon_beam_diffusion.hpp"
 #include "bssrdf/montecarlo.hpp"
 
@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
     tables[3] = tables[1];
     const auto b = improved_boundary(eta);
     parallel_for(layout.albedo.size(), 0, [&](std::size_t i) {
-      const auto m = reduce(1 - layout.albedo[i], layout.albedo[i], g, eta);
+      const auto m = reduced_unit_extinction(layout.albedo[i], g, eta);
       for (std::size_t j = 0; j < cols; ++j) {
         const double r = layout.radius[j];
         tables[0].profile[i * cols + j] = kTwoPi * r * bench::pbrt_style_pbd(m, b, r);

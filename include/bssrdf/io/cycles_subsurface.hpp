@@ -32,7 +32,7 @@ namespace bssrdf {
 // How the closure radius becomes the medium (the Cycles method, named by what it does).
 enum class CyclesMapping { fixed_radius, radius_remap, burley };
 // "fixed-radius", "radius-remap", "burley"; InvalidInput naming `field` otherwise.
-CyclesMapping parse_cycles_mapping(std::string_view text, std::string_view field = "--blender-method");
+CyclesMapping parse_cycles_mapping(std::string_view text, std::string_view field = "blender_method");
 std::string_view to_string(CyclesMapping mapping);
 // Blender's enum identifier for the method in that major version (3 or 4).
 std::string_view blender_method_identifier(CyclesMapping mapping, int blender_major);

@@ -48,6 +48,8 @@ struct AlbedoRadiusTable {
   double g = 0, eta = 1;
   AlbedoRadiusLayout layout;
   int quadrature_order = 0;
+  double tolerance = 0;  // the quadrature tolerance it was built for
+  double seconds = 0;    // time to build
   std::vector<double> profile;            // [i * radii + j]: 2 pi r_j R(r_j) at albedo_i, 1/mfp
   // Per row: the Catmull-Rom integral of the row (as pbrt; consistent with the CDF). Within 2 % of
   // the model's total up to rho = 0.999; above, pbrt's layout (203 mfp) truncates the profile (-9 %).
@@ -65,6 +67,8 @@ struct AlbedoRadiusTable {
 AlbedoRadiusTable build_albedo_radius_table(const AlbedoRadiusLayout& layout, double g, double eta,
                                             const AlbedoRadiusOptions& options);
 
+inline constexpr double kAdaptiveTableTolerance = 1e-3;  // the default tolerance of the adaptive layout
+
 // The smallest family layout (pbrt's spacings, sizes grown by 25 % steps, each axis on its own)
 // whose Catmull-Rom interpolation stays within `tolerance` of the table's own model, relative to
 // each row's peak of 2 pi r R: each axis is sized so that its midpoint error is below a third of
@@ -79,5 +83,9 @@ AdaptiveAlbedoRadiusLayout adaptive_albedo_radius_layout(double g, double eta, d
 // Channels "profile" (2 pi r R), "cdf", "radius", "albedo", "effective_albedo" (per-row values repeated
 // along the row); width = radii, height = albedos.
 LookupTable to_lookup_table(const AlbedoRadiusTable& table, const TableContext& context, const std::string& layout_name);
+// A few lines for people: the grid, the quadrature, the time and the effective-albedo range.
+std::string summary(const AlbedoRadiusTable& table, const std::string& layout_name);
+// One line on an adaptive layout: the tolerance and the worst midpoint errors found.
+std::string summary(const AdaptiveAlbedoRadiusLayout& layout, double table_tolerance);
 
 }  // namespace bssrdf

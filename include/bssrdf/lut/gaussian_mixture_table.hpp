@@ -45,5 +45,7 @@ GaussianMixtureTable fitted_mixture_table(const Medium& medium, const Model& mod
 // colour channel c, "variance.<c>" and the weights "<c>"; channels with fewer Gaussians are padded
 // with weight 0 (their last variance repeated).
 LookupTable to_lookup_table(const GaussianMixtureTable& table, const TableContext& context);
+// A few lines for people: the method and each channel's variances and conservation error.
+std::string summary(const GaussianMixtureTable& table, const TableContext& context);
 
 }  // namespace bssrdf

@@ -44,6 +44,7 @@ struct PenumbraTable {
   std::vector<double> penumbra_width;        // [j], height, mm
   std::vector<std::vector<double>> value;    // [channel][j * width + i]: D
   std::vector<bool> scatters;                // [channel]: false for sigma_s = 0, whose D is s
+  bool width_from_widest = false;            // width_max was 0: 8 widest_r50
   double widest_r50 = 0;                     // mm
 };
 
@@ -51,5 +52,7 @@ PenumbraTable build_penumbra_table(const Medium& medium, const Model& model, con
 
 // Channels: one per colour channel (D). Attributes record the axes, the ramp convention and width_max.
 LookupTable to_lookup_table(const PenumbraTable& table, const TableContext& context);
+// A few lines for people: the axes and each channel's D at a shadow value for the narrowest and widest penumbra.
+std::string summary(const PenumbraTable& table, const TableContext& context);
 
 }  // namespace bssrdf

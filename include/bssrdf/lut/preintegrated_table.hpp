@@ -56,5 +56,7 @@ PreintegratedTable build_preintegrated_table(const Medium& medium, const std::ve
 
 // Channels: one per colour channel (D). Attributes record the axes, sampling and curvature range.
 LookupTable to_lookup_table(const PreintegratedTable& table, const TableContext& context);
+// A few lines for people: the axes and each channel's D on the flattest and most curved rows.
+std::string summary(const PreintegratedTable& table, const TableContext& context);
 
 }  // namespace bssrdf

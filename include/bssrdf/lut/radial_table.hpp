@@ -67,6 +67,8 @@ RadialTable build_radial_table(const Medium& medium, const Model& model, const R
 // Channels: R(r) under the medium's channel names, "radius" (unit), "ring.<c>" (2 pi r R, 1/unit),
 // "cdf.<c>", "u", "inverse_cdf.<c>" (unit); attributes record the grid, range, tolerance and totals.
 LookupTable to_lookup_table(const RadialTable& table, const TableContext& context);
+// A few lines for people: radii, error against the tolerance, each channel's total and range.
+std::string summary(const RadialTable& table, const TableContext& context);
 
 // The importance-sampling channels every radial table writes, in this order: "ring.<c>" (2 pi r R,
 // 1/unit), "cdf.<c>" (described by cdf_description), "u" and "inverse_cdf.<c>" (unit); lengths

@@ -54,5 +54,7 @@ ReferenceRadialTable build_reference_radial_table(const LayerStack& stack, const
 // Channels: R(r) under the channel names, "radius", "r_inner", "r_outer" (unit), "stderr.<c>",
 // "ring.<c>", "cdf.<c>", "u", "inverse_cdf.<c>"; attributes record photons, seed, bins and totals.
 LookupTable to_lookup_table(const ReferenceRadialTable& table, const TableContext& context);
+// A few lines for people: bins, photons and seed, each channel's total with its standard error.
+std::string summary(const ReferenceRadialTable& table, const TableContext& context);
 
 }  // namespace bssrdf

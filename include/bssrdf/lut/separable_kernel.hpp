@@ -63,6 +63,9 @@ SeparableKernel build_separable_kernel(const Medium& medium, const std::vector<s
 // Channels: the weights under the medium's channel names, "offset" (units of the range); the range
 // in the unit, totals and captured fractions as attributes.
 LookupTable to_lookup_table(const SeparableKernel& kernel, const TableContext& context);
+// A few lines for people: taps and range, each channel's centre weight and captured light, and a note
+// when the range holds less than 90 % of a channel's light.
+std::string summary(const SeparableKernel& kernel, const TableContext& context);
 
 enum class ShaderLanguage { glsl, hlsl };
 // "float4 kernel[N] = ..." (HLSL) / "const vec4 kernel[N] = vec4[N](...)" (GLSL): xyz = RGB weight,

@@ -55,6 +55,20 @@ struct TransmissionTable {
   std::size_t size() const { return thickness.size(); }
 };
 
+// The default thicknesses of a transmission curve: one rule for `bssrdf transmission` and `bssrdf lut
+// --kind transmission`. kThicknessSamples thicknesses, log-spaced from
+//   d_min = 0.1 ell_min when every thickness gets a value (adding-doubling is exact at every thickness;
+//           with options.reference the Monte Carlo reference fills what the multipole cannot), else
+//           2 ell_min, below which the multipole is invalid (Donner & Jensen 2005: the dipole sources
+//           leave the slab), so the default curve holds no omitted thickness;
+//   d_max = 40 ell_max, the thick end, where the transmittance decays as exp(-sigma_tr d),
+// ell = 1 / sigma_t' the transport mean free path, over the channels (transport_mfp_range).
+struct SlabThicknessRange {
+  double d_min = 0, d_max = 0;  // mm
+};
+SlabThicknessRange default_thickness_range(const Medium& medium, const TransmissionTableOptions& options);
+inline constexpr int kThicknessSamples = 32, kMaxThicknessSamples = 4096;
+
 // The first slab-specific "invalid" validity code of the multipole for this channel ("thin_slab",
 // "source_outside_slab", "negative_transmittance", "negative_reflectance"); empty when it holds.
 std::string multipole_invalid_code(const multipole::Model& model, const Reduced<double>& m);
@@ -67,5 +81,7 @@ TransmissionTable build_transmission_table(const Medium& medium, std::vector<dou
 // values also "source" (0 multipole, 1 Monte Carlo) and "stderr.<c>". Attributes record the
 // convention, the sources and every omitted thickness with its reason.
 LookupTable to_lookup_table(const TransmissionTable& table, const TableContext& context);
+// A few lines for people: thicknesses and their sources, each channel's T at both ends, omissions.
+std::string summary(const TransmissionTable& table, const TableContext& context);
 
 }  // namespace bssrdf

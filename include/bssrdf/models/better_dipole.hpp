@@ -1,7 +1,7 @@
 // Better dipole (d'Eon 2012): Grosjean D_G, the improved boundary
 // condition A = (1 + 3C2)/(1 - 2C1) from the exact internal Fresnel moments, exitance from both
 // fluence and flux, source strength alpha'^2 (multiple scattering only; add single scattering
-// separately). z_r = 1/sigma_t', z_v = -z_r - 4 A D_G.
+// separately). z_r = 1/sigma_t', z_v = -(z_r + 4 A D_G) (image_source.hpp).
 //
 //   R(r) = alpha'^2 { C_phi [fluence(z_r) - fluence(z_v)] + C_E [flux(z_r) - flux(z_v)] }
 //   R_total = (alpha'^2/2) e^{-sigma_tr z_r} [ C_E (1 + e^{-4 A sigma_tr D}) + (C_phi/(sigma_tr D)) (1 - e^{-4 A sigma_tr D}) ]
@@ -11,6 +11,7 @@
 
 #include "bssrdf/fresnel.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/models/image_source.hpp"
 #include "bssrdf/models/point_source.hpp"
 
 namespace bssrdf::better_dipole {
@@ -22,7 +23,7 @@ struct Sources {
 
 template <class T>
 Sources<T> sources(const Reduced<T>& m, const ImprovedBoundary<T>& b) {
-  return {m.ell, -m.ell - T(4) * b.A * m.D_G, m.sigma_tr_G, m.D_G, b.C_phi, b.C_E, b.A};
+  return {m.ell, image_depth(m.ell, extrapolation_distance(b.A, m.D_G)), m.sigma_tr_G, m.D_G, b.C_phi, b.C_E, b.A};
 }
 
 template <class T>
@@ -46,7 +47,7 @@ T cumulative_reflectance(const Reduced<T>& m, const ImprovedBoundary<T>& b, T r)
   // fluence_cumulative(z_r) - fluence_cumulative(z_v) written without cancellation as sigma_tr -> 0
   T phi;
   if (!(r < std::numeric_limits<double>::infinity())) {
-    const T x = T(4) * s.A * s.D;  // |z_v| - z_r
+    const T x = T(2) * extrapolation_distance(s.A, s.D);  // |z_v| - z_r
     using std::exp;
     phi = exp(-s.sigma_tr * s.z_r) * x * one_minus_exp_over_x(s.sigma_tr * x) / (T(2) * s.D);
   } else {

@@ -1,8 +1,8 @@
 // Classical dipole (Jensen, Marschner, Levoy, Hanrahan 2001).
-// Real source at depth z_r = ell, negative image at height z_v = ell (1 + 4A/3) above the surface,
+// Real source at depth z_r = ell, negative image at depth z_v = -(ell + 4 A D) (image_source.hpp),
 // classical D = 1/(3 sigma_t'), classical A from the Egan-Hilgeman F_dr. Multiple scattering only.
 //
-//   R(r) = alpha' [ flux(z_r, r) + flux(z_v, r) ]        (flux() of point_source.hpp)
+//   R(r) = alpha' [ flux(z_r, r) - flux(z_v, r) ]        (flux() of point_source.hpp)
 //   R_total = (alpha'/2) (1 + e^{-(4/3) A sqrt(3(1 - alpha'))}) e^{-sqrt(3(1 - alpha'))}
 #pragma once
 
@@ -10,6 +10,7 @@
 
 #include "bssrdf/fresnel.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/models/image_source.hpp"
 #include "bssrdf/models/point_source.hpp"
 
 namespace bssrdf::classical_dipole {
@@ -22,19 +23,19 @@ struct Sources {
 template <class T>
 Sources<T> sources(const Reduced<T>& m) {
   const T A = boundary_A_classical(m.eta);
-  return {m.ell, m.ell * (T(1) + T(4) / T(3) * A), m.sigma_tr};
+  return {m.ell, image_depth(m.ell, extrapolation_distance(A, m.D)), m.sigma_tr};
 }
 
 template <class T>
 T reflectance(const Reduced<T>& m, T r) {
   const auto s = sources(m);
-  return m.albedo_prime * (point_source::flux(s.z_r, s.sigma_tr, r) + point_source::flux(s.z_v, s.sigma_tr, r));
+  return m.albedo_prime * (point_source::flux(s.z_r, s.sigma_tr, r) - point_source::flux(s.z_v, s.sigma_tr, r));
 }
 
 template <class T>
 T cumulative_reflectance(const Reduced<T>& m, T r) {
   const auto s = sources(m);
-  return m.albedo_prime * (point_source::flux_cumulative(s.z_r, s.sigma_tr, r) +
+  return m.albedo_prime * (point_source::flux_cumulative(s.z_r, s.sigma_tr, r) -
                            point_source::flux_cumulative(s.z_v, s.sigma_tr, r));
 }
 

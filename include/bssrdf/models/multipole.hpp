@@ -26,6 +26,7 @@
 
 #include "bssrdf/fresnel.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/models/image_source.hpp"
 #include "bssrdf/models/point_source.hpp"
 
 namespace bssrdf::multipole {
@@ -63,12 +64,12 @@ template <class T>
 struct Geometry {
   T d, ell, z_b0, z_bd, period, sigma_tr;
   T z_r(int i) const { return T(i) * period + ell; }
-  T z_v(int i) const { return T(i) * period - ell - T(2) * z_b0; }
+  T z_v(int i) const { return T(i) * period + image_depth(ell, z_b0); }
 };
 
 template <class T>
 Geometry<T> geometry(const Reduced<T>& m, const Slab<T>& s) {
-  const T z_b0 = T(2) * s.A_top * m.D, z_bd = T(2) * s.A_bottom * m.D;
+  const T z_b0 = extrapolation_distance(s.A_top, m.D), z_bd = extrapolation_distance(s.A_bottom, m.D);
   return {s.thickness, m.ell, z_b0, z_bd, T(2) * (s.thickness + z_b0 + z_bd), m.sigma_tr};
 }
 

@@ -19,6 +19,7 @@
 
 #include "bssrdf/fresnel.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/models/image_source.hpp"
 #include "bssrdf/models/point_source.hpp"
 #include "bssrdf/quadrature.hpp"
 #include "bssrdf/scalar_math.hpp"
@@ -32,7 +33,7 @@ T multiple_scattering(const Reduced<T>& m, const ImprovedBoundary<T>& b, T r, in
   using std::sinh;
   using std::sqrt;
   const T sigma_tp = m.sigma_t_prime, sigma_tr = m.sigma_tr_G, D = m.D_G;
-  const T two_ze = T(4) * b.A * D;  // image offset: z_v = -t - 4 A D
+  const T z_b = extrapolation_distance(b.A, D);  // the image of depth t: z_v = image_depth(t, z_b)
   const T s = r > T(1e-3) * m.ell ? r : T(1e-3) * m.ell;
   const T t_max = T(40) * m.ell;  // e^{-40}: beyond double precision relative to the total
   const T v_max = inverse_sinh(t_max / s);
@@ -45,7 +46,7 @@ T multiple_scattering(const Reduced<T>& m, const ImprovedBoundary<T>& b, T r, in
     const T t = s * sh;
     const T dt_dv = s * sqrt(T(1) + sh * sh);
     const T d_r = sqrt(r2 + t * t);
-    const T z_v = -t - two_ze;
+    const T z_v = image_depth(t, z_b);
     const T d_v = sqrt(r2 + z_v * z_v);
     const T e_r = exp(-sigma_tr * d_r) / d_r, e_v = exp(-sigma_tr * d_v) / d_v;
     const T kappa = T(1) - exp(T(-2) * sigma_tp * (d_r + t));

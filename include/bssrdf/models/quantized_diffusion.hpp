@@ -20,6 +20,7 @@
 
 #include "bssrdf/fresnel.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/models/image_source.hpp"
 #include "bssrdf/models/point_source.hpp"
 #include "bssrdf/scalar_math.hpp"
 
@@ -41,7 +42,7 @@ template <class T>
 Mixture<T> mixture(const Reduced<T>& m, const ImprovedBoundary<T>& b, double ratio) {
   using std::exp;
   using std::sqrt;
-  const T sigma = m.sigma_t_prime, a = m.albedo_prime, D = m.D_G, d_e = T(4) * b.A * D;
+  const T sigma = m.sigma_t_prime, a = m.albedo_prime, D = m.D_G, d_e = T(2) * extrapolation_distance(b.A, D);
   const auto G1 = [](T v, T z) { return exp(-z * z / (T(2) * v)) / sqrt(T(2) * std::numbers::pi * v); };
   // W_phi = (alpha' sigma / 2) e^{-d^2/(2v)} erfcx((d + sigma v)/sqrt(2v)): no overflow.
   const auto W_phi = [&](T v, T d) {

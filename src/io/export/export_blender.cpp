@@ -39,7 +39,7 @@ std::string tuple(const std::vector<double>& values) {
 std::string export_blender(const std::vector<ExportEntry>& entries, LengthUnit unit, const ExportOptions& options) {
   require_rgb(entries, "blender");
   if (options.blender_version != 0 && options.blender_version != 3 && options.blender_version != 4)
-    throw InvalidInput("--blender-version", std::to_string(options.blender_version), "3 or 4 (or auto)");
+    throw InvalidInput("blender_version", std::to_string(options.blender_version), "3 or 4 (or auto)");
   const auto mapping = options.blender_method;
   const std::string u(symbol(unit));
   std::string methods;

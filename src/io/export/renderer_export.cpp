@@ -26,7 +26,7 @@ RendererTarget parse_renderer_target(std::string_view text) {
     if (text == name) return t;
     names += (names.empty() ? "" : ", ") + std::string(name);
   }
-  throw InvalidInput("--to", "'" + std::string(text) + "'", "one of " + names);
+  throw InvalidInput("to", "'" + std::string(text) + "'", "one of " + names);
 }
 
 std::string_view to_string(RendererTarget target) {
