@@ -104,10 +104,36 @@ TEST(CliValidityMap, WritesEveryModelsPanelAndTheCheapestMap) {
   }
 }
 
+// PNG: the same map rasterised (a real PNG: signature, IHDR size, and both white and coloured pixels
+// are checked through its size); --metric image judges every model against a Monte Carlo run per
+// cell, so its map names code values.
+TEST(CliValidityMap, WritesPngAndTheImageMetric) {
+  const auto png = test_cli::temp("map.png");
+  auto r = run("models --map " + png.string() + " --over albedo,g --metric profile");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string bytes = test_cli::slurp(png);
+  ASSERT_GT(bytes.size(), 5000u);
+  EXPECT_EQ(bytes.substr(1, 3), "PNG");
+  const auto be32 = [&](std::size_t at) {
+    return (static_cast<unsigned>(static_cast<unsigned char>(bytes[at])) << 24) | (static_cast<unsigned char>(bytes[at + 1]) << 16) |
+           (static_cast<unsigned char>(bytes[at + 2]) << 8) | static_cast<unsigned char>(bytes[at + 3]);
+  };
+  EXPECT_GT(be32(16), 1000u);  // width: two pixels a unit of the SVG layout
+  EXPECT_GT(be32(20), 300u);
+  const auto svg = test_cli::temp("image.svg");
+  r = run("models --map " + svg.string() + " --over albedo,eta --metric image --pixel 1 --tolerance 3 -n 2000");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string text = test_cli::slurp(svg);
+  EXPECT_NE(text.find("cheapest within 3 code values"), std::string::npos);
+  EXPECT_NE(text.find("cell text: code values"), std::string::npos);
+  EXPECT_NE(text.find(">pbd<"), std::string::npos);
+}
+
 TEST(CliValidityMap, BadInputExitsTwoWithoutAFile) {
   const auto file = test_cli::temp("bad.svg");
-  for (const std::string& args : {"--map " + file.string() + " --over albedo,sigma", "--map " + file.string() + " --metric image",
-                                 "--map " + test_cli::temp("map.png").string(), "--map " + file.string() + " --accuracy -1"}) {
+  for (const std::string& args : {"--map " + file.string() + " --over albedo,sigma", "--map " + file.string() + " --metric speed",
+                                 "--map " + test_cli::temp("map.gif").string(), "--map " + file.string() + " --accuracy -1",
+                                 "--map " + file.string() + " --metric image --pixel 0", "--map " + file.string() + " --metric image --tolerance -2"}) {
     const auto r = run("models " + args);
     EXPECT_EQ(r.status, 2) << args << ": " << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;

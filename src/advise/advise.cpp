@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "bssrdf/error.hpp"
-#include "bssrdf/lut/gaussian_mixture_table.hpp"
+#include "bssrdf/advise/realtime_tables.hpp"
 #include "bssrdf/model.hpp"
 #include "bssrdf/model_choice.hpp"
 #include "bssrdf/model_registry.hpp"
@@ -20,14 +20,24 @@ bool closed_form(const std::string& model) { return model_entry(model).closed_fo
 
 }  // namespace
 
-std::function<double(double)> radial_table(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell, double hi_ell) {
+RadialTableNodes radial_table_nodes(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell, double hi_ell) {
   if (n < 2) throw InvalidInput("radial table radii", std::to_string(n), ">= 2");
-  const double lo = lo_ell * m.ell, hi = hi_ell * m.ell, step = std::log(hi_ell / lo_ell) / static_cast<double>(n - 1);
-  std::vector<double> log_R(n);
+  const double lo = lo_ell * m.ell;
+  // By default as far as the reference's annuli reach (profile_extent: the light left out is invisible).
+  const double hi = hi_ell > 0 ? hi_ell * m.ell : profile_extent(m);
+  RadialTableNodes nodes;
   for (std::size_t j = 0; j < n; ++j) {
-    const double R = model.reflectance(m, lo * std::exp(step * static_cast<double>(j)));
-    log_R[j] = std::log(std::max(R, 1e-300));
+    nodes.radius.push_back(lo * std::pow(hi / lo, static_cast<double>(j) / static_cast<double>(n - 1)));
+    nodes.value.push_back(model.reflectance(m, nodes.radius.back()));
   }
+  return nodes;
+}
+
+std::function<double(double)> radial_table(const RadialTableNodes& nodes) {
+  const std::size_t n = nodes.radius.size();
+  const double lo = nodes.radius.front(), hi = nodes.radius.back(), step = std::log(hi / lo) / static_cast<double>(n - 1);
+  std::vector<double> log_R;
+  for (double R : nodes.value) log_R.push_back(std::log(std::max(R, 1e-300)));
   return [lo, hi, step, log_R](double r) {
     if (r > hi) return 0.0;
     const double u = std::log(std::max(r, lo) / lo) / step;
@@ -35,6 +45,10 @@ std::function<double(double)> radial_table(const Model& model, const Reduced<dou
     const double t = u - static_cast<double>(j);
     return std::exp((1 - t) * log_R[j] + t * log_R[j + 1]);
   };
+}
+
+std::function<double(double)> radial_table(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell, double hi_ell) {
+  return radial_table(radial_table_nodes(model, m, n, lo_ell, hi_ell));
 }
 
 AdviseTarget parse_advise_target(const std::string& text) {
@@ -62,21 +76,23 @@ Advice advise(const Medium& medium, const ReferenceProfile& reference, const Adv
   advice.reference = ref.description;
   advice.reference_seconds = ref.seconds;
   const auto& edges = ref.channels.front().edges;
-  const ImageErrorMeter meter(edges, options.pixel);
   const std::size_t channels = medium.channels();
+  RealtimeJudge judge{ImageErrorMeter(edges, options.pixel), {}, {}};
+  for (const auto& p : ref.channels) {
+    judge.reference.push_back(judge.meter.render(p));
+    judge.albedo.push_back(p.total());
+  }
+  advice.diffuse_reflectance = judge.albedo;
 
-  const auto add = [&](std::string name, const std::vector<AnnularProfile>& profiles, double cost, std::size_t memory, bool realtime) {
-    AdviseCandidate c{std::move(name), meter.error(ref.channels, profiles), cost, memory, realtime, false};
-    advice.reference_noise = std::max(advice.reference_noise, c.image.reference_noise);
-    advice.candidates.push_back(std::move(c));
+  const auto add = [&](std::string name, const ImageError& image, double cost, std::size_t memory, bool realtime,
+                       std::vector<std::pair<std::string, double>> parameters = {}) {
+    advice.reference_noise = std::max(advice.reference_noise, image.reference_noise);
+    advice.candidates.push_back({std::move(name), image, cost, memory, realtime, false, std::move(parameters)});
   };
 
   std::vector<AnnularProfile> lambertian;
-  for (const auto& p : ref.channels) {
-    lambertian.push_back(point_profile(edges, p.total()));
-    advice.diffuse_reflectance.push_back(p.total());
-  }
-  add("lambertian", lambertian, 0, 0, true);
+  for (double albedo : judge.albedo) lambertian.push_back(point_profile(edges, albedo));
+  add("lambertian", judge.error(lambertian), 0, 0, true);
 
   std::string best_model;
   double best_error = INFINITY;
@@ -87,39 +103,32 @@ Advice advise(const Medium& medium, const ReferenceProfile& reference, const Adv
       const auto m = medium.reduced(c);
       profiles.push_back(annuli_of(edges, [&](double r) { return model->reflectance(m, r); }, model->total_reflectance(m)));
     }
-    add(measured.model, profiles, measured.cost_ns, 0, closed_form(measured.model));
+    add(measured.model, judge.error(profiles), measured.cost_ns, 0, closed_form(measured.model));
     if (advice.candidates.back().image.error < best_error) {
       best_error = advice.candidates.back().image.error;
       best_model = measured.model;
     }
   }
+  // The real-time tables of the most accurate model, each sized by the tolerance (realtime_tables.hpp).
   const auto model = make_model(best_model);
-  for (std::size_t n : {8, 16, 32, 64}) {
-    std::vector<AnnularProfile> profiles;
-    for (std::size_t c = 0; c < channels; ++c) {
-      const auto m = medium.reduced(c);
-      const auto table = radial_table(*model, m, n);
-      profiles.push_back(annuli_of(edges, table, 0));  // no light beyond the table
-    }
-    add("radial-table-" + std::to_string(n) + ":" + best_model, profiles, kTableLookupNs, n * channels * 4, true);
-  }
-  for (int count : {1, 2, 4, 8}) {
-    const GaussianMixtureTable fit = fitted_mixture_table(medium, *model, count);
-    std::vector<AnnularProfile> profiles;
-    for (std::size_t c = 0; c < channels; ++c) {
-      const auto& w = fit.weight[c];
-      const auto& v = fit.variance[c];
-      const auto sum = [&](double r) {
-        double R = 0;
-        for (std::size_t k = 0; k < w.size(); ++k) R += w[k] * std::exp(-r * r / (2 * v[k])) / (2 * std::numbers::pi * v[k]);
-        return R;
-      };
-      profiles.push_back(annuli_of(edges, sum, 0));  // a sum of Gaussians has no tail beyond itself
-    }
-    add("gaussians-" + std::to_string(count) + ":" + best_model, profiles, count * kGaussianTermNs,
-        static_cast<std::size_t>(count) * (channels + 1) * 4, true);
-  }
-  add("reference-table", ref.channels, kTableLookupNs, (edges.size() - 1) * channels * 4, true);
+  const std::string of = ":" + best_model;
+  const auto radial = choose_radial_table_size(medium, *model, judge, options.tolerance);
+  add("radial-table-" + std::to_string(radial.count) + of, radial.image, kTableLookupNs, radial.count * channels * 4, true,
+      {{"radii", static_cast<double>(radial.count)}});
+  const auto gaussians = choose_gaussian_count(medium, *model, judge, options.tolerance);
+  add("gaussians-" + std::to_string(gaussians.count) + of, gaussians.image, static_cast<double>(gaussians.count) * kGaussianTermNs,
+      gaussians.count * (channels + 1) * 4, true, {{"count", static_cast<double>(gaussians.count)}});
+  const auto projections = project_channels(medium, *model);
+  const auto separable = choose_separable_kernel(medium, projections, judge, options.tolerance);
+  add("separable-" + std::to_string(separable.options.taps) + of, separable.image, 2 * separable.options.taps * kKernelTapNs,
+      static_cast<std::size_t>(separable.options.taps) * 4 * 4, true,
+      {{"taps", separable.options.taps}, {"range_mm", separable.options.range}, {"band", separable.options.band}});
+  const auto preintegrated = choose_preintegrated_table(medium, projections, judge, options.tolerance);
+  add("preintegrated-" + std::to_string(preintegrated.size) + of, preintegrated.image, kTableLookupNs,
+      preintegrated.size * preintegrated.size * channels * 4, true,
+      {{"size", static_cast<double>(preintegrated.size)}, {"curvature_max_per_mm", preintegrated.curvature_max},
+       {"table_error", preintegrated.table_error}});
+  add("reference-table", judge.error(ref.channels), kTableLookupNs, (edges.size() - 1) * channels * 4, true);
   advice.candidates.back().image.error = 2 * advice.candidates.back().image.reference_noise;
 
   std::stable_sort(advice.candidates.begin(), advice.candidates.end(), [](const auto& a, const auto& b) {
@@ -142,10 +151,14 @@ Advice advise(const Medium& medium, const ReferenceProfile& reference, const Adv
 std::string to_json(const Advice& advice, const std::string& material) {
   using nlohmann::json;
   const auto candidate = [](const AdviseCandidate& c) {
-    return json{{"representation", c.representation}, {"error", c.image.error},     {"cost", c.cost},
+    json out{{"representation", c.representation}, {"error", c.image.error},     {"cost", c.cost},
                 {"cost_unit", "ns"},                  {"memory_bytes", c.memory_bytes}, {"realtime", c.realtime},
                 {"meets_tolerance", c.meets_tolerance}, {"worst_pattern", c.image.pattern}, {"worst_channel", c.image.channel},
                 {"worst_position_mm", c.image.position}};
+    json parameters = json::object();
+    for (const auto& [name, value] : c.parameters) parameters[name] = value;
+    out["parameters"] = parameters;
+    return out;
   };
   json doc;
   doc["material"] = material;

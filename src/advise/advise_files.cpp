@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bssrdf/advise/realtime_tables.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/io/atomic_file.hpp"
 #include "bssrdf/layers.hpp"
 #include "bssrdf/lut/gaussian_mixture_table.hpp"
+#include "bssrdf/lut/preintegrated_table.hpp"
+#include "bssrdf/lut/separable_kernel.hpp"
 #include "bssrdf/lut/radial_table.hpp"
 #include "bssrdf/lut/reference_radial_table.hpp"
 #include "bssrdf/lut/table_context.hpp"
@@ -17,7 +20,8 @@ std::filesystem::path write_advised_file(const std::filesystem::path& dir, const
                                          const std::optional<Material>& material, const Advice& advice,
                                          const MonteCarloReferenceOptions& reference) {
   if (!advice.choice) throw InvalidInput("--write: no candidate meets the tolerance for this target, so there is nothing to write");
-  const std::string representation = advice.candidates[*advice.choice].representation;
+  const AdviseCandidate& chosen = advice.candidates[*advice.choice];
+  const std::string representation = chosen.representation;
   std::error_code error;
   std::filesystem::create_directories(dir, error);
   if (error || !std::filesystem::is_directory(dir)) throw InvalidInput("--write", "'" + dir.string() + "'", "a directory that can be created");
@@ -43,19 +47,31 @@ std::filesystem::path write_advised_file(const std::filesystem::path& dir, const
     table = described_table("radial-log", n, 1, context);
     table.set("bssrdf:interpolation", "linear in (ln r, ln R); R(r_0) below r_0, 0 beyond r_{N-1}");
     for (std::size_t c = 0; c < medium.channels(); ++c) {
-      // The nodes of radial_table(): R of the model at lo e^{j step}, exactly as the advice judged them.
-      const auto m = medium.reduced(c);
-      const double lo = 1e-3 * m.ell, step = std::log(30 / 1e-3) / static_cast<double>(n - 1);  // as radial_table()
-      std::vector<double> radius, values;
-      for (std::size_t j = 0; j < n; ++j) {
-        radius.push_back(lo * std::exp(step * static_cast<double>(j)));
-        values.push_back(model->reflectance(m, radius.back()));
-      }
-      table.add_channel("radius." + medium.channel_names[c], "radius, mm", radius);
-      table.add_channel(medium.channel_names[c], "R(r), 1/mm^2, per unit entered flux", values);
+      // The nodes of radial_table(), exactly as the advice judged them.
+      const auto nodes = radial_table_nodes(*model, medium.reduced(c), n);
+      table.add_channel("radius." + medium.channel_names[c], "radius, mm", nodes.radius);
+      table.add_channel(medium.channel_names[c], "R(r), 1/mm^2, per unit entered flux", nodes.value);
+    }
+  } else if (head.rfind("separable-", 0) == 0 || head.rfind("preintegrated-", 0) == 0) {
+    const auto parameter = [&](const std::string& key) {
+      for (const auto& [k, v] : chosen.parameters)
+        if (k == key) return v;
+      throw InvalidInput("advice parameter", key, "recorded by advise()");
+    };
+    if (head[0] == 's') {
+      SeparableKernelOptions options;
+      options.taps = static_cast<int>(parameter("taps"));
+      options.range = parameter("range_mm");
+      options.band = parameter("band");
+      table = to_lookup_table(build_separable_kernel(medium, *model, options), context);
+    } else {
+      PreintegratedOptions options;
+      options.width = options.height = static_cast<std::size_t>(parameter("size"));
+      options.curvature_max = parameter("curvature_max_per_mm");
+      table = to_lookup_table(build_preintegrated_table(medium, *model, options), context);
     }
   } else if (head.rfind("gaussians-", 0) == 0) {
-    table = to_lookup_table(fitted_mixture_table(medium, *model, std::stoi(head.substr(10))), context);
+    table = to_lookup_table(fitted_mixture_table(medium, *model, std::stoi(head.substr(10)), kGaussianFitSamples), context);
   } else if (representation == "reference-table") {
     ReferenceRadialOptions options;
     options.photons = reference.photons;
@@ -68,8 +84,10 @@ std::filesystem::path write_advised_file(const std::filesystem::path& dir, const
     table = to_lookup_table(build_radial_table(medium, *model, {}), context);
   }
   table.set("bssrdf:advice", representation + " at " + format_number(advice.options.pixel) + " mm per pixel: image error " +
-                                 format_number(advice.candidates[*advice.choice].image.error) + " code values (tolerance " +
-                                 format_number(advice.options.tolerance) + ")");
+                                 format_number(chosen.image.error) + " code values (tolerance " +
+                                 format_number(advice.options.tolerance) + ") against " + advice.reference);
+  table.set("bssrdf:image_error", chosen.image.error);
+  table.set("bssrdf:image_error_pixel_mm", advice.options.pixel);
   write_file_atomically(path, to_json(table));
   return path;
 }

@@ -88,6 +88,7 @@ PatternImage ImageErrorMeter::render(const AnnularProfile& profile) const {
   image.edge_stderr.resize(pixels);
   image.line.resize(pixels);
   image.line_stderr.resize(pixels);
+  image.flat = profile.total();
   // Energies of the annuli before each index, for the lit pixels' trivially lit annuli.
   std::vector<double> lit(profile.energy.size() + 1, 0.0), lit_var(profile.energy.size() + 1, 0.0);
   for (std::size_t i = 0; i < profile.energy.size(); ++i) {
@@ -118,18 +119,73 @@ PatternImage ImageErrorMeter::render(const AnnularProfile& profile) const {
   return image;
 }
 
+PatternImage ImageErrorMeter::render_taps(const std::vector<double>& offset, const std::vector<double>& weight, double albedo) const {
+  if (offset.size() != weight.size()) throw InvalidInput("kernel taps", std::to_string(weight.size()) + " weights", std::to_string(offset.size()) + " (one per offset)");
+  const std::size_t pixels = weight_.size();
+  PatternImage image;
+  image.flat = albedo;
+  image.edge.resize(pixels);
+  image.line.resize(pixels);
+  image.edge_stderr.assign(pixels, 0.0);
+  image.line_stderr.assign(pixels, 0.0);
+  // Irradiance of the edge pattern at x (pixel boundaries on the edge: pixel k >= 0 lit), read
+  // linearly between pixel centres: 0 up to -p/2, a ramp to 1 at +p/2, 1 beyond. With the taps
+  // sorted, a pixel's sum is the weight of the taps past the ramp plus the ramp's taps, from
+  // prefix sums of w and w o (two binary searches a pixel).
+  std::vector<std::size_t> order(offset.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return offset[a] < offset[b]; });
+  std::vector<double> o, W{0.0}, WO{0.0};
+  for (std::size_t i : order) {
+    o.push_back(offset[i]);
+    W.push_back(W.back() + weight[i]);
+    WO.push_back(WO.back() + weight[i] * offset[i]);
+  }
+  const double half = pixel_ / 2;
+  for (std::size_t k = 0; k < pixels; ++k) {
+    const double x = pixel_centre(k);
+    // Beyond the kernel's reach every tap reads the same side.
+    if (o.empty() || x + o.front() >= half || x + o.back() <= -half) {
+      image.edge[k] = o.empty() || x + o.back() <= -half ? 0.0 : albedo * W.back();
+      continue;
+    }
+    // Taps with x + o <= -p/2 read 0; with x + o >= p/2 read 1; between, (x + o) / p + 1/2.
+    const auto lo = static_cast<std::size_t>(std::upper_bound(o.begin(), o.end(), -half - x) - o.begin());
+    const auto hi = static_cast<std::size_t>(std::lower_bound(o.begin(), o.end(), half - x) - o.begin());
+    const double ramp = (x / pixel_ + 0.5) * (W[hi] - W[lo]) + (WO[hi] - WO[lo]) / pixel_;
+    image.edge[k] = albedo * std::clamp(W.back() - W[hi] + ramp, 0.0, W.back());
+  }
+  for (std::size_t k = 0; k < pixels; ++k) image.line[k] = image.edge[k] - (k > 0 ? image.edge[k - 1] : 0.0);
+  return image;
+}
+
 ImageError ImageErrorMeter::error(const std::vector<AnnularProfile>& reference, const std::vector<AnnularProfile>& candidate) const {
+  if (reference.size() != candidate.size())
+    throw InvalidInput("candidate channels", std::to_string(candidate.size()), std::to_string(reference.size()) + " (the reference's)");
+  std::vector<PatternImage> ref, cand;
+  for (const auto& p : reference) ref.push_back(render(p));
+  for (const auto& p : candidate) cand.push_back(render(p));
+  return error(ref, cand);
+}
+
+ImageError ImageErrorMeter::error(const std::vector<PatternImage>& reference, const std::vector<PatternImage>& candidate) const {
   if (reference.size() != candidate.size())
     throw InvalidInput("candidate channels", std::to_string(candidate.size()), std::to_string(reference.size()) + " (the reference's)");
   ImageError result;
   result.error = -1;
   for (std::size_t c = 0; c < reference.size(); ++c) {
-    const PatternImage ref = render(reference[c]), cand = render(candidate[c]);
+    const PatternImage &ref = reference[c], &cand = candidate[c];
     const auto compare = [&](const std::vector<double>& a, const std::vector<double>& a_err, const std::vector<double>& b, const char* name) {
+      // sRGB's slope is largest (12.92) at black, so 255 x 12.92 x a linear difference bounds the
+      // code difference: pixels whose bound cannot raise the maximum skip the two pow()s.
+      constexpr double kMaxCodeSlope = 255 * 12.92;
       for (std::size_t k = 0; k < a.size(); ++k) {
+        const double linear = std::abs(a[k] - b[k]);
+        result.linear_error = std::max(result.linear_error, linear);
+        if (kMaxCodeSlope * a_err[k] > result.reference_noise)
+          result.reference_noise = std::max(result.reference_noise, 255 * srgb_slope(a[k]) * a_err[k]);
+        if (kMaxCodeSlope * linear <= result.error) continue;
         const double d = 255 * std::abs(srgb_encode(a[k]) - srgb_encode(b[k]));
-        result.linear_error = std::max(result.linear_error, std::abs(a[k] - b[k]));
-        result.reference_noise = std::max(result.reference_noise, 255 * srgb_slope(a[k]) * a_err[k]);
         if (d > result.error) {
           result.error = d;
           result.pattern = name;
@@ -140,8 +196,7 @@ ImageError ImageErrorMeter::error(const std::vector<AnnularProfile>& reference, 
     };
     // A flat lit region shows the diffuse reflectance itself (the albedo), however far the image
     // window reaches.
-    const std::vector<double> flat_ref{reference[c].total()}, flat_cand{candidate[c].total()}, flat_err{0.0};
-    compare(flat_ref, flat_err, flat_cand, "flat");
+    compare({ref.flat}, {0.0}, {cand.flat}, "flat");
     compare(ref.edge, ref.edge_stderr, cand.edge, "edge");
     compare(ref.line, ref.line_stderr, cand.line, "line");
   }

@@ -28,9 +28,12 @@ MonteCarloOptions bins_for(const std::vector<double>& edges) {
 
 }  // namespace
 
+double profile_extent(const Reduced<double>& m) { return std::max(30 * m.ell, m.sigma_tr > 0 ? 15 / m.sigma_tr : 0.0); }
+
 std::vector<double> reference_annuli(const Medium& medium, std::size_t bins_per_decade) {
-  const auto ell = transport_mfp_range(medium);
-  const double r_min = 1e-3 * ell.min, r_max = 30 * ell.max;
+  const double r_min = 1e-3 * transport_mfp_range(medium).min;
+  double r_max = 0;
+  for (std::size_t c = 0; c < medium.channels(); ++c) r_max = std::max(r_max, profile_extent(medium.reduced(c)));
   const auto geometric = static_cast<std::size_t>(std::ceil(std::log10(r_max / r_min) * static_cast<double>(bins_per_decade)));
   std::vector<double> edges{0.0};
   for (std::size_t j = 0; j <= geometric; ++j)

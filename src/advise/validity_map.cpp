@@ -4,7 +4,9 @@
 #include <cmath>
 #include <sstream>
 
+#include "../io/canvas.hpp"
 #include "../model_error_table.hpp"
+#include "bssrdf/advise/image_error.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/model_choice.hpp"
 
@@ -13,9 +15,9 @@ namespace {
 
 constexpr double kCell = 22, kPanelGap = 46, kMargin = 70;
 
-// Colour of a relative error on a log scale from 0.3 % (green) to 100 % (red).
-std::string error_colour(double e) {
-  const double t = std::clamp((std::log10(std::max(e, 1e-6)) - std::log10(0.003)) / (0 - std::log10(0.003)), 0.0, 1.0);
+// Colour of an error on a log scale from lo (green) to hi (red).
+std::string error_colour(double e, double lo, double hi) {
+  const double t = std::clamp((std::log10(std::max(e, 1e-12)) - std::log10(lo)) / (std::log10(hi) - std::log10(lo)), 0.0, 1.0);
   const int r = static_cast<int>(std::lround(40 + 215 * t)), g = static_cast<int>(std::lround(200 - 170 * t)), b = 60;
   char buffer[8];
   std::snprintf(buffer, sizeof buffer, "#%02x%02x%02x", r, g, b);
@@ -34,11 +36,15 @@ double axis_position(const std::vector<double>& grid, double v) {
 
 }  // namespace
 
-std::string render_validity_map(const ValidityMapOptions& options, const std::vector<Material>& materials) {
+std::string render_validity_map(const ValidityMapOptions& options, const std::vector<Material>& materials, const ReferenceProfile* reference) {
   if (options.over != "albedo,eta" && options.over != "albedo,g") throw InvalidInput("--over", options.over, "albedo,eta or albedo,g");
-  if (options.metric != "total" && options.metric != "profile")
-    throw InvalidInput("--metric", options.metric, "total or profile (image: not measured over the plane yet)");
+  if (options.metric != "total" && options.metric != "profile" && options.metric != "image")
+    throw InvalidInput("--metric", options.metric, "total, profile or image");
   if (!(options.tolerance > 0) || !std::isfinite(options.tolerance)) throw InvalidInput("--tolerance", format_number(options.tolerance), "> 0");
+  if (!(options.pixel > 0) || !std::isfinite(options.pixel) || options.pixel > 1e4)
+    throw InvalidInput("--pixel", format_number(options.pixel), "> 0 and <= 10000 transport mean free paths");
+  const bool image = options.metric == "image";
+  if (image && !reference) throw InvalidInput("--metric", "image", "total or profile (image needs a reference profile)");
   const bool over_eta = options.over == "albedo,eta";
   const std::vector<double> albedo{0.5, 0.8, 0.9, 0.95, 0.99, 0.999};
   const std::vector<double> second = over_eta ? std::vector<double>{1, 1.3, 1.4, 1.5} : std::vector<double>{0, 0.9, 0.95};
@@ -47,14 +53,40 @@ std::string render_validity_map(const ValidityMapOptions& options, const std::ve
   // error[model][i][j], i: albedo, j: second axis; NaN where no case was measured.
   const std::size_t models = detail::kCandidateModels;
   std::vector<std::vector<std::vector<double>>> error(models, std::vector<std::vector<double>>(albedo.size(), std::vector<double>(second.size(), NAN)));
-  for (const auto& c : detail::kMeasuredCases) {
-    if ((over_eta ? c.g : c.eta) != fixed) continue;
-    const auto i = std::find(albedo.begin(), albedo.end(), c.albedo_prime) - albedo.begin();
-    const auto j = std::find(second.begin(), second.end(), over_eta ? c.eta : c.g) - second.begin();
-    if (i >= static_cast<long>(albedo.size()) || j >= static_cast<long>(second.size())) continue;
-    for (std::size_t m = 0; m < models; ++m)
-      error[m][static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = options.metric == "total" ? c.error[m].total : c.error[m].profile;
+  std::string source;
+  if (image) {
+    // Each cell: sigma_t' = 1/mm, the reference once, every model judged on its annuli.
+    for (std::size_t i = 0; i < albedo.size(); ++i)
+      for (std::size_t j = 0; j < second.size(); ++j) {
+        const double g = over_eta ? 0.0 : second[j], eta = over_eta ? second[j] : 1.3;
+        const Medium medium = Medium::single_channel(1 - albedo[i], albedo[i] / (1 - g), g, eta);
+        const ReferenceProfiles ref = reference->profiles(medium);
+        if (source.empty()) source = ref.description;
+        const ImageErrorMeter meter(ref.channels.front().edges, options.pixel);
+        const std::vector<PatternImage> ref_image{meter.render(ref.channels.front())};
+        const auto m = medium.reduced(0);
+        for (std::size_t k = 0; k < models; ++k) {
+          const auto model = make_model(detail::kCandidateNames[k]);
+          const auto profile = annuli_of(meter.edges(), [&](double r) { return model->reflectance(m, r); }, model->total_reflectance(m));
+          error[k][i][j] = meter.error(ref_image, {meter.render(profile)}).error;
+        }
+      }
+  } else {
+    for (const auto& c : detail::kMeasuredCases) {
+      if ((over_eta ? c.g : c.eta) != fixed) continue;
+      const auto i = std::find(albedo.begin(), albedo.end(), c.albedo_prime) - albedo.begin();
+      const auto j = std::find(second.begin(), second.end(), over_eta ? c.eta : c.g) - second.begin();
+      if (i >= static_cast<long>(albedo.size()) || j >= static_cast<long>(second.size())) continue;
+      for (std::size_t m = 0; m < models; ++m)
+        error[m][static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = options.metric == "total" ? c.error[m].total : c.error[m].profile;
+    }
+    source = "tools/validation/models_vs_montecarlo_extended.tsv, Monte Carlo noise ~1.5 %";
   }
+  // The colour scale and cell text: percent for relative errors, code values for the image.
+  const double lo = image ? 0.1 : 0.003, hi = image ? 100 : 1;
+  const auto cell_value = [&](double e) { return image ? (e < 9.95 ? format_number(std::round(e * 10) / 10) : std::to_string(static_cast<int>(std::lround(e))))
+                                                        : std::to_string(static_cast<int>(std::lround(100 * e))); };
+  const std::string tolerance_text = image ? format_number(options.tolerance) + " code values" : format_number(100 * options.tolerance) + " %";
   // Models cheapest first, as the choice ranks them.
   std::vector<std::pair<double, std::size_t>> order;
   const auto measured = measured_models();
@@ -66,78 +98,69 @@ std::string render_validity_map(const ValidityMapOptions& options, const std::ve
   const double panel_w = kCell * static_cast<double>(albedo.size()), panel_h = kCell * static_cast<double>(second.size());
   const int columns = 4, panels = static_cast<int>(models) + 1, rows = (panels + columns - 1) / columns;
   const double width = kMargin + columns * (panel_w + kPanelGap + 40) + 260, height = 90 + rows * (panel_h + kPanelGap + 40) + 60;
-  std::ostringstream svg;
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
-      << "\" font-family=\"sans-serif\" font-size=\"10\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  svg << "<text x=\"" << kMargin << "\" y=\"22\" font-size=\"15\">Where each model holds: " << options.metric
-      << " error against Monte Carlo over alpha' and " << (over_eta ? "eta (g = 0)" : "g (eta = 1.3)") << "</text>\n";
-  svg << "<text x=\"" << kMargin << "\" y=\"40\">one cell per measured case (tools/validation/models_vs_montecarlo_extended.tsv, "
-         "Monte Carlo noise ~1.5 %); dots: the database's material channels (alpha', "
-      << (over_eta ? "eta" : "g") << "); left of 0.5: off the map</text>\n";
+  auto canvas = make_canvas(options.extension, width, height);
+  const std::string what = image ? "image error (8-bit sRGB code values, shadow edge and one-pixel line, pixel " + format_number(options.pixel) + " transport mfp)"
+                                 : options.metric + " error";
+  canvas->text(kMargin, 22, "Where each model holds: " + what + " against Monte Carlo over alpha' and " + (over_eta ? "eta (g = 0)" : "g (eta = 1.3)"), 15);
+  canvas->text(kMargin, 40, "one cell per " + std::string(image ? "reference run" : "measured case") + " (" + source + "); dots: the database's material channels (alpha', " +
+                                (over_eta ? "eta" : "g") + "); left of 0.5: off the map", 10);
 
   const auto panel = [&](int index, const std::string& title, const auto& cell_colour, const auto& cell_text) {
     const double x0 = kMargin + (index % columns) * (panel_w + kPanelGap + 40), y0 = 70 + (index / columns) * (panel_h + kPanelGap + 40);
-    svg << "<text x=\"" << x0 << "\" y=\"" << y0 - 6 << "\" font-size=\"12\">" << title << "</text>\n";
+    canvas->text(x0, y0 - 6, title, 12);
     for (std::size_t i = 0; i < albedo.size(); ++i)
       for (std::size_t j = 0; j < second.size(); ++j) {
         const double x = x0 + kCell * static_cast<double>(i), y = y0 + panel_h - kCell * static_cast<double>(j + 1);
-        svg << "<rect x=\"" << x << "\" y=\"" << y << "\" width=\"" << kCell << "\" height=\"" << kCell << "\" fill=\""
-            << cell_colour(i, j) << "\" stroke=\"white\"/>";
+        canvas->rect(x, y, kCell, kCell, cell_colour(i, j), true);
         const std::string text = cell_text(i, j);
-        if (!text.empty())
-          svg << "<text x=\"" << x + kCell / 2 << "\" y=\"" << y + kCell / 2 + 3 << "\" text-anchor=\"middle\" font-size=\"8\">" << text
-              << "</text>";
-        svg << "\n";
+        if (!text.empty()) canvas->text(x + kCell / 2, y + kCell / 2 + 3, text, 8, Anchor::middle);
       }
     for (std::size_t i = 0; i < albedo.size(); ++i)
-      svg << "<text x=\"" << x0 + kCell * (static_cast<double>(i) + 0.5) << "\" y=\"" << y0 + panel_h + 11
-          << "\" text-anchor=\"middle\" font-size=\"8\">" << format_number(albedo[i]) << "</text>\n";
+      canvas->text(x0 + kCell * (static_cast<double>(i) + 0.5), y0 + panel_h + 11, format_number(albedo[i]), 8, Anchor::middle);
     for (std::size_t j = 0; j < second.size(); ++j)
-      svg << "<text x=\"" << x0 - 3 << "\" y=\"" << y0 + panel_h - kCell * (static_cast<double>(j) + 0.5) + 3
-          << "\" text-anchor=\"end\" font-size=\"8\">" << format_number(second[j]) << "</text>\n";
-    svg << "<text x=\"" << x0 + panel_w / 2 << "\" y=\"" << y0 + panel_h + 24 << "\" text-anchor=\"middle\">alpha' (reduced albedo)</text>\n";
-    svg << "<text x=\"" << x0 - 26 << "\" y=\"" << y0 + panel_h / 2 << "\" text-anchor=\"middle\" transform=\"rotate(-90 " << x0 - 26
-        << " " << y0 + panel_h / 2 << ")\">" << (over_eta ? "eta" : "g") << "</text>\n";
+      canvas->text(x0 - 3, y0 + panel_h - kCell * (static_cast<double>(j) + 0.5) + 3, format_number(second[j]), 8, Anchor::end);
+    canvas->text(x0 + panel_w / 2, y0 + panel_h + 24, "alpha' (reduced albedo)", 10, Anchor::middle);
+    canvas->text(x0 - 3, y0 + 2, over_eta ? "eta" : "g", 9, Anchor::end);  // the second axis, above its ticks
     for (const auto& material : materials)
       for (std::size_t c = 0; c < material.medium.channels(); ++c) {
         const auto m = material.medium.reduced(c);
         const double v = over_eta ? m.eta : m.g;
-        svg << "<circle cx=\"" << x0 + kCell * axis_position(albedo, m.albedo_prime) << "\" cy=\""
-            << y0 + panel_h - kCell * axis_position(second, v) << "\" r=\"1.6\" fill=\"black\" fill-opacity=\"0.6\"/>\n";
+        canvas->disc(x0 + kCell * axis_position(albedo, m.albedo_prime), y0 + panel_h - kCell * axis_position(second, v), 1.6, "#000000", 0.6);
       }
   };
   int index = 0;
   for (const auto& entry : order) {
     const auto m = entry.second;  // a plain variable: C++20 lambdas cannot capture a structured binding in clang 14
-    panel(index++, std::string(detail::kCandidateNames[m]), [&](std::size_t i, std::size_t j) { return std::isnan(error[m][i][j]) ? std::string("#dddddd") : error_colour(error[m][i][j]); },
-          [&](std::size_t i, std::size_t j) {
-            return std::isnan(error[m][i][j]) ? std::string() : std::to_string(static_cast<int>(std::lround(100 * error[m][i][j])));
-          });
+    panel(index++, std::string(detail::kCandidateNames[m]),
+          [&](std::size_t i, std::size_t j) { return std::isnan(error[m][i][j]) ? std::string("#dddddd") : error_colour(error[m][i][j], lo, hi); },
+          [&](std::size_t i, std::size_t j) { return std::isnan(error[m][i][j]) ? std::string() : cell_value(error[m][i][j]); });
   }
-  // The cheapest model within the tolerance at each measured point.
+  // The cheapest model within the tolerance at each point.
   const auto cheapest = [&](std::size_t i, std::size_t j) -> int {
     for (std::size_t k = 0; k < order.size(); ++k)
       if (error[order[k].second][i][j] <= options.tolerance) return static_cast<int>(k);
     return -1;
   };
-  panel(index, "cheapest within " + format_number(100 * options.tolerance) + " %",
+  panel(index, "cheapest within " + tolerance_text,
         [&](std::size_t i, std::size_t j) { const int k = cheapest(i, j); return k < 0 ? std::string("#ffffff") : std::string(kCategorical[k]); },
         [&](std::size_t i, std::size_t j) { return cheapest(i, j) < 0 ? std::string("none") : std::string(); });
   // Legends: the error scale and the models' colours.
   const double lx = width - 240;
-  svg << "<text x=\"" << lx << "\" y=\"70\" font-size=\"12\">error (cell text: %)</text>\n";
-  for (double e : {0.003, 0.01, 0.03, 0.1, 0.3, 1.0}) {
-    const double y = 78 + 18 * std::log10(e / 0.003) / std::log10(3.333) * 1.0;
-    svg << "<rect x=\"" << lx << "\" y=\"" << y << "\" width=\"14\" height=\"14\" fill=\"" << error_colour(e) << "\"/><text x=\"" << lx + 20
-        << "\" y=\"" << y + 11 << "\">" << format_number(100 * e) << " %</text>\n";
+  canvas->text(lx, 70, image ? "error (cell text: code values)" : "error (cell text: %)", 12);
+  for (int step = 0; step <= 6; ++step) {
+    const double e = lo * std::pow(hi / lo, step / 6.0), y = 78 + 18 * step;
+    canvas->rect(lx, y, 14, 14, error_colour(e, lo, hi));
+    canvas->text(lx + 20, y + 11, image ? format_number(std::round(e * 100) / 100) : format_number(std::round(1000 * e) / 10) + " %", 10);
   }
-  svg << "<text x=\"" << lx << "\" y=\"210\" font-size=\"12\">cheapest within " << format_number(100 * options.tolerance) << " %</text>\n";
-  for (std::size_t k = 0; k < order.size(); ++k)
-    svg << "<rect x=\"" << lx << "\" y=\"" << 218 + 18 * static_cast<double>(k) << "\" width=\"14\" height=\"14\" fill=\"" << kCategorical[k]
-        << "\"/><text x=\"" << lx + 20 << "\" y=\"" << 229 + 18 * static_cast<double>(k) << "\">" << detail::kCandidateNames[order[k].second]
-        << " (" << format_number(order[k].first) << " ns)</text>\n";
-  svg << "</svg>\n";
-  return svg.str();
+  canvas->text(lx, 226, "cheapest within " + tolerance_text, 12);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    canvas->rect(lx, 234 + 18 * static_cast<double>(k), 14, 14, kCategorical[k]);
+    canvas->text(lx + 20, 245 + 18 * static_cast<double>(k),
+                 std::string(detail::kCandidateNames[order[k].second]) + " (" + format_number(order[k].first) + " ns)", 10);
+  }
+  canvas->rect(lx, 234 + 18 * static_cast<double>(order.size()), 14, 14, "#dddddd");
+  canvas->text(lx + 20, 245 + 18 * static_cast<double>(order.size()), "not measured; white: none within", 10);
+  return canvas->encode();
 }
 
 }  // namespace bssrdf

@@ -103,15 +103,24 @@ Action register_models(CLI::App& app) {
   sub->add_option("--chart", *chart, "Write an SVG chart of cost against measured error (over all measured cases, or for the medium)");
   auto map = std::make_shared<ValidityMapOptions>();
   auto map_file = std::make_shared<std::string>();
-  sub->add_option("--map", *map_file, "Write SVG validity maps: each model's measured error over a parameter plane and the cheapest within --accuracy, materials marked");
+  sub->add_option("--map", *map_file, "Write validity maps (FILE.svg or FILE.png): each model's error over a parameter plane and the cheapest within the tolerance, materials marked");
   sub->add_option("--over", map->over, "--map: the plane, albedo,eta (g = 0) or albedo,g (eta = 1.3) [albedo,eta]");
-  sub->add_option("--metric", map->metric, "--map: total or profile (relative errors against Monte Carlo) [profile]");
-  return [json, medium, accuracy, chart, map, map_file] {
+  sub->add_option("--metric", map->metric,
+                  "--map: total or profile (measured relative errors against Monte Carlo; cheapest within --accuracy), or image "
+                  "(8-bit sRGB code values against a Monte Carlo run per cell; cheapest within --tolerance) [profile]");
+  auto tolerance = std::make_shared<std::string>("1");
+  sub->add_option("--tolerance", *tolerance, "--map --metric image: largest acceptable image error, code values [1]");
+  sub->add_option("--pixel", map->pixel, "--map --metric image: pixel size in transport mean free paths [1]");
+  auto photons = std::make_shared<std::uint64_t>(20'000);
+  add_count_option(*sub, "--photons,-n", *photons, 1000, kMaxPhotons, "--map --metric image: Monte Carlo photons per cell [20000]");
+  return [json, medium, accuracy, chart, map, map_file, tolerance, photons] {
     if (!map_file->empty()) {  // validity maps (advise/validity_map.hpp)
-      if (std::filesystem::path(*map_file).extension() != ".svg") throw InvalidInput("--map", "'" + *map_file + "'", "a file ending in .svg");
-      map->tolerance = parse_accuracy(*accuracy);
+      map->extension = std::filesystem::path(*map_file).extension().string();
+      if (map->extension != ".svg" && map->extension != ".png") throw InvalidInput("--map", "'" + *map_file + "'", "a file ending in .svg or .png");
+      map->tolerance = map->metric == "image" ? parse_number(*tolerance, "--tolerance") : parse_accuracy(*accuracy);
       const auto database = MaterialDatabase::load_with_user(medium->db);
-      write_file_atomically(*map_file, render_validity_map(*map, database.all()));
+      const MonteCarloReference reference({*photons, 1, 0});
+      write_file_atomically(*map_file, render_validity_map(*map, database.all(), &reference));
       std::cout << "map: " << *map_file << '\n';
       return;
     }

@@ -132,7 +132,12 @@ Action register_lut(CLI::App& app) {
   sub->add_option("--accuracy", o->accuracy, "With --model auto: relative error allowed in the total and in R(r) (L2) [0.1]");
   sub->add_option("--tolerance", o->tolerance,
                   "radial: relative interpolation error bound" + default_of(RadialTableOptions{}.tolerance) +
-                      "; albedo-radius: beam-integral quadrature tolerance" + default_of(AlbedoRadiusOptions{}.tolerance));
+                      "; albedo-radius: beam-integral quadrature tolerance" + default_of(AlbedoRadiusOptions{}.tolerance) +
+                      "; with --pixel (radial, separable, preintegrated, gaussians): the largest image error, 8-bit sRGB code values, "
+                  "that sizes the table (--taps/--range, --size, --count override)");
+  sub->add_option("--pixel", o->pixel,
+                  "radial, separable, preintegrated, gaussians: pixel size in --unit; the table records how wrong it looks there "
+                  "(bssrdf:image_error, code values against the model it tabulates)");
   sub->add_option("--energy", o->energy, "Fraction of each channel's total inside the checked radius range" + default_of(RadialTableOptions{}.energy));
   sub->add_option("--interpolation", o->interpolation,
                   "How the consumer interpolates: catmull-rom or linear [" + std::string(to_string(RadialTableOptions{}.interpolation)) + "]");
@@ -171,8 +176,12 @@ Action register_lut(CLI::App& app) {
   sub->add_option("--curvature-max", o->curvature_max, "preintegrated: largest curvature 1/r, in 1/--unit [1/r_50 of the widest channel]");
   sub->add_option("--width-max", o->width_max, "penumbra: widest penumbra, in --unit [8 r_50 of the widest channel]");
 
-  return [o, model_option, photons_option] {
+  return [o, model_option, photons_option, sub] {
     o->model_given = model_option->count() > 0;
+    o->taps_given = sub->count("--taps") > 0;
+    o->range_given = sub->count("--range") > 0;
+    o->size_given = sub->count("--size") > 0;
+    o->count_given = sub->count("--count") > 0;
     o->photons_given = photons_option->count() > 0;
     if (!o->layers.empty() && (o->kind != "radial" || !o->reference))
       throw InvalidInput("--layers: only with --kind radial --reference (Monte Carlo)");

@@ -1,13 +1,13 @@
 // The table kinds of `bssrdf lut`: options in, the library's table and summary out.
 #include "lut_kinds.hpp"
 
-#include "bssrdf/model_registry.hpp"
-
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <optional>
 
+#include "bssrdf/advise/realtime_tables.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/io/layers_json.hpp"
 #include "bssrdf/lut/albedo_radius_table.hpp"
@@ -61,6 +61,48 @@ double positive_length_mm(const std::string& text, const std::string& field, Len
   return v * millimetres_per(unit);
 }
 
+// --pixel [--tolerance]: the image-space judge of the tabulated model (advise/realtime_tables.hpp),
+// the tolerance in code values (nullopt: none given), and what a table records about its error.
+struct PixelJudge {
+  RealtimeJudge judge;
+  double pixel = 0;  // mm
+  std::optional<double> tolerance;
+};
+
+std::optional<PixelJudge> pixel_judge(const LutOptions& o, const MediumOptions::Resolved& resolved, const Model& model) {
+  if (o.pixel.empty()) {
+    if (!o.tolerance.empty() && (o.kind == "separable" || o.kind == "preintegrated" || o.kind == "gaussians"))
+      throw InvalidInput("--tolerance", o.tolerance, "a value only with --pixel for --kind " + o.kind + " (an image error, 8-bit sRGB code values)");
+    return std::nullopt;
+  }
+  const double pixel = parse_length(o.pixel, "--pixel") * millimetres_per(resolved.unit);
+  if (!(pixel > 0) || !std::isfinite(pixel)) throw InvalidInput("--pixel", o.pixel, "a pixel size > 0 in --unit");
+  std::optional<double> tolerance;
+  if (!o.tolerance.empty()) {
+    tolerance = parse_number(o.tolerance, "--tolerance");
+    if (!(*tolerance > 0) || !std::isfinite(*tolerance)) throw InvalidInput("--tolerance", o.tolerance, "> 0 (8-bit sRGB code values, with --pixel)");
+  }
+  return PixelJudge{judge_against(resolved.medium, ModelReference(make_model(model.name())), pixel), pixel, tolerance};
+}
+
+// Records the table's image error (metadata and a summary line).
+void record_image_error(Built& b, const PixelJudge& j, const ImageError& e, const Model& model, const std::string& sized) {
+  b.table.set("bssrdf:image_error", e.error);
+  b.table.set("bssrdf:image_error_pixel_mm", j.pixel);
+  b.table.set("bssrdf:image_error_definition",
+              "largest 8-bit sRGB code-value difference between this table and the model " + model.name() +
+                  " it tabulates at a shadow edge, a one-pixel light line and a flat lit region, pixels of " + format_number(j.pixel) +
+                  " mm (bssrdf advise; the model's own error against the truth is not included)");
+  if (!sized.empty()) b.table.set("bssrdf:sized_by", sized);
+  b.summary += "  image error at " + format_number(j.pixel) + " mm pixels: " + format_number(std::round(e.error * 1000) / 1000) +
+               " code values against " + model.name() + " (worst at the " + e.pattern + ")" + (sized.empty() ? "" : "; " + sized) + "\n";
+}
+
+std::string sized_note(const std::optional<double>& tolerance, bool meets, const std::string& what) {
+  return what + (meets ? " chosen for" : " (the most accurate tried: none meets") + " --tolerance " + format_number(*tolerance) +
+         " code values" + (meets ? "" : ")");
+}
+
 // The kinds that tabulate a profile model: the medium, --model (auto resolved here, saying so in the
 // summary) and the context every such table records.
 template <class Tabulate>
@@ -104,12 +146,23 @@ Built build_radial(const LutOptions& o) {
   if (o.reference) return build_reference_radial(o);
   return with_model(o, [&](const MediumOptions::Resolved& resolved, const Model& model, const TableContext& context) {
     RadialTableOptions options;
-    if (!o.tolerance.empty()) options.tolerance = positive_fraction(o.tolerance, "--tolerance");
+    // With --pixel, --tolerance is an image error (code values) and sizes the table through the
+    // relative interpolation tolerance; without, it is that relative tolerance.
+    const auto judge = pixel_judge(o, resolved, model);
+    if (!o.tolerance.empty() && !judge) options.tolerance = positive_fraction(o.tolerance, "--tolerance");
     if (!o.energy.empty()) options.energy = positive_fraction(o.energy, "--energy");
     if (!o.interpolation.empty()) options.interpolation = parse_interpolation(o.interpolation, "--interpolation");
     options.threads = o.threads;
+    std::string sized;
+    if (judge && judge->tolerance) {
+      const auto choice = choose_radial_tolerance(resolved.medium, model, judge->judge, *judge->tolerance, options);
+      options.tolerance = choice.relative_tolerance;
+      sized = sized_note(judge->tolerance, choice.meets_tolerance, "relative interpolation tolerance " + format_number(choice.relative_tolerance));
+    }
     const auto t = build_radial_table(resolved.medium, model, options);
-    return Built{to_lookup_table(t, context), summary(t, context), {}};
+    Built b{to_lookup_table(t, context), summary(t, context), {}};
+    if (judge) record_image_error(b, *judge, image_error_of(judge->judge, t), model, sized);
+    return b;
   });
 }
 
@@ -200,8 +253,19 @@ Built build_preintegrated(const LutOptions& o) {
       options.curvature_max = c / millimetres_per(resolved.unit);
     }
     options.threads = o.threads;
-    const auto t = build_preintegrated_table(resolved.medium, model, options);
-    return Built{to_lookup_table(t, context), summary(t, context), {}};
+    const auto judge = pixel_judge(o, resolved, model);
+    const auto projections = project_channels(resolved.medium, model);
+    std::string sized;
+    if (judge && judge->tolerance && !o.size_given) {  // --size overrides
+      const auto choice = choose_preintegrated_table(resolved.medium, projections, judge->judge, *judge->tolerance, false);
+      options.width = options.height = choice.size;
+      if (o.curvature_max.empty()) options.curvature_max = choice.curvature_max;
+      sized = sized_note(judge->tolerance, choice.meets_tolerance, "size " + std::to_string(choice.size) + "x" + std::to_string(choice.size));
+    }
+    const auto t = build_preintegrated_table(resolved.medium, projections, options);
+    Built b{to_lookup_table(t, context), summary(t, context), {}};
+    if (judge) record_image_error(b, *judge, image_error_of(judge->judge, t, resolved.medium, projections), model, sized);
+    return b;
   });
 }
 
@@ -228,8 +292,18 @@ Built build_separable(const LutOptions& o) {
     if (!o.band.empty()) options.band = positive_fraction(o.band, "--band");
     if (options.taps < 3 || options.taps % 2 == 0 || options.taps > 255)
       throw InvalidInput("--taps", std::to_string(options.taps), "an odd number from 3 to 255 (Jimenez: 11, 17, 25)");
-    const auto k = build_separable_kernel(resolved.medium, model, options);
+    const auto judge = pixel_judge(o, resolved, model);
+    const auto projections = project_channels(resolved.medium, model);
+    std::string sized;
+    if (judge && judge->tolerance && !o.taps_given && !o.range_given) {  // --taps or --range override
+      const auto choice = choose_separable_kernel(resolved.medium, projections, judge->judge, *judge->tolerance);
+      options = choice.options;
+      sized = sized_note(judge->tolerance, choice.meets_tolerance, std::to_string(options.taps) + " taps and the range holding " +
+                                                                       short_number(100 * options.band) + " % of the light");
+    }
+    const auto k = build_separable_kernel(resolved.medium, projections, options);
     Built b{to_lookup_table(k, context), summary(k, context), {}};
+    if (judge) record_image_error(b, *judge, image_error_of(judge->judge, k), model, sized);
     for (const auto language : {ShaderLanguage::glsl, ShaderLanguage::hlsl}) {
       const std::string name = language == ShaderLanguage::glsl ? "glsl" : "hlsl";
       try {
@@ -245,14 +319,22 @@ Built build_separable(const LutOptions& o) {
 Built build_gaussians(const LutOptions& o) {
   return with_model(o, [&](const MediumOptions::Resolved& resolved, const Model& model, const TableContext& context) {
     GaussianMixtureTable t;
-    if (o.count == 0 && model_entry(model.name()).own_gaussians) {
+    const auto judge = pixel_judge(o, resolved, model);
+    std::string sized;
+    if (judge && judge->tolerance && !o.count_given) {  // --count overrides
+      const auto choice = choose_gaussian_count(resolved.medium, model, judge->judge, *judge->tolerance);
+      t = fitted_mixture_table(resolved.medium, model, static_cast<int>(choice.count), kGaussianFitSamples);  // as judged
+      sized = sized_note(judge->tolerance, choice.meets_tolerance, std::to_string(choice.count) + " Gaussians");
+    } else if (o.count == 0 && model_entry(model.name()).own_gaussians) {
       t = own_mixture_table(resolved.medium, model);
     } else {
       const int count = o.count == 0 ? 6 : o.count;
       if (count < 1 || count > 32) throw InvalidInput("--count", std::to_string(count), "1 to 32");
       t = fitted_mixture_table(resolved.medium, model, count);
     }
-    return Built{to_lookup_table(t, context), summary(t, context), {}};
+    Built b{to_lookup_table(t, context), summary(t, context), {}};
+    if (judge) record_image_error(b, *judge, image_error_of(judge->judge, t), model, sized);
+    return b;
   });
 }
 

@@ -38,6 +38,9 @@ struct LutOptions {
   // gaussians
   int count = 0;  // 0: quantized diffusion's own mixture with --model quantized, else 6
   std::string preview;  // PNG file
+  // --pixel: how wrong the table looks at that pixel size (with --tolerance: sized by it)
+  std::string pixel;
+  bool taps_given = false, range_given = false, size_given = false, count_given = false;
 };
 
 // A table and the lines for people about it.

@@ -26,12 +26,17 @@ void PreintegratedOptions::validate() const {
 PreintegratedTable build_preintegrated_table(const Medium& medium, const Model& model, const PreintegratedOptions& options) {
   medium.validate();
   options.validate();
+  return build_preintegrated_table(medium, project_channels(medium, model), options);
+}
+
+PreintegratedTable build_preintegrated_table(const Medium& medium, const std::vector<std::optional<ProjectedProfile>>& profiles,
+                                             const PreintegratedOptions& options) {
+  options.validate();
   PreintegratedTable t;
   t.options = options;
   t.channel_names = medium.channel_names;
   const std::size_t channels = medium.channels(), W = options.width, H = options.height;
   // A channel that does not scatter (sigma_s = 0) keeps the limit of a vanishing profile: D = max(0, N.L).
-  const auto profiles = project_channels(medium, model);
   double r_min = INFINITY;
   for (const auto& p : profiles) {
     t.scatters.push_back(p.has_value());

@@ -21,11 +21,16 @@ double jimenez_range(int taps) { return taps > 20 ? 3.0 : 2.0; }
 SeparableKernel build_separable_kernel(const Medium& medium, const Model& model, const SeparableKernelOptions& options) {
   medium.validate();
   options.validate();
+  return build_separable_kernel(medium, project_channels(medium, model), options);
+}
+
+SeparableKernel build_separable_kernel(const Medium& medium, const std::vector<std::optional<ProjectedProfile>>& profiles,
+                                       const SeparableKernelOptions& options) {
+  options.validate();
   SeparableKernel k;
   k.options = options;
   k.range_from_band = options.range == 0;
   k.channel_names = medium.channel_names;
-  const auto profiles = project_channels(medium, model);
   for (const auto& p : profiles)
     if (options.range == 0 && p) k.options.range = std::max(k.options.range, p->line_width_for_fraction(options.band));
   const int N = options.taps;

@@ -1,7 +1,8 @@
 // Costs behind `bssrdf advise` (advise/advise.hpp), medians, with ratios against the dipole's
 // R(r) measured in the same run (bench_models' baseline):
 //  - one lookup of a 16-radius table (radial_table: a log, a floor, a lerp and an exp), one sum of
-//    K Gaussians (K = 1, 2, 4, 8): the per-evaluation costs the candidates assume;
+//    K Gaussians (K = 1, 2, 4, 8), one separable-kernel tap: the per-evaluation costs the candidates
+//    assume;
 //  - advise() for Skin1 at 0.01 to 10 mm with the Monte Carlo reference (200 000 photons) and with
 //    a model as the reference (PBD: what plugging in an exact model costs), and the whole database
 //    with the model reference.
@@ -62,6 +63,24 @@ int main(int argc, char** argv) {
         },
         radii, repetitions);
     std::printf("  %d Gaussian%-12s %8.2f ns  %.2f   (assumed %g)\n", k, k > 1 ? "s" : "", ns, ns / base, k * kGaussianTermNs);
+  }
+  {
+    // One separable-kernel tap: an RGB irradiance row read between two texels (a bilinear fetch
+    // along the pass) and a multiply-add per channel; the "radius" argument is the sample position.
+    std::vector<float> row(3 * 4096);
+    for (std::size_t i = 0; i < row.size(); ++i) row[i] = static_cast<float>(i % 97) / 97.0f;
+    const float weight[3] = {0.3f, 0.2f, 0.1f};
+    const double ns = median_ns_per_call(
+        [&](double r) {
+          const double x = r * 100;
+          const auto i = static_cast<std::size_t>(x);
+          const float t = static_cast<float>(x - static_cast<double>(i));
+          float acc = 0;
+          for (int c = 0; c < 3; ++c) acc += weight[c] * ((1 - t) * row[3 * i + c] + t * row[3 * i + 3 + c]);
+          return static_cast<double>(acc);
+        },
+        radii, repetitions);
+    std::printf("  %-22s %8.2f ns  %.2f   (assumed kKernelTapNs = %g)\n", "separable kernel tap", ns, ns / base, kKernelTapNs);
   }
 
   const auto database = MaterialDatabase::load_with_user("");

@@ -9,6 +9,11 @@ from `bssrdf profile`), against an independent, 5x larger Monte Carlo reference 
 viewer sees"): shadow edge and one-pixel line, box-filtered, 8-bit sRGB code values, largest over
 pixels, channels and a flat lit region.
 
+Also the separable-kernel candidate of each advice (chosen or not): the kernel `bssrdf lut --kind
+separable` writes with the advised taps and range, rendered here as a screen-space pass applies it
+(each pixel: the taps at its centre plus their offsets, reading the irradiance linearly between
+pixel centres), times the kernel's recorded total reflectance.
+
   /usr/bin/python3 tools/validation/advise_check.py build/bssrdf Skin1,Ketchup 0.01,0.1,1,10 [TOLERANCE]
 """
 import csv, io, json, math, subprocess, sys
@@ -71,6 +76,27 @@ def code_error(edges, ref, cand, pixel):
     return worst
 
 
+def kernel_error(edges, ref, kernel, pixel):
+    """The separable kernel's images (edge, line, flat) against the reference's, code values."""
+    table = json.load(open(kernel))
+    ch = {c["name"]: np.array(c["values"]) for c in table["channels"]}
+    attributes = table["attributes"]
+    offset = ch["offset"] * float(attributes["bssrdf:range"])
+    worst = 0.0
+    for c in ref:
+        a_edge, a_line = edge_image(edges, ref[c], pixel)
+        K = len(a_edge) // 2
+        x = (np.arange(-K, K) + 0.5) * pixel                     # pixel centres
+        albedo = float(attributes["bssrdf:total_reflectance." + c])
+        reads = np.clip((x[:, None] + offset[None, :]) / pixel + 0.5, 0, 1)  # bilinear between centres
+        edge = albedo * reads @ ch[c]
+        line = edge - np.concatenate([[0.0], edge[:-1]])
+        worst = max(worst, 255 * abs(srgb(ref[c].sum()) - srgb(albedo)))
+        for u, v in ((a_edge, edge), (a_line, line)):
+            worst = max(worst, float(np.max(255 * np.abs(srgb(u) - srgb(v)))))
+    return worst
+
+
 def ring_energy(edges, R):
     """int 2 pi r R(r) dr over each annulus: 16-point midpoint rule in ln r (first annulus from 1e-6 r_1)."""
     out = []
@@ -120,7 +146,7 @@ def model_table(cli, material, model, channels, edges):
 def main():
     cli, materials, pixels = sys.argv[1], sys.argv[2].split(","), [float(p) for p in sys.argv[3].split(",")]
     tolerance = sys.argv[4] if len(sys.argv) > 4 else "1"
-    print("material\tpixel_mm\tchoice\tpredicted\tchecked\treference_noise")
+    print("material\tpixel_mm\tchoice\tpredicted\tchecked\treference_noise\tseparable\tpredicted\tchecked")
     workdir = "/tmp/advise_check_%d" % __import__("os").getpid()
     for material in materials:
         advice = [json.loads(run(cli, "advise", "--material", material, "--pixel", "%gmm" % p, "--tolerance", tolerance, "-f", "json",
@@ -139,11 +165,16 @@ def main():
                 cand = written_table("%s/%g/%s.%s.json" % (workdir, p, material, name.replace(":", "_")), channels, edges)
             elif name:
                 cand = model_table(cli, material, name, channels, edges)
+            kernel = next(c for c in a["candidates"] if c["representation"].startswith("separable-"))
+            path = "%s/%g/%s.kernel.json" % (workdir, p, material)
+            run(cli, "lut", "--kind", "separable", "--material", material, "--model", kernel["representation"].split(":")[1],
+                "--taps", "%d" % kernel["parameters"]["taps"], "--range", repr(kernel["parameters"]["range_mm"]), "-o", path, "-q")
+            separable = f"{kernel['representation']}\t{kernel['error']:.3f}\t{kernel_error(edges, truth, path, p):.3f}"
             if not name or cand is None:
-                print(f"{material}\t{p:g}\t{name}\t-\t(not checked)\t")
+                print(f"{material}\t{p:g}\t{name}\t-\t(not checked)\t\t{separable}")
                 continue
             checked = code_error(edges, truth, cand, p)
-            print(f"{material}\t{p:g}\t{name}\t{a['choice']['error']:.3f}\t{checked:.3f}\t{a['reference_noise']:.3f}")
+            print(f"{material}\t{p:g}\t{name}\t{a['choice']['error']:.3f}\t{checked:.3f}\t{a['reference_noise']:.3f}\t{separable}")
 
 
 if __name__ == "__main__":

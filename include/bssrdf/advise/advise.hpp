@@ -10,12 +10,14 @@
 //  - "lambertian": no subsurface transport, the reference's diffuse reflectance as albedo. Cost 0.
 //  - every analytic model of the registry (dipole, better-dipole, burley, ..., quantized+ss): cost
 //    one R(r) evaluation as measured by bench_models (model_choice.hpp).
-//  - "radial-table-N:MODEL": R(r) of the analytic model with the smallest image error, tabulated
-//    at N radii geometric from 1e-3 to 30 transport mean free paths and interpolated linearly in
-//    (ln r, ln R), 0 beyond; N = 8, 16, 32, 64. Cost kTableLookupNs, memory N x channels x 4 bytes.
-//  - "gaussians-K:MODEL": K = 1, 2, 4, 8 Gaussians with shared variances fitted to that model
-//    (fitted_mixture_table, the texture-space / GPU Gems 3 form). Cost K x kGaussianTermNs, memory
-//    K x (channels + 1) x 4 bytes.
+//  - the real-time tables of the analytic model with the smallest image error, each sized by the
+//    tolerance (realtime_tables.hpp: the smallest within it, else the most accurate tried):
+//    "radial-table-N:MODEL" (N radii of radial_table_nodes(), linear in (ln r, ln R), 0 beyond; N = 8 to 256; cost kTableLookupNs, memory N x channels x 4 bytes);
+//    "gaussians-K:MODEL" (K = 1 to 8 shared-variance Gaussians, fitted_mixture_table, the
+//    texture-space / GPU Gems 3 form; cost K x kGaussianTermNs, memory K x (channels + 1) x 4);
+//    "separable-N:MODEL" (Jimenez et al. 2015, N taps and the range in `parameters`; cost 2 N x
+//    kKernelTapNs, memory N x 4 floats); "preintegrated-N:MODEL" (Penner & Borshukov 2011, N x N;
+//    cost kTableLookupNs, memory N^2 x channels x 4).
 //  - "reference-table": the reference itself tabulated on its annuli (what `lut --kind radial
 //    --reference` writes); error: twice the reference noise (its own statistical error, which the
 //    comparison against itself cannot see). Cost kTableLookupNs, memory annuli x channels x 4 bytes.
@@ -27,6 +29,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bssrdf/advise/image_error.hpp"
@@ -42,6 +45,11 @@ namespace bssrdf {
 // they rank with the models' costs.
 inline constexpr double kTableLookupNs = 13;
 inline constexpr double kGaussianTermNs = 4.5;
+// One tap of a separable screen-space kernel (a linearly interpolated read of an RGB irradiance row
+// and a multiply-add), measured the same way by bench_advise (0.14-0.25 of the dipole on the loaded
+// machine, so 2.7-4.7 ns); a kernel of N taps costs 2 N taps a
+// pixel (a horizontal and a vertical pass).
+inline constexpr double kKernelTapNs = 4;
 
 enum class AdviseTarget { realtime, offline, any };
 AdviseTarget parse_advise_target(const std::string& text);  // throws InvalidInput naming "--target"
@@ -61,6 +69,7 @@ struct AdviseCandidate {
   std::size_t memory_bytes = 0;
   bool realtime = false;
   bool meets_tolerance = false;
+  std::vector<std::pair<std::string, double>> parameters;  // a table's chosen size, a kernel's taps and range (mm), ...
 };
 
 struct Advice {
@@ -75,11 +84,17 @@ struct Advice {
   std::string object_warning;             // non-empty when 2 profile_radius exceeds options.object_size
 };
 
-// The radial-table candidate: R(r) of `model` at n >= 2 radii geometric over [lo_ell ell, hi_ell ell]
-// (ell: transport mean free path), linear in (ln r, ln R) between them, R(r_0) below and 0 beyond
-// (the table a renderer loads).
+// The radial-table candidate: R(r) of `model` at n >= 2 radii geometric over [lo_ell ell, outer]
+// (ell: transport mean free path; outer: hi_ell ell, or with hi_ell = 0 profile_extent(m), as far
+// as the reference's annuli reach), linear in (ln r, ln R) between them, R(r_0)
+// below and 0 beyond (the table a renderer loads; `advise --write` writes these nodes).
+struct RadialTableNodes {
+  std::vector<double> radius, value;  // mm, 1/mm^2
+};
+RadialTableNodes radial_table_nodes(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell = 1e-3, double hi_ell = 0);
+std::function<double(double)> radial_table(const RadialTableNodes& nodes);
 std::function<double(double)> radial_table(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell = 1e-3,
-                                           double hi_ell = 30);
+                                           double hi_ell = 0);
 
 Advice advise(const Medium& medium, const ReferenceProfile& reference, const AdviseOptions& options);
 

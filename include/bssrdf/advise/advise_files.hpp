@@ -2,10 +2,14 @@
 // format `bssrdf lut` writes, named DIR/STEM.REPRESENTATION.json (':' becomes '_'):
 //  - lambertian: kind "albedo", one value per channel (the reference's diffuse reflectance);
 //  - radial-table-N:MODEL: kind "radial-log", the N radii and R(r) per channel (each channel its
-//    own radii, 1e-3 to 30 transport mean free paths), linear in (ln r, ln R), 0 beyond;
+//    own radii, radial_table_nodes()), linear in (ln r, ln R), 0 beyond;
 //  - gaussians-K:MODEL: the `lut --kind gaussians` table of K Gaussians fitted to MODEL;
+//  - separable-N:MODEL: the `lut --kind separable` kernel of N taps over the advised range;
+//  - preintegrated-N:MODEL: the `lut --kind preintegrated` table, N x N, the advised curvature range;
 //  - reference-table: the `lut --kind radial --reference` table (same photons and seed as advised);
 //  - an analytic model: the `lut --kind radial --model MODEL` table.
+// Each records the advice (bssrdf:advice) and its image error and pixel size (bssrdf:image_error,
+// bssrdf:image_error_pixel_mm).
 #pragma once
 
 #include <filesystem>

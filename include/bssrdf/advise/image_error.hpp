@@ -59,10 +59,12 @@ struct ImageError {
   double position = 0;         // centre of that pixel, mm from the edge (lit side > 0)
 };
 
-// The image of both patterns for one channel: linear pixel values, pixel k at index k + K.
+// The image of both patterns for one channel: linear pixel values, pixel k at index k + K, and the
+// value of a flat lit region (the diffuse reflectance the representation shows).
 struct PatternImage {
   std::vector<double> edge, line;
   std::vector<double> edge_stderr, line_stderr;
+  double flat = 0;
 };
 
 class ImageErrorMeter {
@@ -71,12 +73,20 @@ class ImageErrorMeter {
   ImageErrorMeter(std::vector<double> edges, double pixel);
 
   double pixel() const { return pixel_; }
+  const std::vector<double>& edges() const { return edges_; }
   std::size_t pixels_each_side() const { return K_; }
   double pixel_centre(std::size_t index) const;  // mm
 
   PatternImage render(const AnnularProfile& profile) const;
+  // A screen-space kernel of point taps (a separable pass, Jimenez et al. 2015): pixel k shows
+  // albedo x sum_i weight_i I(x_k + offset_i), x_k the pixel's centre and I the irradiance image
+  // read between pixel centres by linear interpolation (a bilinear texture fetch; the patterns are
+  // uniform along y, so the vertical pass leaves them unchanged). Offsets in mm, weights summing to 1.
+  PatternImage render_taps(const std::vector<double>& offset, const std::vector<double>& weight, double albedo) const;
   // One profile per channel in each; the reference's standard errors give the noise.
   ImageError error(const std::vector<AnnularProfile>& reference, const std::vector<AnnularProfile>& candidate) const;
+  // The same from rendered images (render the reference once when judging many candidates).
+  ImageError error(const std::vector<PatternImage>& reference, const std::vector<PatternImage>& candidate) const;
 
  private:
   std::vector<double> edges_;

@@ -5,9 +5,9 @@
 //   ReferenceProfiles ref = mc.profiles(skin);       // one AnnularProfile per channel, with stderr
 //   ModelReference exact(make_model("pbd"));         // a formula as the reference: no noise, fast
 //
-// Annuli: the first [0, r_min), then geometric from r_min = 1e-3 ell to r_max = 30 ell (ell: the
-// transport mean free path, smallest and largest over the channels), 48 per decade, then
-// [r_max, 2 r_max] for the light beyond. All channels share them. Spreading each annulus's light
+// Annuli: the first [0, r_min), then geometric from r_min = 1e-3 ell (ell: the transport mean free
+// path, smallest over the channels) to r_max, the largest profile_extent() of the channels, 48 per
+// decade, then [r_max, 2 r_max] for the light beyond. All channels share them. Spreading each annulus's light
 // evenly over it is the image error's one approximation: for a Gaussian profile it is measured at
 // 0.6 code values with 24 annuli per decade, 0.15 with 48 (second order; tests/test_image_error.cpp).
 #pragma once
@@ -34,6 +34,11 @@ class ReferenceProfile {
   virtual ~ReferenceProfile() = default;
   virtual ReferenceProfiles profiles(const Medium& medium) const = 0;
 };
+
+// The radius beyond which a channel's light no longer shows: the larger of 30 transport mean free
+// paths and 15 diffusion lengths 1/sigma_tr (e^-15 of the diffusion tail; 30 ell alone left a
+// visible part of Marble's red light out). Conservative media (sigma_tr = 0): 30 ell.
+double profile_extent(const Reduced<double>& m);
 
 // The annuli described above, for a medium.
 std::vector<double> reference_annuli(const Medium& medium, std::size_t bins_per_decade = 48);

@@ -17,9 +17,11 @@
 //   auto t = build_preintegrated_table(skin, *make_model("pbd"), {});
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "bssrdf/lut/lookup_table.hpp"
+#include "bssrdf/lut/projected_profile.hpp"
 #include "bssrdf/lut/table_context.hpp"
 #include "bssrdf/medium.hpp"
 #include "bssrdf/model.hpp"
@@ -48,6 +50,9 @@ struct PreintegratedTable {
 };
 
 PreintegratedTable build_preintegrated_table(const Medium& medium, const Model& model, const PreintegratedOptions& options);
+// The same from the channels' projections (project_channels), for callers that build several sizes.
+PreintegratedTable build_preintegrated_table(const Medium& medium, const std::vector<std::optional<ProjectedProfile>>& profiles,
+                                             const PreintegratedOptions& options);
 
 // Channels: one per colour channel (D). Attributes record the axes, sampling and curvature range.
 LookupTable to_lookup_table(const PreintegratedTable& table, const TableContext& context);

@@ -23,7 +23,10 @@
 #include <string>
 #include <vector>
 
+#include <optional>
+
 #include "bssrdf/lut/lookup_table.hpp"
+#include "bssrdf/lut/projected_profile.hpp"
 #include "bssrdf/lut/table_context.hpp"
 #include "bssrdf/medium.hpp"
 #include "bssrdf/model.hpp"
@@ -53,6 +56,9 @@ struct SeparableKernel {
 };
 
 SeparableKernel build_separable_kernel(const Medium& medium, const Model& model, const SeparableKernelOptions& options);
+// The same from the channels' projections (project_channels), for callers that build many kernels.
+SeparableKernel build_separable_kernel(const Medium& medium, const std::vector<std::optional<ProjectedProfile>>& profiles,
+                                       const SeparableKernelOptions& options);
 
 // Channels: the weights under the medium's channel names, "offset" (units of the range); the range
 // in the unit, totals and captured fractions as attributes.
