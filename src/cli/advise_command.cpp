@@ -8,7 +8,10 @@
 
 #include "bssrdf/advise/advise.hpp"
 #include "bssrdf/advise/advise_files.hpp"
+#include "bssrdf/advise/reference_profile.hpp"
 #include "bssrdf/error.hpp"
+#include "bssrdf/model.hpp"
+#include "bssrdf/validity.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -38,7 +41,7 @@ double parse_length(const std::string& text, const std::string& field, LengthUni
 Action register_advise(CLI::App& app) {
   struct Options {
     MediumOptions medium;
-    std::string pixel, target = "any", tolerance = "1", object_size, format, write;
+    std::string pixel, target = "any", tolerance = "1", object_size, format, write, reference = "auto";
     bool all = false;
     std::uint64_t photons = 200'000, seed = 1;
     unsigned threads = 0;
@@ -56,6 +59,10 @@ Action register_advise(CLI::App& app) {
   sub->add_flag("--all", options->all, "Every material of the database, one line each");
   sub->add_option("--write", options->write, "Write the chosen representation's table into this directory (bssrdf-lut JSON)")
       ->check(file_name("--write"));
+  sub->add_option("--reference", options->reference,
+                  "What candidates are judged against: exact (the tabulated transport solution), montecarlo (a run per "
+                  "material), or auto: exact where every channel is inside its table, else montecarlo [auto]")
+      ->check(CLI::IsMember({"auto", "exact", "montecarlo"}));
   add_count_option(*sub, "--photons,-n", options->photons, 1000, kMaxPhotons,
                    "Monte Carlo reference: photons per channel [200000]");
   add_count_option(*sub, "--seed", options->seed, 0, kMaxSeed, "Monte Carlo reference: random seed [1]");
@@ -71,7 +78,22 @@ Action register_advise(CLI::App& app) {
     if (!(a.tolerance > 0) || !std::isfinite(a.tolerance)) throw InvalidInput("--tolerance", o.tolerance, "> 0 (8-bit sRGB code values)");
     a.target = parse_advise_target(o.target);
     if (!o.object_size.empty()) a.object_size = parse_length(o.object_size, "--object-size", unit);
-    const MonteCarloReference reference({o.photons, o.seed, o.threads});
+    const MonteCarloReference monte_carlo({o.photons, o.seed, o.threads});
+    const ModelReference exact(make_model("exact"));
+    const auto exact_model = make_model("exact");
+    // The reference for one medium: the exact model inside its table (milliseconds instead of a
+    // Monte Carlo run), the Monte Carlo run elsewhere.
+    const auto reference_for = [&](const Medium& medium) -> const ReferenceProfile& {
+      if (o.reference == "montecarlo") return monte_carlo;
+      for (std::size_t c = 0; c < medium.channels(); ++c)
+        if (const auto report = exact_model->validity(medium.reduced(c)); worst(report) == Severity::invalid) {
+          if (o.reference == "exact")
+            throw InvalidInput("--reference", "exact", "media inside the exact table (channel " + medium.channel_names[c] +
+                                                           ": " + report.front().message + "); use --reference montecarlo");
+          return monte_carlo;
+        }
+      return exact;
+    };
     const bool json = o.format == "json";
 
     if (o.all) {
@@ -86,7 +108,7 @@ Action register_advise(CLI::App& app) {
             << std::setw(9) << "cost_ns" << std::setw(8) << "noise" << std::setw(8) << "ref_s" << "\n";
       bool first = true;
       for (const auto& material : database.all()) {
-        const Advice advice = advise(material.medium, reference, a);
+        const Advice advice = advise(material.medium, reference_for(material.medium), a);
         if (json) {
           out << (first ? "" : ",\n") << to_json(advice, material.name);
         } else {
@@ -104,7 +126,7 @@ Action register_advise(CLI::App& app) {
     }
     const auto resolved = o.medium.resolve();
     const std::string name = resolved.material ? resolved.material->name : "medium";
-    const Advice advice = advise(resolved.medium, reference, a);
+    const Advice advice = advise(resolved.medium, reference_for(resolved.medium), a);
     std::string written;
     if (!o.write.empty())  // before printing, so a failure prints nothing
       written = write_advised_file(o.write, name, resolved.medium, resolved.material, advice, {o.photons, o.seed, o.threads}).string();
