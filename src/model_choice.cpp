@@ -7,15 +7,18 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/model_registry.hpp"
 #include "bssrdf/validity.hpp"
+#include "bssrdf/models/exact.hpp"
 #include "model_error_table.hpp"
+#include "model_error_vs_exact.hpp"
 
 namespace bssrdf {
 namespace {
 
-// The `--model auto` candidates (model registry order) with their column of the measured error table.
+// The `--model auto` candidates (model registry order) with their column of the measured error
+// table, if they have one (a reference model such as `exact` has its own band instead).
 struct Candidate {
   const ModelEntry* entry;
-  std::size_t column;
+  std::optional<std::size_t> column;
 };
 const std::vector<Candidate>& candidates() {
   static const std::vector<Candidate> list = [] {
@@ -23,13 +26,39 @@ const std::vector<Candidate>& candidates() {
     for (const auto& e : model_registry()) {
       if (!e.auto_candidate) continue;
       const auto it = std::find(detail::kCandidateNames.begin(), detail::kCandidateNames.end(), e.name);
-      if (it == detail::kCandidateNames.end())
-        throw std::logic_error("model " + e.name + " is an auto candidate without a column in the measured error table");
-      out.push_back({&e, static_cast<std::size_t>(it - detail::kCandidateNames.begin())});
+      std::optional<std::size_t> column;
+      if (it != detail::kCandidateNames.end()) column = static_cast<std::size_t>(it - detail::kCandidateNames.begin());
+      else if (!e.reference_accuracy)
+        throw std::logic_error("model " + e.name + " is an auto candidate without measured errors or a reference band");
+      out.push_back({&e, column});
     }
     return out;
   }();
   return list;
+}
+
+// The model's own verdict at m: its first "invalid" validity note, empty when it has none.
+std::string invalid_note(const ModelEntry& entry, const Reduced<double>& m) {
+  for (const auto& note : entry.make()->validity(m))
+    if (note.severity == Severity::invalid) return note.code + ": " + note.message;
+  return "";
+}
+
+ModelErrorEstimate estimate_for(const ModelEntry& entry, const Reduced<double>& m, const char* source) {
+  ModelErrorEstimate est;
+  est.model = entry.name;
+  est.cost_ns = entry.cost_ns;
+  est.source = source;
+  if (entry.reference_accuracy) {
+    est.total_error = entry.reference_accuracy->total;
+    est.profile_error = entry.reference_accuracy->profile;
+  }
+  est.invalid = invalid_note(entry, m);
+  return est;
+}
+
+void sort_by_cost(std::vector<ModelErrorEstimate>& v) {
+  std::stable_sort(v.begin(), v.end(), [](const auto& x, const auto& y) { return x.cost_ns < y.cost_ns; });
 }
 
 // The measured grid values bracketing v: {lower, upper}, equal on a grid value; nullopt outside.
@@ -49,9 +78,15 @@ std::vector<double> axis(double detail::MeasuredCase::*field) {
   return v;
 }
 
+std::string exact_domain_text() {
+  const ExactTable& t = bundled_exact_table();
+  const auto range = [](const std::vector<double>& axis) { return format_number(axis.front()) + " to " + format_number(axis.back()); };
+  return "alpha' " + range(t.albedo_prime) + ", g " + range(t.g) + ", eta " + range(t.eta);
+}
+
 }  // namespace
 
-std::optional<std::vector<ModelErrorEstimate>> estimate_model_errors(const Reduced<double>& m) {
+std::optional<std::vector<ModelErrorEstimate>> tabulated_model_errors(const Reduced<double>& m) {
   const auto a = bracket(axis(&detail::MeasuredCase::albedo_prime), std::min(m.albedo_prime, 0.999));
   const auto e = bracket(axis(&detail::MeasuredCase::eta), m.eta);
   const auto g = bracket(axis(&detail::MeasuredCase::g), m.g);
@@ -64,32 +99,53 @@ std::optional<std::vector<ModelErrorEstimate>> estimate_model_errors(const Reduc
   if (matched != corners(*a) * corners(*e) * corners(*g)) return std::nullopt;
   std::vector<ModelErrorEstimate> out;
   for (const auto& [entry, k] : candidates()) {
-    ModelErrorEstimate est;
-    est.model = entry->name;
-    est.cost_ns = entry->cost_ns;
-    for (const auto& c : detail::kMeasuredCases)
-      if (in(c.albedo_prime, *a) && in(c.eta, *e) && in(c.g, *g)) {
-        est.total_error = std::max(est.total_error, c.error[k].total);
-        est.profile_error = std::max(est.profile_error, c.error[k].profile);
-      }
-    for (const auto& note : entry->make()->validity(m))
-      if (note.severity == Severity::invalid) {
-        est.invalid = note.code + ": " + note.message;
-        break;
-      }
+    ModelErrorEstimate est = estimate_for(*entry, m, "table");
+    if (k)
+      for (const auto& c : detail::kMeasuredCases)
+        if (in(c.albedo_prime, *a) && in(c.eta, *e) && in(c.g, *g)) {
+          est.total_error = std::max(est.total_error, c.error[*k].total);
+          est.profile_error = std::max(est.profile_error, c.error[*k].profile);
+        }
     out.push_back(est);
   }
-  std::stable_sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.cost_ns < y.cost_ns; });
+  sort_by_cost(out);
   return out;
+}
+
+std::optional<std::vector<ModelErrorEstimate>> model_errors_vs_exact(const Reduced<double>& m) {
+  const ExactTable& table = bundled_exact_table();
+  if (!exact_domain(table, m.albedo_prime, m.g, m.eta).empty()) return std::nullopt;
+  const ExactProfile exact(table, m.albedo_prime, m.g, m.eta);
+  const auto bins = detail::exact_bins(exact);
+  std::vector<ModelErrorEstimate> out;
+  for (const auto& c : candidates()) {
+    ModelErrorEstimate est = estimate_for(*c.entry, m, "exact");
+    if (!c.entry->reference_accuracy) {  // measured even where invalid (shown, never chosen)
+      const auto error = detail::error_vs_exact(*c.entry->make(), m, bins);
+      est.total_error = error.total;
+      est.profile_error = error.profile();
+      est.near_error = error.near;
+      est.far_error = error.far;
+    }
+    out.push_back(est);
+  }
+  sort_by_cost(out);
+  return out;
+}
+
+std::optional<std::vector<ModelErrorEstimate>> estimate_model_errors(const Reduced<double>& m) {
+  if (auto live = model_errors_vs_exact(m)) return live;
+  return tabulated_model_errors(m);
 }
 
 std::vector<MeasuredModel> measured_models() {
   std::vector<MeasuredModel> out;
   for (const auto& [entry, k] : candidates()) {
+    if (!k) continue;  // a reference model: no column
     MeasuredModel m{entry->name, entry->cost_ns, {}, {}};
     for (const auto& c : detail::kMeasuredCases) {
-      m.total_error.push_back(c.error[k].total);
-      m.profile_error.push_back(c.error[k].profile);
+      m.total_error.push_back(c.error[*k].total);
+      m.profile_error.push_back(c.error[*k].profile);
     }
     out.push_back(std::move(m));
   }
@@ -106,8 +162,9 @@ std::vector<ModelErrorEstimate> estimate_model_errors(const Medium& medium) {
     if (!estimates)
       throw InvalidInput("channel " + medium.channel_names[c] + " (alpha', eta, g)",
                          format_number(m.albedo_prime) + ", " + format_number(m.eta) + ", " + format_number(m.g),
-                         "alpha' >= 0.5, 1 <= eta <= 1.5 and 0 <= g <= 0.95, where the models were measured against Monte Carlo; "
-                         "outside it choose the model yourself (bssrdf models)");
+                         "the exact model's domain (" + exact_domain_text() +
+                             ") or, beyond it, alpha' >= 0.5, 1 <= eta <= 1.5 and 0 <= g <= 0.95 where the models were measured "
+                             "against Monte Carlo; for this channel run the Monte Carlo reference (bssrdf reference)");
     if (worst.empty()) {
       worst = *estimates;
       for (auto& e : worst)
@@ -117,6 +174,9 @@ std::vector<ModelErrorEstimate> estimate_model_errors(const Medium& medium) {
     for (std::size_t k = 0; k < estimates->size(); ++k) {  // same order: sorted by a fixed cost
       worst[k].total_error = std::max(worst[k].total_error, (*estimates)[k].total_error);
       worst[k].profile_error = std::max(worst[k].profile_error, (*estimates)[k].profile_error);
+      worst[k].near_error = std::max(worst[k].near_error, (*estimates)[k].near_error);
+      worst[k].far_error = std::max(worst[k].far_error, (*estimates)[k].far_error);
+      if (worst[k].source != (*estimates)[k].source) worst[k].source = "exact+table";
       if (worst[k].invalid.empty() && !(*estimates)[k].invalid.empty())
         worst[k].invalid = "channel " + medium.channel_names[c] + ": " + (*estimates)[k].invalid;
     }
@@ -143,7 +203,7 @@ ModelChoice choose_model(const Medium& medium, double accuracy) {
   });
   if (!best.invalid.empty())
     throw InvalidInput("--model auto: every measured model marks itself invalid for this medium (" + best.model + ": " +
-                       best.invalid + "); choose the model yourself (bssrdf models)");
+                       best.invalid + "); run the Monte Carlo reference instead (bssrdf reference)");
   std::string excluded;
   for (const auto& e : choice.estimates)
     if (!e.invalid.empty()) excluded += (excluded.empty() ? "" : ", ") + e.model;

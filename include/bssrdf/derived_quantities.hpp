@@ -26,9 +26,10 @@ struct DerivedChannel {
   double sigma_t = 0, albedo = 0;          // sigma_a + sigma_s, sigma_s / sigma_t
   double sigma_s_prime = 0, sigma_t_prime = 0, albedo_prime = 0;
   double mfp = 0, transport_mfp = 0, diffuse_mfp = 0;  // mm; diffuse_mfp is infinite when sigma_a = 0
-  // Total diffuse reflectance of the physical model (single scattering included), per entered flux.
-  // Where that model creates energy (its total exceeds 1: pbd at alpha' near 1), the exact total
-  // by adding-doubling instead, and `reason` says so: never above 1.
+  // Total diffuse reflectance per entered flux (single scattering included): the exact model's
+  // total inside its domain (models/exact.hpp: the radiative-transfer solution); outside it the
+  // physical model's, or where that model creates energy (total above 1: pbd at alpha' near 1) the
+  // exact total by adding-doubling, and `reason` says so: never above 1.
   double surface_albedo = 0;
   // Burley's d (mm) fitted to the physical profile's shape with A held at surface_albedo (energy
   // conserved: A <= 1), and the fit's relative L2 error sqrt(int r (fit - R)^2 dr / int r R^2 dr).

@@ -1,12 +1,23 @@
-// Picking a model by accuracy and cost instead of by habit: the cheapest model whose measured error
-// against the Monte Carlo reference meets a stated accuracy at the medium's coefficients.
+// Picking a model by accuracy and cost instead of by habit: the cheapest model whose error
+// against the reference meets a stated accuracy at the medium's coefficients.
 //
-// The errors come from tools/validation/models_vs_montecarlo_extended.tsv (validate_models: 72
-// cases, alpha' 0.5-0.999 x eta 1, 1.3, 1.4, 1.5 x g 0, 0.9, 0.95, 2M photons each, Monte Carlo
-// noise about 1.5 % in L2), embedded in the library. At given coefficients a model's error is the worst over the
-// measured cases that bracket them in alpha', eta and g (not interpolated: conservative); alpha'
-// above 0.999 uses the 0.999 cases. Its cost is one R(r) evaluation measured by bench_models.
-// Outside the measured ranges there is no estimate and no choice.
+// Inside the exact model's domain (models/exact.hpp: alpha' 0.001-0.9999, g 0-0.99, eta 1-1.6)
+// every candidate is measured live against `exact` at the medium itself: its total error
+// |T / T_exact - 1| and its profile error, the relative L2 of the bin averages of r R(r) over dr
+// on 64 log-spaced bins from 1e-3 transport mfp to the exact profile's 99.9 % radius, taken
+// separately inside and beyond one transport mfp, the larger of the two (so far-field errors are
+// not hidden by the near field). `exact` itself is a candidate, estimated at its own accuracy
+// against Monte Carlo (a constant band in the model registry); the others' errors are against
+// `exact` and do not add its band (as the Monte Carlo noise was not added before). About 0.1-3 ms
+// per channel (quantized diffusion dominates).
+//
+// Outside that domain the errors come from tools/validation/models_vs_montecarlo_extended.tsv
+// (validate_models: 72 cases, alpha' 0.5-0.999 x eta 1, 1.3, 1.4, 1.5 x g 0, 0.9, 0.95, 2M
+// photons each, Monte Carlo noise about 1.5 % in area-weighted L2), embedded in the library: at
+// given coefficients a model's error is the worst over the measured cases that bracket them (not
+// interpolated: conservative); alpha' above 0.999 uses the 0.999 cases. Beyond both there is no
+// estimate and no choice: the refusal names the channel and points to `bssrdf reference`.
+// A model's cost is one R(r) evaluation measured by bench_models.
 //
 //   auto choice = choose_model(skin, 0.05);   // throws InvalidInput when no model meets 5 %
 //   auto model = make_model(choice.model);
@@ -25,22 +36,30 @@ struct ModelErrorEstimate {
   std::string model;
   double cost_ns = 0;        // one R(r) evaluation (bench_models median, alpha' 0.9, eta 1.3)
   double total_error = 0;    // |relative error of the total reflectance|
-  double profile_error = 0;  // area-weighted relative L2 error of R(r), single scattering included
+  // Relative L2 error of the profile, single scattering included: against `exact`, the larger of
+  // near_error and far_error; from the table, the area-weighted L2 of R(r) against Monte Carlo.
+  double profile_error = 0;
+  double near_error = 0, far_error = 0;  // against `exact`: inside / beyond one transport mfp (0 from the table)
+  std::string source;  // "exact" (measured live), "table" (the Monte Carlo table), "exact+table" (channels differ)
   // The model's own verdict here: its first "invalid" validity note ("code: message"), empty when it
   // has none. An invalid model is never chosen, whatever its measured error.
   std::string invalid;
   double error() const { return total_error > profile_error ? total_error : profile_error; }
 };
 
-// Every candidate model, cheapest first, with its estimated errors at these coefficients;
-// nullopt outside the measured ranges (alpha' < 0.5, eta outside [1, 1.5], g outside [0, 0.95]).
+// Every candidate model, cheapest first, with its estimated errors at these coefficients: live
+// against `exact` inside its domain, else from the table; nullopt outside both.
 std::optional<std::vector<ModelErrorEstimate>> estimate_model_errors(const Reduced<double>& m);
+// The two sources alone: nullopt outside the exact domain / outside the table's measured ranges
+// (alpha' < 0.5, eta outside [1, 1.5], g outside [0, 0.95]).
+std::optional<std::vector<ModelErrorEstimate>> model_errors_vs_exact(const Reduced<double>& m);
+std::optional<std::vector<ModelErrorEstimate>> tabulated_model_errors(const Reduced<double>& m);
 
 // The same for a medium: the worst over its channels, cheapest first. Throws InvalidInput naming
 // the channel and the ranges when a channel is outside them.
 std::vector<ModelErrorEstimate> estimate_model_errors(const Medium& medium);
 
-// Every candidate with its cost and its errors in all measured cases (the validation table, in its
+// Every candidate with a table column, with its cost and its errors in all measured cases (the validation table, in its
 // row order), cheapest first: what a speed-against-accuracy chart shows.
 struct MeasuredModel {
   std::string model;

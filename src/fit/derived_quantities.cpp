@@ -8,6 +8,7 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/fit/inverse_fits.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/models/exact.hpp"
 #include "bssrdf/profile.hpp"
 
 namespace bssrdf {
@@ -66,7 +67,15 @@ DerivedQuantities derive_quantities(const Medium& medium, const DerivationOption
       ch.surface_albedo = model_total;
       for (const auto& note : model->validity(m))
         if (note.severity == Severity::invalid) reasons.push_back(note.message);
-      if (model_total > 1) {
+      const ExactTable& table = bundled_exact_table();
+      if (exact_domain(table, m.albedo_prime, m.g, m.eta).empty()) {
+        // Inside the exact model's domain the surface albedo is its total (the radiative-transfer
+        // solution, <= 1), whatever the physical model's.
+        ch.surface_albedo = exact_total(table, m.albedo_prime, m.g, m.eta);
+        if (model_total > 1)
+          reasons.push_back("surface albedo and Burley A are the exact model's total " + format_number(std::round(ch.surface_albedo * 1e5) / 1e5) +
+                            ", not " + out.physical_model + "'s " + format_number(std::round(model_total * 1e5) / 1e5));
+      } else if (model_total > 1) {
         // The physical model creates energy here (its validity says so above): the surface albedo
         // is the exact radiative-transfer total instead, which conserves it.
         ch.surface_albedo = exact_total_reflectance(m);

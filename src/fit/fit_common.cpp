@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "bssrdf/error.hpp"
+#include "bssrdf/model_registry.hpp"
 
 namespace bssrdf {
 
@@ -41,6 +42,8 @@ std::optional<Eigen::MatrixXd> parameter_covariance(ceres::Problem& problem, con
 }
 
 double albedo_prime_for_total(const Model& model, double total, double eta, double g) {
+  if (const auto* entry = find_model_entry(model.name()); entry && entry->albedo_prime_for_total)
+    return entry->albedo_prime_for_total(total, g, eta);
   const auto total_at = [&](double a) { return model.total_reflectance(reduced_optical(a, g, eta)); };
   double lo = 0, hi = 1;
   double f_lo = total_at(lo) - total, f_hi = total_at(hi) - total;

@@ -1,0 +1,156 @@
+// `--model auto` inside the exact model's domain (model_choice.hpp): every candidate measured live
+// against `exact` (total, and the relative L2 of bin averages of r R(r) near and far), `exact`
+// itself a candidate at its own band; a looser accuracy never serves fewer of the 47 bundled
+// materials; every material inside the domain is served at any accuracy >= exact's band; fast.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+
+#include "../src/model_error_vs_exact.hpp"
+#include "bssrdf/error.hpp"
+#include "bssrdf/materials.hpp"
+#include "bssrdf/model.hpp"
+#include "bssrdf/model_choice.hpp"
+#include "bssrdf/model_registry.hpp"
+#include "bssrdf/models/exact.hpp"
+#include "cli_runner.hpp"
+
+using namespace bssrdf;
+
+namespace {
+
+// The exact model, scaled by `near` inside one transport mfp and by `far` beyond it: a model whose
+// errors against exact are known in closed form.
+class ScaledExact final : public Model {
+ public:
+  ScaledExact(double near, double far) : exact_(make_exact_model()), near_(near), far_(far) {}
+  std::string name() const override { return "scaled-exact"; }
+  std::string description() const override { return "test"; }
+  bool includes_single_scattering() const override { return true; }
+  double reflectance(const Reduced<double>& m, double r) const override {
+    return (r < m.ell ? near_ : far_) * exact_->reflectance(m, r);
+  }
+  double total_reflectance(const Reduced<double>& m) const override { return near_ * exact_->total_reflectance(m); }
+
+ private:
+  ValidityReport check_validity(const Reduced<double>&) const override { return {}; }
+  std::unique_ptr<Model> exact_;
+  double near_, far_;
+};
+
+bool inside_exact_domain(const Medium& medium) {
+  for (std::size_t c = 0; c < medium.channels(); ++c) {
+    const auto m = medium.reduced(c);
+    if (!exact_domain(bundled_exact_table(), m.albedo_prime, m.g, m.eta).empty()) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+TEST(ModelChoiceLive, TheMeasurementAgainstExactIsExactWhereTheAnswerIsKnown) {
+  const auto m = reduce(0.05, 2.0, 0.6, 1.4);  // 2 / mm scattering: lengths are physical
+  const auto bins = detail::exact_bins(ExactProfile(bundled_exact_table(), m.albedo_prime, m.g, m.eta));
+  ASSERT_EQ(bins.edges.size(), 65u);
+  EXPECT_NEAR(bins.edges.front(), 1e-3, 1e-15);
+  const auto zero = detail::error_vs_exact(*make_exact_model(), m, bins);
+  EXPECT_LT(zero.total, 1e-12);
+  EXPECT_LT(zero.near, 1e-12);
+  EXPECT_LT(zero.far, 1e-12);
+  // 10 % too high everywhere: total 10 %, both L2s 10 %.
+  const auto uniform = detail::error_vs_exact(ScaledExact(1.1, 1.1), m, bins);
+  EXPECT_NEAR(uniform.total, 0.1, 1e-9);
+  EXPECT_NEAR(uniform.near, 0.1, 1e-9);
+  EXPECT_NEAR(uniform.far, 0.1, 1e-9);
+  // Right near, 30 % low far: the far field is counted, not hidden by the near field.
+  const auto far_only = detail::error_vs_exact(ScaledExact(1.0, 0.7), m, bins);
+  EXPECT_LT(far_only.near, 1e-12);  // an edge at 1 mfp: no bin straddles it
+  EXPECT_NEAR(far_only.far, 0.3, 1e-9);
+  EXPECT_NEAR(far_only.profile(), far_only.far, 0);
+}
+
+TEST(ModelChoiceLive, InsideTheDomainEstimatesAreLiveAndExactIsACandidate) {
+  const auto m = reduce(0.05, 2.0, 0.6, 1.4);
+  const auto live = estimate_model_errors(m);
+  ASSERT_TRUE(live);
+  bool exact_seen = false;
+  for (const auto& e : *live) {
+    EXPECT_EQ(e.source, "exact") << e.model;
+    if (e.model == "exact") {
+      exact_seen = true;
+      EXPECT_EQ(e.total_error, model_entry("exact").reference_accuracy->total);
+      EXPECT_EQ(e.profile_error, model_entry("exact").reference_accuracy->profile);
+      continue;
+    }
+    EXPECT_EQ(e.profile_error, std::max(e.near_error, e.far_error)) << e.model;
+    EXPECT_GT(e.profile_error, 0) << e.model;  // no approximation is the transport solution
+  }
+  EXPECT_TRUE(exact_seen);
+  // Outside the exact domain (alpha' 0.99995) the table's estimates serve, and exact marks itself invalid.
+  const auto outside = estimate_model_errors(reduce(0.00005, 1.0, 0.0, 1.3));
+  ASSERT_TRUE(outside);
+  for (const auto& e : *outside) {
+    EXPECT_EQ(e.source, "table") << e.model;
+    if (e.model == "exact") EXPECT_NE(e.invalid.find("exact_albedo"), std::string::npos) << e.invalid;
+  }
+}
+
+// Over the 47 bundled materials: the served set grows with the accuracy, every served choice is
+// valid in every channel, and every material inside the exact domain is served from 0.05 on.
+TEST(ModelChoiceLive, ALooserAccuracyNeverServesFewerMaterials) {
+  const auto db = MaterialDatabase::load(default_materials_dir());
+  ASSERT_EQ(db.all().size(), 47u);
+  std::set<std::string> previous;
+  for (double accuracy : {0.02, 0.05, 0.1, 0.2}) {
+    std::set<std::string> served;
+    std::map<std::string, int> by_model;
+    std::size_t inside = 0;
+    for (const auto& material : db.all()) {
+      const bool in_domain = inside_exact_domain(material.medium);
+      inside += in_domain;
+      try {
+        const auto choice = choose_model(material.medium, accuracy);
+        served.insert(material.name);
+        ++by_model[choice.model];
+        const auto model = make_model(choice.model);
+        for (std::size_t c = 0; c < material.medium.channels(); ++c)
+          for (const auto& note : model->validity(material.medium.reduced(c)))
+            EXPECT_NE(note.severity, Severity::invalid) << material.name << " " << choice.model << ": " << note.message;
+      } catch (const InvalidInput& e) {
+        if (in_domain && accuracy >= 0.03) ADD_FAILURE() << material.name << " is inside the exact domain and refused at " << accuracy << ": " << e.what();
+      }
+    }
+    for (const auto& name : previous) EXPECT_TRUE(served.count(name)) << name << " served at a tighter accuracy, not at " << accuracy;
+    std::printf("[ measured ] accuracy %g: %zu of 47 served (%zu inside the exact domain):", accuracy, served.size(), inside);
+    for (const auto& [model, n] : by_model) std::printf(" %s %d", model.c_str(), n);
+    std::printf("\n");
+    previous = served;
+  }
+}
+
+TEST(ModelChoiceLive, ChoosingIsFast) {
+  const auto skin = MaterialDatabase::load(default_materials_dir()).find("Skin1").medium;
+  choose_model(skin, 0.1);  // the exact table loaded
+  const auto start = std::chrono::steady_clock::now();
+  constexpr int kRuns = 5;
+  for (int k = 0; k < kRuns; ++k) choose_model(skin, 0.1);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / kRuns;
+  std::printf("[ measured ] choose_model(Skin1, 0.1): %.1f ms (3 channels, 10 candidates measured live)\n", 1e3 * seconds);
+  EXPECT_LT(seconds, 0.2);
+}
+
+TEST(ModelChoiceLive, RefusalOutsideTheDomainNamesTheChannelAndACommandThatWorks) {
+  const auto r = test_cli::run("profile --material Coke --model auto");  // channel R: alpha' 0.00089
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(r.out.empty());
+  EXPECT_EQ(test_cli::count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("channel R"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("bssrdf reference"), std::string::npos) << r.err;
+  const auto served = test_cli::run("profile --material Ketchup --model auto --accuracy 0.05 --samples 8");
+  ASSERT_EQ(served.status, 0) << served.err;
+  EXPECT_NE(served.out.find("choice    auto: exact"), std::string::npos) << served.out;
+}

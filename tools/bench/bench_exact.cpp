@@ -1,0 +1,120 @@
+// The exact model's speed goals (issue 12 §4), each against a baseline measured in the same run:
+//   one R(r) evaluation      <= 100 ns   (baseline: pbd, the best analytic model)
+//   one profile build        (ExactProfile at new coefficients; exact's per-medium cost)
+//   a radial LUT, Skin1      <= 2 ms     (baseline: the same LUT through pbd)
+//   a 3-channel profile fit  <= 20 ms    (baseline: the same fit through pbd)
+//   1000 albedo inversions   <= 5 ms     (baseline: pbd's inversion, 100 of the values x 10)
+// Medians over `repetitions` runs.
+//
+//   bench_exact [repetitions=7]
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <vector>
+
+#include "bssrdf/fit/profile_fit.hpp"
+#include "bssrdf/lut/radial_table.hpp"
+#include "bssrdf/materials.hpp"
+#include "bssrdf/model.hpp"
+#include "bssrdf/models/exact.hpp"
+#include "bssrdf/profile.hpp"
+#include "median_timing.hpp"
+
+using namespace bssrdf;
+using bssrdf::bench::median_ns_per_call;
+
+namespace {
+
+volatile double sink;
+
+// Median wall time of f() in ms over `repetitions` runs.
+double median_ms(const std::function<double()>& f, int repetitions) {
+  std::vector<double> t;
+  for (int k = 0; k < repetitions; ++k) {
+    const auto start = std::chrono::steady_clock::now();
+    sink = f();
+    t.push_back(1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::nth_element(t.begin(), t.begin() + repetitions / 2, t.end());
+  return t[repetitions / 2];
+}
+
+void row(const char* what, double exact, double baseline, const char* unit, double goal) {
+  std::printf("  %-28s exact %10.3f %s   pbd %10.3f %s   exact/pbd %6.3f   goal <= %g %s: %s\n", what, exact, unit, baseline, unit,
+              exact / baseline, goal, unit, exact <= goal ? "met" : "MISSED");
+}
+
+MeasuredProfile three_channel_profile(const Model& model, const Medium& medium) {
+  MeasuredProfile data;
+  data.radius = log_spaced(0.01, 20.0, 40);
+  for (std::size_t c = 0; c < medium.channels(); ++c) {
+    MeasuredProfile::Channel ch{medium.channel_names[c], {}, {}};
+    for (double r : data.radius) ch.value.push_back(model.reflectance(medium.reduced(c), r));
+    data.channels.push_back(ch);
+  }
+  return data;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int repetitions = argc > 1 ? std::max(1, std::atoi(argv[1])) : 7;
+  const auto exact = make_model("exact"), pbd = make_model("pbd");
+  const auto skin = MaterialDatabase::load(default_materials_dir()).find("Skin1").medium;
+  std::printf("Exact model speed, medians of %d runs; baseline pbd in the same run\n", repetitions);
+
+  // One evaluation: alpha' 0.9, g 0, eta 1.3, 64 radii in [0.01, 20] ell (as bench_models).
+  std::vector<double> radii;
+  for (int i = 0; i < 64; ++i) radii.push_back(0.01 * std::pow(2000.0, i / 63.0));
+  const auto m = reduce(0.1, 0.9, 0.0, 1.3);
+  exact->reflectance(m, 1.0);
+  pbd->reflectance(m, 1.0);
+  row("one R(r) evaluation", median_ns_per_call([&](double r) { return exact->reflectance(m, r); }, radii, repetitions),
+      median_ns_per_call([&](double r) { return pbd->reflectance(m, r); }, radii, repetitions), "ns", 100);
+
+  // One profile build at new coefficients (each a different alpha').
+  const ExactTable& table = bundled_exact_table();
+  const double build_ms = median_ms([&] {
+    double s = 0;
+    for (int k = 0; k < 1000; ++k) s += ExactProfile(table, 0.5 + 0.0004 * k, 0.3, 1.35).total();
+    return s;
+  }, repetitions);
+  std::printf("  %-28s exact %10.3f us   (1000 builds at distinct alpha', per build)\n", "one profile build", build_ms);
+
+  // A radial LUT for one material (3 channels, default tolerance).
+  RadialTableOptions lut;
+  row("radial LUT, Skin1", median_ms([&] { return build_radial_table(skin, *exact, lut).max_error; }, repetitions),
+      median_ms([&] { return build_radial_table(skin, *pbd, lut).max_error; }, repetitions), "ms", 2);
+
+  // A 3-channel profile fit on a profile the model itself generated (40 radii, Skin1's g and eta).
+  const auto fit_ms = [&](const Model& model) {
+    const auto data = three_channel_profile(model, skin);
+    ProfileFitOptions options;
+    options.model = model.name();
+    options.eta = skin.eta;
+    options.g = skin.g;
+    return median_ms([&] { return fit_profile(data, options).relative_rms; }, repetitions);
+  };
+  row("3-channel profile fit", fit_ms(*exact), fit_ms(*pbd), "ms", 20);
+
+  // 1000 albedo inversions: totals spread over what both models reach at eta 1.3.
+  std::vector<double> totals;
+  for (int k = 0; k < 1000; ++k) totals.push_back(0.01 + 0.5 * k / 999.0);
+  row("1000 albedo inversions",
+      median_ms([&] {
+        double s = 0;
+        for (double t : totals) s += exact_albedo_prime_from_total(table, t, 0.0, 1.3);
+        return s;
+      }, repetitions),
+      // pbd's generic root finding costs ~16 ms per value: every 10th value, times 10.
+      10 * median_ms([&] {
+        double s = 0;
+        for (std::size_t k = 0; k < totals.size(); k += 10) s += pbd->albedo_prime_from_total(totals[k], 1.3);
+        return s;
+      }, std::min(repetitions, 3)),
+      "ms", 5);
+  return 0;
+}
