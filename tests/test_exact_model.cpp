@@ -129,7 +129,7 @@ TEST(ExactModel, ProfileIntegratesToItsTotalAndIsPositive) {
     double previous = 0;
     for (double r = 1e-4; r < 1e4; r *= 1.7) {
       const double R = profile.reflectance(r), c = profile.cumulative(r);
-      if (c < 0.999 * profile.total()) ASSERT_GT(R, 0) << r;  // far out the tail may underflow
+      if (c < 0.999 * profile.total()) { ASSERT_GT(R, 0) << r; }  // far out the tail may underflow
       ASSERT_GE(R, 0) << r;
       ASSERT_GE(c, previous * (1 - 1e-12)) << r;
       previous = c;

@@ -50,7 +50,7 @@ TEST(AllModels, StableWhereMethodsFail) {
           }
           const double total = model->total_reflectance(m);
           EXPECT_TRUE(std::isfinite(total) && total >= 0) << name << " a'=" << a << " total=" << total;
-          if (total > 1) EXPECT_EQ(worst(report), Severity::invalid) << name << " a'=" << a << " total " << total;
+          if (total > 1) { EXPECT_EQ(worst(report), Severity::invalid) << name << " a'=" << a << " total " << total; }
           if (name == "burley-dmfp" && a == 1.0) {
             EXPECT_TRUE(has_note(report, "no_absorption"));
             continue;  // d is infinite: no profile to evaluate
@@ -61,10 +61,10 @@ TEST(AllModels, StableWhereMethodsFail) {
           }
           const double R0 = model->reflectance(m, 0.0);
           // exact: R ~ 1/r from single scattering, stated by its registry row, not a validity note.
-          if (!std::isfinite(R0)) EXPECT_TRUE(has_note(report, "singular_at_origin") || model_entry(name).reference_accuracy) << name;
-          else EXPECT_GE(R0, 0.0) << name;
+          if (!std::isfinite(R0)) { EXPECT_TRUE(has_note(report, "singular_at_origin") || model_entry(name).reference_accuracy) << name; }
+          else { EXPECT_GE(R0, 0.0) << name; }
           // Diffusion fails at low albedo; the exact model (a radiative-transfer solution) does not.
-          if (a < 0.1 && !model_entry(name).reference_accuracy) EXPECT_EQ(worst(report), Severity::invalid) << name << " a'=" << a;
+          if (a < 0.1 && !model_entry(name).reference_accuracy) { EXPECT_EQ(worst(report), Severity::invalid) << name << " a'=" << a; }
         }
   }
 }
@@ -187,7 +187,7 @@ TEST(QuantizedDiffusion, MixtureIsExposedAndCarriesTheTotal) {
   for (std::size_t i = 0; i < mix.variance.size(); ++i) {
     EXPECT_GT(mix.variance[i], 0.0);
     EXPECT_GE(mix.weight[i], 0.0);
-    if (i) EXPECT_GT(mix.variance[i], mix.variance[i - 1]);
+    if (i) { EXPECT_GT(mix.variance[i], mix.variance[i - 1]); }
   }
   EXPECT_NEAR(std::accumulate(mix.weight.begin(), mix.weight.end(), 0.0), model.total_reflectance(m), 1e-15);
   // Close to the better dipole (same theory, extended source): within 10 % in total here.

@@ -95,7 +95,7 @@ TEST(ModelChoiceLive, InsideTheDomainEstimatesAreLiveAndExactIsACandidate) {
   ASSERT_TRUE(outside);
   for (const auto& e : *outside) {
     EXPECT_EQ(e.source, "table") << e.model;
-    if (e.model == "exact") EXPECT_NE(e.invalid.find("exact_albedo"), std::string::npos) << e.invalid;
+    if (e.model == "exact") { EXPECT_NE(e.invalid.find("exact_albedo"), std::string::npos) << e.invalid; }
   }
 }
 

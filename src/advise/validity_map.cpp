@@ -9,6 +9,7 @@
 #include "bssrdf/advise/image_error.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/model_choice.hpp"
+#include "bssrdf/model_registry.hpp"
 
 namespace bssrdf {
 namespace {
@@ -66,6 +67,8 @@ std::string render_validity_map(const ValidityMapOptions& options, const std::ve
         const std::vector<PatternImage> ref_image{meter.render(ref.channels.front())};
         const auto m = medium.reduced(0);
         for (std::size_t k = 0; k < models; ++k) {
+          // The measured table's columns include retired models (dipole+ss): no image for those.
+          if (!find_model_entry(detail::kCandidateNames[k])) continue;
           const auto model = make_model(detail::kCandidateNames[k]);
           const auto profile = annuli_of(meter.edges(), [&](double r) { return model->reflectance(m, r); }, model->total_reflectance(m));
           error[k][i][j] = meter.error(ref_image, {meter.render(profile)}).error;
