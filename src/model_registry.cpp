@@ -133,10 +133,12 @@ std::vector<ModelEntry> build() {
   exact.albedo_prime_for_total = [](double total, double g, double eta) {
     return exact_albedo_prime_from_total(bundled_exact_table(), total, g, eta);
   };
-  // Its accuracy against fresh Monte Carlo off the grid: the goals of its validation (total 1 %,
-  // profile 3 %), stated until tools/validation/exact_vs_montecarlo.txt is committed; then replace
-  // them by its measured worst cases.
-  exact.reference_accuracy = ModelEntry::ReferenceAccuracy{0.01, 0.03};
+  // Its accuracy against fresh Monte Carlo at 20 random points off the grid, the worst cases of
+  // tools/validation/exact_vs_montecarlo.txt: total 1.18 % (alpha' 0.10, eta 1.02, between the eta
+  // nodes 1.0 and 1.05), profile 5.6 % beyond the runs' own noise (the near field at alpha' >= 0.99
+  // or g >= 0.95, where the table's non-absorbing runs had 2.5-5e4 photons per node). A longer
+  // generator run lowers the second; re-measure and update these with it.
+  exact.reference_accuracy = ModelEntry::ReferenceAccuracy{0.012, 0.056};
 
   table.push_back(dipole);
   table.push_back(better);

@@ -114,13 +114,14 @@ TEST(ModelChoice, PicksTheCheapestWithinTheAccuracyForEveryChannel) {
   }
   // Skin1 is inside the exact domain: exact (40 ns) within 10 %, every cheaper model invalid here.
   EXPECT_EQ(choose_model(skin, 0.1).model, "exact");
-  // Too strict: the message names the best achievable (exact's own band, 3 %); outside every
+  // Too strict: the message names the best achievable (exact's own measured band); outside every
   // measured range (Coke's channel R, alpha' 0.00089 < 0.001): the channel and a command that works.
   try {
     choose_model(skin, 0.01);
     FAIL();
   } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find(">= 0.03"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(">= " + format_number(model_entry("exact").reference_accuracy->profile)),
+              std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("exact"), std::string::npos) << e.what();
   }
   EXPECT_EQ(choose_model(db.find("Ketchup").medium, 0.1).model, "exact");  // refused before (alpha' 0.07)
