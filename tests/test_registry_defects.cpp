@@ -97,7 +97,8 @@ TEST(RegistryDefects, BurleyDmfpWithoutAbsorptionIsRefusedNotZero) {
   // The other scalings have a finite length without absorption and give a profile.
   const auto ok = run("profile --sigma-a 0 --sigma-s 10 --model burley --radii 0.1,1,10 -f json");
   ASSERT_EQ(ok.status, 0) << ok.err;
-  for (const auto& v : json::parse(ok.out)["channels"][0]["reflectance"]) EXPECT_GT(v.get<double>(), 0);
+  const auto doc = json::parse(ok.out);  // named: a range-for over a temporary's member dangles
+  for (const auto& v : doc["channels"][0]["reflectance"]) EXPECT_GT(v.get<double>(), 0);
 }
 
 TEST(RegistryDefects, AnyNumberOfRadii) {
