@@ -3,6 +3,10 @@
 // Adding a kind is one builder in lut_kinds.cpp and one row of table_kinds().
 #pragma once
 
+#include "bssrdf/advise/realtime_tables.hpp"
+
+#include <optional>
+
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -63,6 +67,29 @@ const TableKind& table_kind(const std::string& name);
 struct RenderedPreview {
   std::string png, description;
 };
+// Option parsing shared by the kinds (lut_options.cpp).
+// "WxH" with each side a count in its range (parsed as signed: "-1x10" is refused, not wrapped).
+std::pair<std::size_t, std::size_t> parse_grid(const std::string& text, std::int64_t min_w, std::int64_t max_w,
+                                               std::int64_t min_h, std::int64_t max_h, const std::string& example);
+// --size WxH for the realtime grids; empty keeps the library's size.
+void parse_size(const std::string& text, std::size_t& width, std::size_t& height);
+double positive_fraction(const std::string& text, const std::string& field);  // 0 < value < 1
+// A length option in --unit, > 0, as mm.
+double positive_length_mm(const std::string& text, const std::string& field, LengthUnit unit);
+// --pixel [--tolerance] for the tabulated kinds: the image-space judge of the
+// tabulated model (advise/realtime_tables.hpp), the tolerance in code values (nullopt: none given),
+// and what a table records about its error.
+struct PixelJudge {
+  RealtimeJudge judge;
+  double pixel = 0;  // mm
+  std::optional<double> tolerance;
+};
+std::optional<PixelJudge> pixel_judge(const LutOptions& o, const MediumOptions::Resolved& resolved, const Model& model);
+// Records the table's image error (metadata and a summary line).
+void record_image_error(Built& b, const PixelJudge& j, const ImageError& e, const Model& model, const std::string& sized);
+// What sized a table by --tolerance, for its metadata and summary.
+std::string sized_note(const std::optional<double>& tolerance, bool meets, const std::string& what);
+
 RenderedPreview render_preview(const LutOptions& o, const MediumOptions::Resolved& resolved);
 
 }  // namespace bssrdf::cli
