@@ -25,7 +25,8 @@ void LayerStack::validate() const {
   }
   const auto check_index = [](double n, const std::string& field) {
     if (!(n >= kMinRefractiveIndex && n <= kMaxRefractiveIndex))
-      throw InvalidInput(field, format_number(n), format_number(kMinRefractiveIndex) + " to " + format_number(kMaxRefractiveIndex));
+      throw InvalidInput(field, format_number(n),
+                         format_number(kMinRefractiveIndex) + " to " + format_number(kMaxRefractiveIndex));
   };
   check_index(ambient_above, "ambient_above");
   check_index(ambient_below, "ambient_below");
@@ -37,7 +38,9 @@ void LayerStack::validate() const {
     check_index(layer.n, prefix + ".n");
     const bool last = i + 1 == layers.size();
     if (layer.thickness == kSemiInfinite) {
-      if (!last) throw InvalidInput(prefix + ".thickness", "semi-infinite", "> 0 and finite (only the last layer may be semi-infinite)");
+      if (!last)
+        throw InvalidInput(prefix + ".thickness", "semi-infinite",
+                           "> 0 and finite (only the last layer may be semi-infinite)");
     } else if (!(layer.thickness > 0 && layer.thickness <= 1e6)) {  // 1e6 mm = 1 km: use semi-infinite beyond
       throw InvalidInput(prefix + ".thickness", format_number(layer.thickness),
                          "> 0 and at most 1e6 mm, or semi-infinite for the last layer");
@@ -52,7 +55,8 @@ void LayerStack::validate() const {
     check_size(layer.g, "g");
     for (std::size_t c = 0; c < nc; ++c) {
       const std::string at = "[" + channel_names[c] + "]";
-      const std::string coefficient_range = ">= 0 and finite, at most " + format_number(kMaxCoefficient) + " (a 1 nm mean free path in mm)";
+      const std::string coefficient_range =
+          ">= 0 and finite, at most " + format_number(kMaxCoefficient) + " (a 1 nm mean free path in mm)";
       if (!(layer.sigma_a[c] >= 0 && layer.sigma_a[c] <= kMaxCoefficient))
         throw InvalidInput(prefix + ".sigma_a" + at, format_number(layer.sigma_a[c]), coefficient_range);
       if (!(layer.sigma_s[c] >= 0 && layer.sigma_s[c] <= kMaxCoefficient))

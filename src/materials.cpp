@@ -66,8 +66,8 @@ class FileReader {
   std::vector<double> numbers(const json& value, const std::string& path, std::size_t count) const {
     if (!value.is_array()) fail(path, "expected an array of " + std::to_string(count) + " numbers");
     if (value.size() != count)
-      fail(path, std::to_string(value.size()) + " values given, the file declares " +
-                     std::to_string(count) + " channels");
+      fail(path,
+           std::to_string(value.size()) + " values given, the file declares " + std::to_string(count) + " channels");
     std::vector<double> out;
     for (std::size_t i = 0; i < count; ++i) out.push_back(number(value[i], path + "[" + std::to_string(i) + "]"));
     return out;
@@ -119,11 +119,11 @@ std::vector<std::string> close_matches(std::string_view name, const std::vector<
   for (const auto& candidate : names) {
     const std::string c = lower(candidate);
     std::size_t d = edit_distance(key, c);
-    if (!key.empty() && (c.find(key) != std::string::npos || key.find(c) != std::string::npos)) d = std::min<std::size_t>(d, 1);
+    if (!key.empty() && (c.find(key) != std::string::npos || key.find(c) != std::string::npos))
+      d = std::min<std::size_t>(d, 1);
     if (d <= std::max<std::size_t>(2, key.size() / 3)) scored.emplace_back(d, candidate);
   }
-  std::stable_sort(scored.begin(), scored.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::stable_sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::vector<std::string> out;
   for (const auto& [d, n] : scored) {
     if (out.size() == max_results) break;
@@ -173,7 +173,8 @@ void MaterialDatabase::add_text(const std::string& text, const std::string& file
     reader.fail("$.format", "expected \"bssrdf-materials\"");
   if (reader.number(reader.member(root, "version", "$"), "$.version") != 1)
     reader.fail("$.version", "only version 1 is understood");
-  reader.only_known_fields(root, "$", {"format", "version", "source", "citation", "unit", "channels", "notes", "materials"});
+  reader.only_known_fields(root, "$",
+                           {"format", "version", "source", "citation", "unit", "channels", "notes", "materials"});
   const std::string source = reader.text(reader.member(root, "source", "$"), "$.source");
   const std::string citation = reader.text(reader.member(root, "citation", "$"), "$.citation");
   // Files spell units exactly (the schema's enum); the command line is more lenient.
@@ -183,7 +184,8 @@ void MaterialDatabase::add_text(const std::string& text, const std::string& file
   const LengthUnit unit = parse_length_unit(unit_text, "unit");
   std::vector<std::string> channels;
   const json& channel_list = reader.member(root, "channels", "$");
-  if (!channel_list.is_array() || channel_list.empty()) reader.fail("$.channels", "expected a non-empty array of names");
+  if (!channel_list.is_array() || channel_list.empty())
+    reader.fail("$.channels", "expected a non-empty array of names");
   for (std::size_t i = 0; i < channel_list.size(); ++i) {
     const std::string where = "$.channels[" + std::to_string(i) + "]";
     channels.push_back(reader.text(channel_list[i], where));
@@ -212,8 +214,7 @@ void MaterialDatabase::add_text(const std::string& text, const std::string& file
     m.medium.eta = reader.number(reader.member(entry, "eta", where), where + ".eta");
     m.medium.sigma_a = reader.numbers(reader.member(entry, "sigma_a", where), where + ".sigma_a", n);
     const bool has_prime = entry.contains("sigma_s_prime"), has_sigma_s = entry.contains("sigma_s");
-    if (has_prime == has_sigma_s)
-      reader.fail(where, "give exactly one of 'sigma_s' (with 'g') or 'sigma_s_prime'");
+    if (has_prime == has_sigma_s) reader.fail(where, "give exactly one of 'sigma_s' (with 'g') or 'sigma_s_prime'");
     if (has_prime) {
       if (entry.contains("g")) reader.fail(where + ".g", "'g' cannot be given with 'sigma_s_prime'");
       m.reduced_scattering_only = true;

@@ -21,8 +21,8 @@ void Medium::validate() const {
   if (n == 0) throw InvalidInput("sigma_a", "(no values)", "at least one channel");
   auto check_count = [n](const char* field, std::size_t count) {
     if (count != n)
-      throw InvalidInput(std::string(field) + ": " + std::to_string(count) +
-                         " channels given, but sigma_a has " + std::to_string(n));
+      throw InvalidInput(std::string(field) + ": " + std::to_string(count) + " channels given, but sigma_a has " +
+                         std::to_string(n));
   };
   check_count("sigma_s", sigma_s.size());
   check_count("g", g.size());
@@ -36,20 +36,20 @@ void Medium::validate() const {
   }
   for (std::size_t i = 0; i < n; ++i) {
     const std::string tag = "[" + channel_names[i] + "]";
-    const std::string coefficient_range = ">= 0 and finite, at most " + format_number(kMaxCoefficient) + " (a 1 nm mean free path in mm)";
+    const std::string coefficient_range =
+        ">= 0 and finite, at most " + format_number(kMaxCoefficient) + " (a 1 nm mean free path in mm)";
     if (!(sigma_a[i] >= 0 && sigma_a[i] <= kMaxCoefficient))
       throw InvalidInput("sigma_a" + tag, format_number(sigma_a[i]), coefficient_range);
     if (!(sigma_s[i] >= 0 && sigma_s[i] <= kMaxCoefficient))
       throw InvalidInput("sigma_s" + tag, format_number(sigma_s[i]), coefficient_range);
     if (sigma_a[i] + sigma_s[i] <= 0)
-      throw InvalidInput("sigma_a" + tag + " + sigma_s" + tag, "0",
-                         "> 0 (the medium must absorb or scatter)");
-    if (!(g[i] > -1 && g[i] < 1))
-      throw InvalidInput("g" + tag, format_number(g[i]), "-1 < g < 1");
+      throw InvalidInput("sigma_a" + tag + " + sigma_s" + tag, "0", "> 0 (the medium must absorb or scatter)");
+    if (!(g[i] > -1 && g[i] < 1)) throw InvalidInput("g" + tag, format_number(g[i]), "-1 < g < 1");
   }
   if (!(eta >= kMinRefractiveIndex && eta <= kMaxRefractiveIndex))
-    throw InvalidInput("eta", format_number(eta),
-                       format_number(kMinRefractiveIndex) + " to " + format_number(kMaxRefractiveIndex) + " (n_medium / n_outside)");
+    throw InvalidInput(
+        "eta", format_number(eta),
+        format_number(kMinRefractiveIndex) + " to " + format_number(kMaxRefractiveIndex) + " (n_medium / n_outside)");
 }
 
 Medium Medium::single_channel(double sigma_a, double sigma_s, double g, double eta) {

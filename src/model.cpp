@@ -21,9 +21,9 @@ double Model::albedo_prime_from_total(double total, double eta) const {
   const auto total_at = [&](double a) { return total_reflectance(reduced_optical(a, eta)); };
   const double highest = total_at(1.0);
   if (!(total >= 0 && total <= highest) || !std::isfinite(total))
-    throw InvalidInput("total_reflectance", format_number(total),
-                       "[0, " + format_number(highest) + "] for the " + name() + " model at eta = " +
-                           format_number(eta));
+    throw InvalidInput(
+        "total_reflectance", format_number(total),
+        "[0, " + format_number(highest) + "] for the " + name() + " model at eta = " + format_number(eta));
   // The total rises monotonically with alpha': bisect, then polish with a few secant steps.
   double lo = 0, hi = 1;
   for (int iter = 0; iter < 200 && hi - lo > 1e-15; ++iter) {

@@ -6,8 +6,8 @@
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/model_registry.hpp"
-#include "bssrdf/validity.hpp"
 #include "bssrdf/models/exact.hpp"
+#include "bssrdf/validity.hpp"
 #include "model_error_table.hpp"
 #include "model_error_vs_exact.hpp"
 
@@ -27,7 +27,8 @@ const std::vector<Candidate>& candidates() {
       if (!e.auto_candidate) continue;
       const auto it = std::find(detail::kCandidateNames.begin(), detail::kCandidateNames.end(), e.name);
       std::optional<std::size_t> column;
-      if (it != detail::kCandidateNames.end()) column = static_cast<std::size_t>(it - detail::kCandidateNames.begin());
+      if (it != detail::kCandidateNames.end())
+        column = static_cast<std::size_t>(it - detail::kCandidateNames.begin());
       else if (!e.reference_accuracy)
         throw std::logic_error("model " + e.name + " is an auto candidate without measured errors or a reference band");
       out.push_back({&e, column});
@@ -80,7 +81,9 @@ std::vector<double> axis(double detail::MeasuredCase::*field) {
 
 std::string exact_domain_text() {
   const ExactTable& t = bundled_exact_table();
-  const auto range = [](const std::vector<double>& axis) { return format_number(axis.front()) + " to " + format_number(axis.back()); };
+  const auto range = [](const std::vector<double>& axis) {
+    return format_number(axis.front()) + " to " + format_number(axis.back());
+  };
   return "alpha' " + range(t.albedo_prime) + ", g " + range(t.g) + ", eta " + range(t.eta);
 }
 
@@ -160,11 +163,12 @@ std::vector<ModelErrorEstimate> estimate_model_errors(const Medium& medium) {
     const auto m = medium.reduced(c);
     const auto estimates = estimate_model_errors(m);
     if (!estimates)
-      throw InvalidInput("channel " + medium.channel_names[c] + " (alpha', eta, g)",
-                         format_number(m.albedo_prime) + ", " + format_number(m.eta) + ", " + format_number(m.g),
-                         "the exact model's domain (" + exact_domain_text() +
-                             ") or, beyond it, alpha' >= 0.5, 1 <= eta <= 1.5 and 0 <= g <= 0.95 where the models were measured "
-                             "against Monte Carlo; for this channel run the Monte Carlo reference (bssrdf reference)");
+      throw InvalidInput(
+          "channel " + medium.channel_names[c] + " (alpha', eta, g)",
+          format_number(m.albedo_prime) + ", " + format_number(m.eta) + ", " + format_number(m.g),
+          "the exact model's domain (" + exact_domain_text() +
+              ") or, beyond it, alpha' >= 0.5, 1 <= eta <= 1.5 and 0 <= g <= 0.95 where the models were measured "
+              "against Monte Carlo; for this channel run the Monte Carlo reference (bssrdf reference)");
     if (worst.empty()) {
       worst = *estimates;
       for (auto& e : worst)
@@ -191,26 +195,30 @@ std::optional<std::string> cheapest_within(const std::vector<ModelErrorEstimate>
 }
 
 ModelChoice choose_model(const Medium& medium, double accuracy) {
-  if (!(accuracy > 0) || !std::isfinite(accuracy)) throw InvalidInput("accuracy", format_number(accuracy), "> 0 (relative, e.g. 0.05)");
+  if (!(accuracy > 0) || !std::isfinite(accuracy))
+    throw InvalidInput("accuracy", format_number(accuracy), "> 0 (relative, e.g. 0.05)");
   ModelChoice choice{"", estimate_model_errors(medium)};
   if (const auto model = cheapest_within(choice.estimates, accuracy)) {
     choice.model = *model;
     return choice;
   }
   // The most accurate valid model (an invalid one is never offered).
-  const auto best = *std::min_element(choice.estimates.begin(), choice.estimates.end(), [](const auto& x, const auto& y) {
-    return std::pair{!x.invalid.empty(), x.error()} < std::pair{!y.invalid.empty(), y.error()};
-  });
+  const auto best =
+      *std::min_element(choice.estimates.begin(), choice.estimates.end(), [](const auto& x, const auto& y) {
+        return std::pair{!x.invalid.empty(), x.error()} < std::pair{!y.invalid.empty(), y.error()};
+      });
   if (!best.invalid.empty())
     throw InvalidInput("--model auto: every measured model marks itself invalid for this medium (" + best.model + ": " +
                        best.invalid + "); run the Monte Carlo reference instead (bssrdf reference)");
   std::string excluded;
   for (const auto& e : choice.estimates)
     if (!e.invalid.empty()) excluded += (excluded.empty() ? "" : ", ") + e.model;
-  throw InvalidInput("accuracy", format_number(accuracy),
-                     ">= " + format_number(std::ceil(best.error() * 1000) / 1000) + " for this medium: the most accurate valid model, " +
-                         best.model + ", was measured within that of the Monte Carlo reference here" +
-                         (excluded.empty() ? "" : " (" + excluded + " mark themselves invalid here and are never chosen)"));
+  throw InvalidInput(
+      "accuracy", format_number(accuracy),
+      ">= " + format_number(std::ceil(best.error() * 1000) / 1000) +
+          " for this medium: the most accurate valid model, " + best.model +
+          ", was measured within that of the Monte Carlo reference here" +
+          (excluded.empty() ? "" : " (" + excluded + " mark themselves invalid here and are never chosen)"));
 }
 
 }  // namespace bssrdf

@@ -39,7 +39,8 @@ ExactBins exact_bins(const ExactProfile& exact) {
   const double far_range = std::log(std::max(outer, 2.0)), near_range = -std::log(kInnerRadius);
   const int far_bins = std::max(8, static_cast<int>(std::lround(kBins * far_range / (far_range + near_range))));
   const int near_bins = kBins - far_bins;
-  for (int k = 0; k < near_bins; ++k) bins.edges.push_back(kInnerRadius * std::pow(1 / kInnerRadius, double(k) / near_bins));
+  for (int k = 0; k < near_bins; ++k)
+    bins.edges.push_back(kInnerRadius * std::pow(1 / kInnerRadius, double(k) / near_bins));
   for (int k = 0; k <= far_bins; ++k) bins.edges.push_back(std::pow(std::max(outer, 2.0), double(k) / far_bins));
   bins.average = bin_averages(bins.edges, [&](double r) { return exact.reflectance(r); });
   return bins;

@@ -19,9 +19,9 @@ struct ExactBins {
 ExactBins exact_bins(const ExactProfile& exact);
 
 struct ErrorVsExact {
-  double total = 0;    // |model total / exact total - 1|
-  double near = 0;     // relative L2 of the bin averages of r R(r) over dr, bins inside one transport mfp
-  double far = 0;      // the same beyond it
+  double total = 0;  // |model total / exact total - 1|
+  double near = 0;   // relative L2 of the bin averages of r R(r) over dr, bins inside one transport mfp
+  double far = 0;    // the same beyond it
   double profile() const { return near > far ? near : far; }  // the far field counts as much
 };
 // `model` at `m` against the exact bins of the same medium (lengths scaled by m.ell).

@@ -18,7 +18,8 @@ namespace {
 // at or above each bound (alpha' from the similarity relation), rounded up to 0.1 %: first at
 // g = 0, then at g = 0.9. Measured by tests/test_adding_doubling.cpp, which fails if a band stops
 // holding or is padded (and prints the measured bands).
-DiffusionLimits bands(std::initializer_list<double> isotropic, std::initializer_list<double> forward, std::string context = "") {
+DiffusionLimits bands(std::initializer_list<double> isotropic, std::initializer_list<double> forward,
+                      std::string context = "") {
   static constexpr double kBounds[] = {0.99, 0.95, 0.9, 0.8, 0.7, 0.5, 0.3, 0.1, 0.01};
   const auto band_list = [](std::initializer_list<double> worst) {
     std::vector<AccuracyBand> out;
@@ -36,11 +37,13 @@ DiffusionLimits bands(std::initializer_list<double> isotropic, std::initializer_
 const std::string kOmits = "; the model omits single scattering, much of this error at g near 0";
 // Quantized diffusion's total alone is nearer the full total (single scattering included) at g = 0,
 // alpha' >= 0.8; quantized+ss is nearer on average at g >= 0.5 (test_single_scattering_composition.cpp).
-const std::string kQuantizedOmits = "; the model omits single scattering, yet at g = 0 and alpha' >= 0.8 its total alone is nearer the "
-                                    "full total than quantized+ss (which counts it twice there)";
+const std::string kQuantizedOmits =
+    "; the model omits single scattering, yet at g = 0 and alpha' >= 0.8 its total alone is nearer the "
+    "full total than quantized+ss (which counts it twice there)";
 
 // NAME+ss from the row of a model that omits single scattering.
-ModelEntry plus_single_scattering(const ModelEntry& base, double cost_ns, std::optional<DiffusionLimits> limits, bool auto_candidate) {
+ModelEntry plus_single_scattering(const ModelEntry& base, double cost_ns, std::optional<DiffusionLimits> limits,
+                                  bool auto_candidate) {
   ModelEntry e;
   e.name = base.name + "+ss";
   e.base = base.name;
@@ -176,7 +179,8 @@ const ModelEntry& model_entry(std::string_view name) {
   if (const auto* e = find_model_entry(name)) return *e;
   constexpr std::string_view kSingle = "+ss";
   if (name.size() > kSingle.size() && name.substr(name.size() - kSingle.size()) == kSingle)
-    if (const auto* base = find_model_entry(name.substr(0, name.size() - kSingle.size())); base && base->includes_single_scattering)
+    if (const auto* base = find_model_entry(name.substr(0, name.size() - kSingle.size()));
+        base && base->includes_single_scattering)
       throw InvalidInput("model", std::string("'").append(name).append("'"),
                          "a model without single scattering: " + base->name + " already includes it");
   std::string known;

@@ -24,16 +24,14 @@ std::vector<double> hermite_slopes(const std::vector<double>& x, const std::vect
   auto one_sided = [&](std::size_t a, std::size_t b, std::size_t c) {
     // Derivative at x[a] of the parabola through points a, b, c.
     const double h0 = x[b] - x[a], h1 = x[c] - x[b];
-    return -(2 * h0 + h1) / (h0 * (h0 + h1)) * y[a] + (h0 + h1) / (h0 * h1) * y[b] -
-           h0 / (h1 * (h0 + h1)) * y[c];
+    return -(2 * h0 + h1) / (h0 * (h0 + h1)) * y[a] + (h0 + h1) / (h0 * h1) * y[b] - h0 / (h1 * (h0 + h1)) * y[c];
   };
   d[0] = one_sided(0, 1, 2);
   // Mirror the grid for the last point.
   {
     const std::size_t a = n - 1, b = n - 2, c = n - 3;
     const double h0 = x[a] - x[b], h1 = x[b] - x[c];
-    d[a] = (2 * h0 + h1) / (h0 * (h0 + h1)) * y[a] - (h0 + h1) / (h0 * h1) * y[b] +
-           h0 / (h1 * (h0 + h1)) * y[c];
+    d[a] = (2 * h0 + h1) / (h0 * (h0 + h1)) * y[a] - (h0 + h1) / (h0 * h1) * y[b] + h0 / (h1 * (h0 + h1)) * y[c];
   }
   return d;
 }
@@ -48,8 +46,7 @@ double hermite_partial_integral(double h, double y0, double y1, double d0, doubl
 
 double hermite_value(double h, double y0, double y1, double d0, double d1, double t) {
   const double t2 = t * t, t3 = t2 * t;
-  return (2 * t3 - 3 * t2 + 1) * y0 + (t3 - 2 * t2 + t) * h * d0 + (-2 * t3 + 3 * t2) * y1 +
-         (t3 - t2) * h * d1;
+  return (2 * t3 - 3 * t2 + 1) * y0 + (t3 - 2 * t2 + t) * h * d0 + (-2 * t3 + 3 * t2) * y1 + (t3 - t2) * h * d1;
 }
 
 struct Integrand {
@@ -64,35 +61,31 @@ Integrand radial_integrand(const SampledProfile& p) {
   return f;
 }
 
-double inner_disc(const SampledProfile& p) {
-  return std::numbers::pi * p.radius[0] * p.radius[0] * p.value[0];
-}
+double inner_disc(const SampledProfile& p) { return std::numbers::pi * p.radius[0] * p.radius[0] * p.value[0]; }
 
 }  // namespace
 
 void SampledProfile::validate() const {
   if (radius.size() < 2) throw InvalidInput("radius", std::to_string(radius.size()) + " samples", ">= 2 samples");
   if (value.size() != radius.size())
-    throw InvalidInput("profile: " + std::to_string(value.size()) + " values for " +
-                       std::to_string(radius.size()) + " radii");
+    throw InvalidInput("profile: " + std::to_string(value.size()) + " values for " + std::to_string(radius.size()) +
+                       " radii");
   if (!standard_error.empty() && standard_error.size() != radius.size())
-    throw InvalidInput("profile: " + std::to_string(standard_error.size()) +
-                       " standard errors for " + std::to_string(radius.size()) + " radii");
+    throw InvalidInput("profile: " + std::to_string(standard_error.size()) + " standard errors for " +
+                       std::to_string(radius.size()) + " radii");
   for (std::size_t i = 0; i < radius.size(); ++i) {
     if (!std::isfinite(radius[i]) || radius[i] < 0)
       throw InvalidInput("radius[" + std::to_string(i) + "]", format_number(radius[i]), ">= 0 and finite");
     if (i > 0 && !(radius[i] > radius[i - 1]))
-      throw InvalidInput("radius[" + std::to_string(i) + "]", format_number(radius[i]),
-                         "> radius[" + std::to_string(i - 1) + "] = " + format_number(radius[i - 1]) +
-                             " (radii must increase)");
+      throw InvalidInput(
+          "radius[" + std::to_string(i) + "]", format_number(radius[i]),
+          "> radius[" + std::to_string(i - 1) + "] = " + format_number(radius[i - 1]) + " (radii must increase)");
     if (!std::isfinite(value[i]))
       throw InvalidInput("reflectance[" + std::to_string(i) + "]", format_number(value[i]), "finite");
   }
 }
 
-double SampledProfile::integrate() const {
-  return cumulative(radius.back());
-}
+double SampledProfile::integrate() const { return cumulative(radius.back()); }
 
 double SampledProfile::cumulative(double r) const {
   if (size() < 2) return 0;
@@ -141,16 +134,14 @@ double SampledProfile::interpolate(double r) const {
   if (size() == 0) return 0;
   if (r <= radius.front()) return value.front();
   if (r > radius.back()) return 0;
-  const bool log_log =
-      radius.front() > 0 && std::all_of(value.begin(), value.end(), [](double v) { return v > 0; });
+  const bool log_log = radius.front() > 0 && std::all_of(value.begin(), value.end(), [](double v) { return v > 0; });
   std::vector<double> x(radius), y(value);
   if (log_log) {
     for (auto& v : x) v = std::log(v);
     for (auto& v : y) v = std::log(v);
   }
   const double u = log_log ? std::log(r) : r;
-  const std::size_t i =
-      std::min<std::size_t>(size() - 2, std::upper_bound(x.begin(), x.end(), u) - x.begin() - 1);
+  const std::size_t i = std::min<std::size_t>(size() - 2, std::upper_bound(x.begin(), x.end(), u) - x.begin() - 1);
   const auto d = hermite_slopes(x, y);
   const double h = x[i + 1] - x[i];
   const double v = hermite_value(h, y[i], y[i + 1], d[i], d[i + 1], (u - x[i]) / h);
@@ -158,8 +149,7 @@ double SampledProfile::interpolate(double r) const {
 }
 
 std::vector<double> log_spaced(double r_min, double r_max, std::size_t n) {
-  if (!(r_min > 0) || !std::isfinite(r_min))
-    throw InvalidInput("r_min", format_number(r_min), "> 0 for log spacing");
+  if (!(r_min > 0) || !std::isfinite(r_min)) throw InvalidInput("r_min", format_number(r_min), "> 0 for log spacing");
   if (!(r_max > r_min) || !std::isfinite(r_max))
     throw InvalidInput("r_max", format_number(r_max), "> r_min = " + format_number(r_min));
   if (n < 2) throw InvalidInput("samples", std::to_string(n), ">= 2");
@@ -171,8 +161,7 @@ std::vector<double> log_spaced(double r_min, double r_max, std::size_t n) {
 }
 
 std::vector<double> linear_spaced(double r_min, double r_max, std::size_t n) {
-  if (!(r_min >= 0) || !std::isfinite(r_min))
-    throw InvalidInput("r_min", format_number(r_min), ">= 0");
+  if (!(r_min >= 0) || !std::isfinite(r_min)) throw InvalidInput("r_min", format_number(r_min), ">= 0");
   if (!(r_max > r_min) || !std::isfinite(r_max))
     throw InvalidInput("r_max", format_number(r_max), "> r_min = " + format_number(r_min));
   if (n < 2) throw InvalidInput("samples", std::to_string(n), ">= 2");

@@ -8,10 +8,10 @@
 #include <sstream>
 
 #include "bssrdf/error.hpp"
-#include "bssrdf/models/normalized_diffusion.hpp"
-#include "bssrdf/models/quantized_diffusion.hpp"
 #include "bssrdf/models/layered.hpp"
 #include "bssrdf/models/multipole.hpp"
+#include "bssrdf/models/normalized_diffusion.hpp"
+#include "bssrdf/models/quantized_diffusion.hpp"
 
 namespace bssrdf {
 
@@ -44,8 +44,9 @@ void settle_rounding_tail(ProfileReport& report) {
       for (std::size_t i = 0; i < values.size(); ++i) {
         const double r = ch.profile.radius[i];
         if (!std::isfinite(values[i]))
-          throw InvalidInput("radii", format_number(r),
-                             std::string("> 0 for ") + report.model + ": its " + what + " is infinite at r = " + format_number(r));
+          throw InvalidInput(
+              "radii", format_number(r),
+              std::string("> 0 for ") + report.model + ": its " + what + " is infinite at r = " + format_number(r));
         if (values[i] >= 0) continue;
         if (-values[i] > 1e-9 * peak)
           throw InvalidInput(std::string(what) + "[" + ch.name + "] at r = " + format_number(r) + ": the model gives " +
@@ -75,8 +76,8 @@ std::vector<double> default_radii_mm(const Medium& medium, const Model& model, s
   return log_spaced(r_min, r_max, samples);
 }
 
-ProfileReport compute_profile_report(const Medium& medium, const Model& model,
-                                     const std::vector<double>& radii_mm, LengthUnit unit) {
+ProfileReport compute_profile_report(const Medium& medium, const Model& model, const std::vector<double>& radii_mm,
+                                     LengthUnit unit) {
   medium.validate();
   ProfileReport report;
   report.model = model.name();
@@ -161,9 +162,7 @@ ProfileReport compute_stack_report(const LayerStack& stack, const std::vector<do
 
 namespace {
 
-nlohmann::json number_or_null(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-}
+nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 std::string fixed(double v, int width, int precision = 5) {
   char buffer[64];
@@ -189,9 +188,8 @@ std::string to_json(const ProfileReport& report) {
   doc["normalization"] = "per_entered_flux";
   doc["eta"] = report.eta;
   if (report.material) {
-    doc["material"] = {{"name", report.material->name},
-                       {"source", report.material->source},
-                       {"citation", report.material->citation}};
+    doc["material"] = {
+        {"name", report.material->name}, {"source", report.material->source}, {"citation", report.material->citation}};
   } else {
     doc["material"] = nullptr;
   }
@@ -203,9 +201,8 @@ std::string to_json(const ProfileReport& report) {
     doc["ambient_below"] = report.layers->ambient_below;
     doc["layers"] = nlohmann::json::array();
     for (const auto& layer : report.layers->layers)
-      doc["layers"].push_back({{"name", layer.name},
-                               {"thickness", number_or_null(layer.thickness / mm)},
-                               {"n", layer.n}});
+      doc["layers"].push_back(
+          {{"name", layer.name}, {"thickness", number_or_null(layer.thickness / mm)}, {"n", layer.n}});
   }
   doc["channels"] = nlohmann::json::array();
   for (const auto& ch : report.channels) {
@@ -235,9 +232,8 @@ std::string to_json(const ProfileReport& report) {
     if (ch.dipole_pairs > 0) c["dipole_pairs"] = ch.dipole_pairs;
     c["validity"] = nlohmann::json::array();
     for (const auto& note : ch.validity)
-      c["validity"].push_back({{"severity", std::string(to_string(note.severity))},
-                               {"code", note.code},
-                               {"message", note.message}});
+      c["validity"].push_back(
+          {{"severity", std::string(to_string(note.severity))}, {"code", note.code}, {"message", note.message}});
     doc["channels"].push_back(std::move(c));
   }
   return doc.dump(2) + "\n";
@@ -268,17 +264,17 @@ std::string to_table(const ProfileReport& report) {
   const std::string u(symbol(report.unit));
   out << "model     " << report.model << ": " << report.model_description << '\n';
   if (!report.model_choice.empty()) out << "choice    " << report.model_choice << '\n';
-  if (report.material)
-    out << "material  " << report.material->name << " (" << report.material->source << ")\n";
+  if (report.material) out << "material  " << report.material->name << " (" << report.material->source << ")\n";
   out << "eta       " << format_number(report.eta) << "\n";
   if (report.thickness) out << "slab      thickness " << format_number(*report.thickness) << ' ' << u << "\n";
   if (report.layers) {
     const double mm = millimetres_per(report.unit);
-    out << "layers    ambient above n = " << format_number(report.layers->ambient_above) << ", below n = "
-        << format_number(report.layers->ambient_below) << "\n";
+    out << "layers    ambient above n = " << format_number(report.layers->ambient_above)
+        << ", below n = " << format_number(report.layers->ambient_below) << "\n";
     for (const auto& layer : report.layers->layers)
       out << "          " << (layer.name.empty() ? "(unnamed)" : layer.name) << ": n = " << format_number(layer.n)
-          << ", thickness " << (layer.thickness == kSemiInfinite ? "semi-infinite" : format_number(layer.thickness / mm) + " " + u)
+          << ", thickness "
+          << (layer.thickness == kSemiInfinite ? "semi-infinite" : format_number(layer.thickness / mm) + " " + u)
           << "\n";
     out << "          (the channel table shows the top layer's coefficients)\n";
   }

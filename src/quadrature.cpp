@@ -47,18 +47,16 @@ namespace {
 
 // Gauss-Kronrod 7/15 nodes and weights on [-1, 1].
 constexpr std::array<double, 8> kKronrodNodes = {
-    0.991455371120812639206854697526329, 0.949107912342758524526189684047851,
-    0.864864423359769072789712788640926, 0.741531185599394439863864773280788,
-    0.586087235467691130294144845693013, 0.405845151377397166906606412076961,
+    0.991455371120812639206854697526329, 0.949107912342758524526189684047851, 0.864864423359769072789712788640926,
+    0.741531185599394439863864773280788, 0.586087235467691130294144845693013, 0.405845151377397166906606412076961,
     0.207784955007898467600689403773245, 0.000000000000000000000000000000000};
 constexpr std::array<double, 8> kKronrodWeights = {
-    0.022935322010529224963732008058970, 0.063092092629978553290700663189204,
-    0.104790010322250183839876322541518, 0.140653259715525918745189590510238,
-    0.169004726639267902826583426598550, 0.190350578064785409913256402421014,
+    0.022935322010529224963732008058970, 0.063092092629978553290700663189204, 0.104790010322250183839876322541518,
+    0.140653259715525918745189590510238, 0.169004726639267902826583426598550, 0.190350578064785409913256402421014,
     0.204432940075298892414161999234649, 0.209482141084727828012999174891714};
 constexpr std::array<double, 4> kGaussWeights = {
-    0.129484966168869693270611432679082, 0.279705391489276667901467771423780,
-    0.381830050505118944950369775488975, 0.417959183673469387755102040816327};
+    0.129484966168869693270611432679082, 0.279705391489276667901467771423780, 0.381830050505118944950369775488975,
+    0.417959183673469387755102040816327};
 
 struct Interval {
   double a, b, value, error;
@@ -80,9 +78,8 @@ Interval gauss_kronrod(const std::function<double(double)>& f, double a, double 
 
 }  // namespace
 
-QuadratureResult integrate_adaptive(const std::function<double(double)>& f, double a, double b,
-                                    double rel_tol, double abs_tol, int max_intervals,
-                                    int initial_pieces) {
+QuadratureResult integrate_adaptive(const std::function<double(double)>& f, double a, double b, double rel_tol,
+                                    double abs_tol, int max_intervals, int initial_pieces) {
   QuadratureResult result;
   if (a == b) {
     result.converged = true;
@@ -99,8 +96,7 @@ QuadratureResult integrate_adaptive(const std::function<double(double)>& f, doub
     heap.push(piece);
   }
   result.evaluations = 15 * kStart;
-  while (error > std::max(abs_tol, rel_tol * std::abs(value)) &&
-         static_cast<int>(heap.size()) < max_intervals) {
+  while (error > std::max(abs_tol, rel_tol * std::abs(value)) && static_cast<int>(heap.size()) < max_intervals) {
     const Interval worst = heap.top();
     heap.pop();
     const double mid = 0.5 * (worst.a + worst.b);
@@ -125,8 +121,8 @@ QuadratureResult integrate_adaptive(const std::function<double(double)>& f, doub
   return result;
 }
 
-QuadratureResult integrate_radial(const std::function<double(double)>& R, double r0, double r1,
-                                  double scale, double rel_tol) {
+QuadratureResult integrate_radial(const std::function<double(double)>& R, double r0, double r1, double scale,
+                                  double rel_tol) {
   const double lo = std::log(r0 > 0 ? r0 : scale * 1e-12);
   const double hi = std::log(std::isfinite(r1) ? r1 : scale * 1e9);
   if (!(hi > lo)) return {0, 0, 0, true};

@@ -28,7 +28,8 @@ ProfileDeviation compare_with_monte_carlo(const Model& model, const Reduced<doub
   ProfileDeviation d;
   d.total = model.total_reflectance(m) / mc.diffuse_reflectance.value - 1;
   d.l2 = std::sqrt(diff[0] / norm[0]), d.near = std::sqrt(diff[1] / norm[1]), d.far = std::sqrt(diff[2] / norm[2]);
-  d.l2_noise = std::sqrt(noise[0] / norm[0]), d.near_noise = std::sqrt(noise[1] / norm[1]), d.far_noise = std::sqrt(noise[2] / norm[2]);
+  d.l2_noise = std::sqrt(noise[0] / norm[0]), d.near_noise = std::sqrt(noise[1] / norm[1]),
+  d.far_noise = std::sqrt(noise[2] / norm[2]);
   d.near_r = std::sqrt(r_diff[1] / r_norm[1]), d.far_r = std::sqrt(r_diff[2] / r_norm[2]);
   d.near_r_noise = std::sqrt(r_noise[1] / r_norm[1]), d.far_r_noise = std::sqrt(r_noise[2] / r_norm[2]);
   return d;

@@ -15,8 +15,8 @@ double single_scattering_total(double albedo, double g, double eta) {
   const double span = 1 - mu_c;
   const auto integrand = [&](double s) {
     const double mu = mu_c + span * s * s;
-    return 2 * std::numbers::pi * henyey_greenstein(-mu, g) * (1 - fresnel_reflectance(mu, eta)) *
-           mu / (1 + mu) * 2 * span * s;
+    return 2 * std::numbers::pi * henyey_greenstein(-mu, g) * (1 - fresnel_reflectance(mu, eta)) * mu / (1 + mu) * 2 *
+           span * s;
   };
   return albedo * integrate_adaptive(integrand, 0.0, 1.0, 1e-12).value;
 }

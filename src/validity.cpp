@@ -4,9 +4,12 @@ namespace bssrdf {
 
 std::string_view to_string(Severity severity) {
   switch (severity) {
-    case Severity::note: return "note";
-    case Severity::warning: return "warning";
-    case Severity::invalid: return "invalid";
+    case Severity::note:
+      return "note";
+    case Severity::warning:
+      return "warning";
+    case Severity::invalid:
+      return "invalid";
   }
   return "note";
 }

@@ -1,13 +1,13 @@
 // Runs the bssrdf binary from tests and captures its exit status, stdout and stderr.
 #pragma once
 
+#include <sys/wait.h>
+#include <unistd.h>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace bssrdf::test_cli {
 
@@ -43,7 +43,8 @@ inline Run run(const std::string& arguments) {
   static int counter = 0;
   const auto out = scratch() / ("cli-out" + std::to_string(counter));
   const auto err = scratch() / ("cli-err" + std::to_string(counter++));
-  const std::string command = std::string(BSSRDF_CLI) + " " + arguments + " >" + out.string() + " 2>" + err.string() + " </dev/null";
+  const std::string command =
+      std::string(BSSRDF_CLI) + " " + arguments + " >" + out.string() + " 2>" + err.string() + " </dev/null";
   const int raw = std::system(command.c_str());
   return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
 }

@@ -17,7 +17,8 @@ inline bool has_type(const json& v, const std::string& type) {
   if (type == "array") return v.is_array();
   if (type == "string") return v.is_string();
   if (type == "number") return v.is_number();
-  if (type == "integer") return v.is_number_integer() || (v.is_number() && v.get<double>() == static_cast<long long>(v.get<double>()));
+  if (type == "integer")
+    return v.is_number_integer() || (v.is_number() && v.get<double>() == static_cast<long long>(v.get<double>()));
   if (type == "boolean") return v.is_boolean();
   if (type == "null") return v.is_null();
   return false;
@@ -39,10 +40,13 @@ inline std::string check(const json& root, const json& schema, const json& v, co
   if (v.is_number()) {
     const double x = v.get<double>();
     if (schema.contains("minimum") && x < schema["minimum"].get<double>()) return path + ": minimum";
-    if (schema.contains("exclusiveMinimum") && x <= schema["exclusiveMinimum"].get<double>()) return path + ": exclusiveMinimum";
-    if (schema.contains("exclusiveMaximum") && x >= schema["exclusiveMaximum"].get<double>()) return path + ": exclusiveMaximum";
+    if (schema.contains("exclusiveMinimum") && x <= schema["exclusiveMinimum"].get<double>())
+      return path + ": exclusiveMinimum";
+    if (schema.contains("exclusiveMaximum") && x >= schema["exclusiveMaximum"].get<double>())
+      return path + ": exclusiveMaximum";
   }
-  if (v.is_string() && schema.contains("minLength") && v.get<std::string>().size() < schema["minLength"].get<std::size_t>())
+  if (v.is_string() && schema.contains("minLength") &&
+      v.get<std::string>().size() < schema["minLength"].get<std::size_t>())
     return path + ": minLength";
   if (v.is_array()) {
     if (schema.contains("minItems") && v.size() < schema["minItems"].get<std::size_t>()) return path + ": minItems";

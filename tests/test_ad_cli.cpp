@@ -32,13 +32,14 @@ TEST(CliSlab, JsonPerChannelBothNormalisationsAndSlides) {
   EXPECT_DOUBLE_EQ(c["total_transmittance"].get<double>(), t.total_transmittance);
   EXPECT_DOUBLE_EQ(c["unscattered_transmittance"].get<double>(), t.unscattered_transmittance);
   EXPECT_EQ(c["per_entered_flux"]["normalization"], "per_entered_flux");
-  EXPECT_NEAR(c["per_entered_flux"]["diffuse_reflectance"].get<double>(), t.diffuse_reflectance / (1 - t.specular_reflectance), 1e-15);
+  EXPECT_NEAR(c["per_entered_flux"]["diffuse_reflectance"].get<double>(),
+              t.diffuse_reflectance / (1 - t.specular_reflectance), 1e-15);
   EXPECT_GT(c["quadrature_points"].get<int>(), 0);
   // More absorption, less of everything else.
   EXPECT_LT(doc["channels"][1]["diffuse_reflectance"].get<double>(), c["diffuse_reflectance"].get<double>());
   // Energy: R + Rsp + T + absorbed = 1.
-  EXPECT_NEAR(c["diffuse_reflectance"].get<double>() + c["specular_reflectance"].get<double>() + c["total_transmittance"].get<double>() +
-                  c["absorbed"].get<double>(),
+  EXPECT_NEAR(c["diffuse_reflectance"].get<double>() + c["specular_reflectance"].get<double>() +
+                  c["total_transmittance"].get<double>() + c["absorbed"].get<double>(),
               1, 1e-12);
 }
 
@@ -56,11 +57,12 @@ TEST(CliSlab, SemiInfiniteDiffuseIncidenceAndCsv) {
 
 TEST(CliSlab, BadInputOneLineStatusTwoNoFile) {
   const auto out = temp("never.json");
-  for (const std::string args : {"--sigma-a 0.1 --sigma-s 1 --thickness 0", "--sigma-a 0.1 --sigma-s 1 --thickness -1",
-                                 "--sigma-a 0.1 --sigma-s 1 --slides 1.5", "--sigma-a 0.1 --sigma-s 1 --slides 1.5,1",
-                                 "--sigma-a 0.1 --sigma-s 1 --thickness 1 --slides 0.5,1", "--sigma-a 0.1 --sigma-s 1 --g 1 --thickness 1",
-                                 "--sigma-a 0.1 --sigma-s 1 --thickness 1 --incidence sideways",
-                                 "--sigma-a 0.1 --sigma-s 1 --thickness 1 --tolerance 0", "--sigma-a 0.1 --sigma-s 1 --thickness nan"}) {
+  for (const std::string args :
+       {"--sigma-a 0.1 --sigma-s 1 --thickness 0", "--sigma-a 0.1 --sigma-s 1 --thickness -1",
+        "--sigma-a 0.1 --sigma-s 1 --slides 1.5", "--sigma-a 0.1 --sigma-s 1 --slides 1.5,1",
+        "--sigma-a 0.1 --sigma-s 1 --thickness 1 --slides 0.5,1", "--sigma-a 0.1 --sigma-s 1 --g 1 --thickness 1",
+        "--sigma-a 0.1 --sigma-s 1 --thickness 1 --incidence sideways",
+        "--sigma-a 0.1 --sigma-s 1 --thickness 1 --tolerance 0", "--sigma-a 0.1 --sigma-s 1 --thickness nan"}) {
     const auto r = run("slab " + args + " -o " + out.string());
     EXPECT_EQ(r.status, 2) << args << ": " << r.out << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;

@@ -16,7 +16,8 @@ using namespace bssrdf;
 
 namespace {
 
-adding_doubling::Totals forward(double sigma_a, double sigma_s_prime, double g, double n, double d, double slide_n = 0) {
+adding_doubling::Totals forward(double sigma_a, double sigma_s_prime, double g, double n, double d,
+                                double slide_n = 0) {
   adding_doubling::Slab slab;
   slab.layers = {{sigma_a, sigma_s_prime / (1 - g), g, d}};
   slab.n = n;
@@ -31,12 +32,14 @@ double error(const FitReport& r, const char* name) { return r.find(name, "x")->s
 
 TEST(FitSlabAddingDoubling, RoundTripsAtAnyThicknessWithAndWithoutSlides) {
   // From 0.2 to 40 transport mean free paths, where the multipole is refused or off by 10 %.
-  for (const auto& [sa, ssp, d, slide] : {std::tuple{0.05, 1.0, 0.2, 0.0}, std::tuple{0.1, 2.0, 1.0, 1.5}, std::tuple{0.01, 1.5, 2.0, 1.5},
-                                          std::tuple{0.5, 5.0, 2.0, 0.0}, std::tuple{0.02, 4.0, 10.0, 1.52}}) {
+  for (const auto& [sa, ssp, d, slide] :
+       {std::tuple{0.05, 1.0, 0.2, 0.0}, std::tuple{0.1, 2.0, 1.0, 1.5}, std::tuple{0.01, 1.5, 2.0, 1.5},
+        std::tuple{0.5, 5.0, 2.0, 0.0}, std::tuple{0.02, 4.0, 10.0, 1.52}}) {
     const auto t = forward(sa, ssp, 0.0, 1.4, d, slide);
     SlabFitOptions options;
     if (slide > 0) options.slide_n = slide, options.slide_thickness = 1.0;
-    const auto r = fit_slab({{"x", t.diffuse_reflectance, t.total_transmittance, 1e-3, 1e-3, 0.0}}, d, LengthUnit::millimetre, 1.4, options);
+    const auto r = fit_slab({{"x", t.diffuse_reflectance, t.total_transmittance, 1e-3, 1e-3, 0.0}}, d,
+                            LengthUnit::millimetre, 1.4, options);
     EXPECT_NEAR(value(r, "sigma_a") / sa, 1, 5e-3) << r.full_report();
     EXPECT_NEAR(value(r, "sigma_s_prime") / ssp, 1, 5e-3) << r.full_report();
     for (const char* p : {"sigma_a", "sigma_s_prime", "albedo_prime"}) {
@@ -48,7 +51,8 @@ TEST(FitSlabAddingDoubling, RoundTripsAtAnyThicknessWithAndWithoutSlides) {
 TEST(FitSlabAddingDoubling, UnscatteredTransmittanceDeterminesG) {
   const double sa = 0.1, ssp = 1.0, g = 0.8, d = 0.5;  // sigma_s = 5 /mm: U = exp(-2.55) visible
   const auto t = forward(sa, ssp, g, 1.4, d);
-  SlabMeasurement m{"x", t.diffuse_reflectance, t.total_transmittance, 1e-3, 1e-3, 0.0, t.unscattered_transmittance, 1e-4};
+  SlabMeasurement m{"x", t.diffuse_reflectance, t.total_transmittance, 1e-3, 1e-3, 0.0, t.unscattered_transmittance,
+                    1e-4};
   const auto r = fit_slab({m}, d, LengthUnit::millimetre, 1.4);
   EXPECT_NEAR(value(r, "sigma_a") / sa, 1, 5e-3) << r.full_report();
   EXPECT_NEAR(value(r, "sigma_s_prime") / ssp, 1, 5e-3) << r.full_report();
@@ -62,8 +66,10 @@ TEST(FitSlabAddingDoubling, ErrorsScaleWithTheMeasurementsAndCoverTheTruth) {
   SlabFitOptions options;
   options.slide_n = 1.5;
   options.slide_thickness = 1.0;
-  const auto a = fit_slab({{"x", t.diffuse_reflectance, t.total_transmittance, 2e-3, 2e-3, 0.0}}, d, LengthUnit::millimetre, 1.4, options);
-  const auto b = fit_slab({{"x", t.diffuse_reflectance, t.total_transmittance, 1e-3, 1e-3, 0.0}}, d, LengthUnit::millimetre, 1.4, options);
+  const auto a = fit_slab({{"x", t.diffuse_reflectance, t.total_transmittance, 2e-3, 2e-3, 0.0}}, d,
+                          LengthUnit::millimetre, 1.4, options);
+  const auto b = fit_slab({{"x", t.diffuse_reflectance, t.total_transmittance, 1e-3, 1e-3, 0.0}}, d,
+                          LengthUnit::millimetre, 1.4, options);
   EXPECT_NEAR(error(b, "sigma_a") / error(a, "sigma_a"), 0.5, 1e-2);
   // Coverage: 100 noisy measurements (sigma 0.003 on R and T); the truth within the reported 2 sigma
   // for about 95 % of the estimates (binomial: 88 to 99 of 100 at 3 sigma of the count).
@@ -71,8 +77,9 @@ TEST(FitSlabAddingDoubling, ErrorsScaleWithTheMeasurementsAndCoverTheTruth) {
   std::normal_distribution<double> noise(0, 3e-3);
   int inside = 0, total = 0;
   for (int k = 0; k < 50; ++k) {
-    const auto r = fit_slab({{"x", t.diffuse_reflectance + noise(rng), t.total_transmittance + noise(rng), 3e-3, 3e-3, 0.0}}, d,
-                            LengthUnit::millimetre, 1.4, options);
+    const auto r =
+        fit_slab({{"x", t.diffuse_reflectance + noise(rng), t.total_transmittance + noise(rng), 3e-3, 3e-3, 0.0}}, d,
+                 LengthUnit::millimetre, 1.4, options);
     inside += std::abs(value(r, "sigma_a") - sa) <= 2 * error(r, "sigma_a");
     inside += std::abs(value(r, "sigma_s_prime") - ssp) <= 2 * error(r, "sigma_s_prime");
     total += 2;
@@ -92,16 +99,21 @@ TEST(FitSlabAddingDoubling, MonteCarloSlabIsFittedWithinItsErrorsWhereTheMultipo
   mc.seed = 3;
   mc.bins = 4;
   const auto ch = run_monte_carlo(stack, mc).channels[0];
-  SlabMeasurement m{"x", ch.diffuse_reflectance.value, ch.total_transmittance.value, ch.diffuse_reflectance.standard_error + 1e-4,
-                    ch.total_transmittance.standard_error + 1e-4, g};
+  SlabMeasurement m{"x",
+                    ch.diffuse_reflectance.value,
+                    ch.total_transmittance.value,
+                    ch.diffuse_reflectance.standard_error + 1e-4,
+                    ch.total_transmittance.standard_error + 1e-4,
+                    g};
   const auto ad = fit_slab({m}, d, LengthUnit::millimetre, 1.4);
   SlabFitOptions multipole;
   multipole.model = "multipole";
   const auto mp = fit_slab({m}, d, LengthUnit::millimetre, 1.4, multipole);
   for (const auto* r : {&ad, &mp})
-    std::printf("  %-16s sigma_a %.4f +- %.4f (%+.1f sigma)  sigma_s' %.4f +- %.4f (%+.1f sigma)\n", r->model.c_str(), value(*r, "sigma_a"),
-                error(*r, "sigma_a"), (value(*r, "sigma_a") - sa) / error(*r, "sigma_a"), value(*r, "sigma_s_prime"),
-                error(*r, "sigma_s_prime"), (value(*r, "sigma_s_prime") - ssp) / error(*r, "sigma_s_prime"));
+    std::printf("  %-16s sigma_a %.4f +- %.4f (%+.1f sigma)  sigma_s' %.4f +- %.4f (%+.1f sigma)\n", r->model.c_str(),
+                value(*r, "sigma_a"), error(*r, "sigma_a"), (value(*r, "sigma_a") - sa) / error(*r, "sigma_a"),
+                value(*r, "sigma_s_prime"), error(*r, "sigma_s_prime"),
+                (value(*r, "sigma_s_prime") - ssp) / error(*r, "sigma_s_prime"));
   EXPECT_LE(std::abs(value(ad, "sigma_a") - sa), 3 * error(ad, "sigma_a")) << ad.full_report();
   EXPECT_LE(std::abs(value(ad, "sigma_s_prime") - ssp), 3 * error(ad, "sigma_s_prime")) << ad.full_report();
   for (const char* p : {"sigma_a", "sigma_s_prime", "albedo_prime"}) EXPECT_TRUE(std::isfinite(error(mp, p))) << p;

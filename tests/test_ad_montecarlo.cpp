@@ -41,7 +41,8 @@ LayerStack stack_of(const Case& c) {
 
 void expect_within(const char* what, const Case& c, double ad, const Estimate& mc) {
   const double sigmas = (ad - mc.value) / std::max(mc.standard_error, 1e-300);
-  std::printf("  %-34s %-26s AD %.5f  MC %.5f +- %.5f  (%+.1f sigma)\n", c.name, what, ad, mc.value, mc.standard_error, sigmas);
+  std::printf("  %-34s %-26s AD %.5f  MC %.5f +- %.5f  (%+.1f sigma)\n", c.name, what, ad, mc.value, mc.standard_error,
+              sigmas);
   EXPECT_LE(std::abs(ad - mc.value), 4 * mc.standard_error + 1e-4) << c.name << " " << what;
 }
 

@@ -4,8 +4,8 @@
 // and, in test_ad_montecarlo.cpp, against the Monte Carlo reference.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "../src/adding_doubling/angles.hpp"
@@ -63,7 +63,8 @@ TEST(AddingDoubling, SlabsMatchPublishedValuesWithin1e4) {
   for (const auto& row : test_data::read_tsv("ad_slab.tsv")) {
     const auto t = solve(one_layer(row.at("albedo"), row.at("g"), row.at("n"), row.at("b")), Incidence::collimated);
     std::printf("  %.2f  %.2f  %.4f %4.0f  %.5f  %.5f   %.5f  %.5f  %d\n", row.at("n"), row.at("g"), row.at("albedo"),
-                row.at("b"), row.at("R_incident"), t.diffuse_reflectance, row.at("T_total"), t.total_transmittance, t.points);
+                row.at("b"), row.at("R_incident"), t.diffuse_reflectance, row.at("T_total"), t.total_transmittance,
+                t.points);
     EXPECT_NEAR(t.specular_reflectance, row.at("Rsp"), 5e-6);
     EXPECT_NEAR(t.diffuse_reflectance, row.at("R_incident"), 1e-4);
     EXPECT_NEAR(t.total_transmittance, row.at("T_total"), 1e-4);
@@ -92,7 +93,8 @@ TEST(AddingDoubling, ConservesEnergyWithoutAbsorption) {
     Slab s = one_layer(1.0, 0.8, 1.4, 3.0);
     s.above = s.below = {{1.5, 1.0, 0.0}};
     const auto t = solve(s, incidence);
-    EXPECT_NEAR(t.specular_reflectance + t.diffuse_reflectance + t.total_transmittance, 1, 1e-9) << to_string(incidence);
+    EXPECT_NEAR(t.specular_reflectance + t.diffuse_reflectance + t.total_transmittance, 1, 1e-9)
+        << to_string(incidence);
     EXPECT_NEAR(t.absorbed(), 0, 1e-9);
   }
 }
@@ -121,8 +123,9 @@ TEST(AddingDoubling, AnglesChosenFromTheToleranceStayWithin1e4Of128Angles) {
     double albedo, g, n, b;
     bool slides;
   };
-  for (const auto& c : {Case{0.9, 0.99, 1.33, 2.0, false}, Case{0.9999, 0.9, 1.4, 1.0, false}, Case{0.99, 0.0, 1.6, 10.0, true},
-                        Case{0.5, 0.5, 1.6, 0.1, true}, Case{0.999, 0.9, 1.4, kSemiInfinite, false}}) {
+  for (const auto& c :
+       {Case{0.9, 0.99, 1.33, 2.0, false}, Case{0.9999, 0.9, 1.4, 1.0, false}, Case{0.99, 0.0, 1.6, 10.0, true},
+        Case{0.5, 0.5, 1.6, 0.1, true}, Case{0.999, 0.9, 1.4, kSemiInfinite, false}}) {
     Slab s = one_layer(c.albedo, c.g, c.n, c.b);
     if (c.slides) s.above = s.below = {{1.5, 1.0, 0.0}};
     const auto chosen = solve(s, Incidence::collimated);
@@ -131,8 +134,8 @@ TEST(AddingDoubling, AnglesChosenFromTheToleranceStayWithin1e4Of128Angles) {
     const auto reference = solve(s, Incidence::collimated, fine);
     const double change = std::max(std::abs(chosen.diffuse_reflectance - reference.diffuse_reflectance),
                                    std::abs(chosen.total_transmittance - reference.total_transmittance));
-    std::printf("  albedo %.4f g %.2f n %.2f b %g%s: %d angles, estimate %.1e, |change to 128| %.1e\n", c.albedo, c.g, c.n, c.b,
-                c.slides ? " slides" : "", chosen.points, chosen.error_estimate, change);
+    std::printf("  albedo %.4f g %.2f n %.2f b %g%s: %d angles, estimate %.1e, |change to 128| %.1e\n", c.albedo, c.g,
+                c.n, c.b, c.slides ? " slides" : "", chosen.points, chosen.error_estimate, change);
     EXPECT_LE(change, 1e-4);
     EXPECT_LE(chosen.error_estimate, 1e-4);
   }
@@ -182,7 +185,8 @@ TEST(AddingDoubling, StackedLayersAddUpAndMatchMonteCarlo) {
   const auto mc = run_monte_carlo(stack, options).channels[0];
   std::printf("  two layers: AD %.5f, MC %.5f +- %.5f\n", ad.diffuse_reflectance, mc.diffuse_reflectance.value,
               mc.diffuse_reflectance.standard_error);
-  EXPECT_LE(std::abs(ad.diffuse_reflectance - mc.diffuse_reflectance.value), 4 * mc.diffuse_reflectance.standard_error + 1e-4);
+  EXPECT_LE(std::abs(ad.diffuse_reflectance - mc.diffuse_reflectance.value),
+            4 * mc.diffuse_reflectance.standard_error + 1e-4);
   // Layers of different index cannot share the angles: refused, naming the layer.
   stack.layers[1].n = 1.33;
   EXPECT_THROW(slab_of(stack, 0), InvalidInput);

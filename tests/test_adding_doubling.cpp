@@ -34,8 +34,8 @@ std::vector<Case> cases() {
 
 }  // namespace
 
-const char* const kModels[] = {"dipole", "better-dipole", "better-dipole+ss", "pbd", "quantized",
-                               "quantized+ss", "burley", "burley-diffuse", "burley-dmfp"};
+const char* const kModels[] = {"dipole",       "better-dipole", "better-dipole+ss", "pbd",        "quantized",
+                               "quantized+ss", "burley",        "burley-diffuse",   "burley-dmfp"};
 
 TEST(AddingDoubling, ErrorTable) {
   // Totals (physical medium: sigma_t = 1, true g; models reduce it by similarity themselves).
@@ -66,7 +66,9 @@ TEST(AddingDoubling, EveryModelsDocumentedBandsHoldAndAreTight) {
         double worst = 0;
         for (const auto& c : cases())
           if (c.g == g && c.band_albedo_prime >= band.min_albedo_prime)
-            worst = std::max(worst, std::abs(model->total_reflectance(reduce(1 - c.albedo, c.albedo, c.g, c.eta)) / c.reference - 1));
+            worst = std::max(
+                worst,
+                std::abs(model->total_reflectance(reduce(1 - c.albedo, c.albedo, c.g, c.eta)) / c.reference - 1));
         ok &= worst <= band.worst_error && worst > band.worst_error - 1e-3;
         char text[16];
         std::snprintf(text, sizeof text, "%.3f ", std::ceil(worst * 1000) / 1000);
@@ -95,7 +97,9 @@ TEST(AddingDoubling, DiffusionFailsAtLowAlbedoAndSaysSo) {
     for (const auto& c : cases()) {
       const auto m = reduce(1 - c.albedo, c.albedo, c.g, c.eta);
       const double error = std::abs(model->total_reflectance(m) / c.reference - 1);
-      if (error > 0.45) { EXPECT_EQ(worst(model->validity(m)), Severity::invalid) << name << " alpha'=" << c.albedo_prime; }
+      if (error > 0.45) {
+        EXPECT_EQ(worst(model->validity(m)), Severity::invalid) << name << " alpha'=" << c.albedo_prime;
+      }
     }
   }
 }

@@ -29,12 +29,13 @@ bool have_blender() { return std::system("command -v blender >/dev/null 2>&1") =
 // Runs the exported script in Blender through tests/blender/check_export.py; returns its JSON.
 json run_in_blender(const std::string& material_name, const std::string& export_args, const std::string& extra = "") {
   const auto script = test_cli::temp("export.py"), out = test_cli::temp("blender.json");
-  const auto r = test_cli::run("materials export \"" + material_name + "\" --to blender " + export_args + " -o " + script.string());
+  const auto r = test_cli::run("materials export \"" + material_name + "\" --to blender " + export_args + " -o " +
+                               script.string());
   EXPECT_EQ(r.status, 0) << r.err;
   const std::string checker = std::string(BSSRDF_TEST_DATA) + "/../blender/check_export.py";
   const std::string command = "blender -b --factory-startup --python-exit-code 3 --python " + checker + " -- " +
-                              script.string() + " \"" + material_name + "\" " + out.string() + " " + extra +
-                              " >" + test_cli::temp("blender.log").string() + " 2>&1";
+                              script.string() + " \"" + material_name + "\" " + out.string() + " " + extra + " >" +
+                              test_cli::temp("blender.log").string() + " 2>&1";
   const int status = std::system(command.c_str());
   EXPECT_EQ(status, 0) << test_cli::slurp(test_cli::temp("blender.log"));
   return json::parse(test_cli::slurp(out));
@@ -48,8 +49,11 @@ TEST(CyclesSubsurface, InputsGiveBackTheMediumForEveryMethod) {
     for (auto mapping : {CyclesMapping::fixed_radius, CyclesMapping::radius_remap}) {
       const auto in = cycles_inputs(m.medium, derived, mapping, 1.0);
       for (std::size_t c = 0; c < 3; ++c) {
-        EXPECT_NEAR(in.simulated.sigma_t[c] / in.target_sigma_t[c], 1.0, 2e-5) << name << " " << to_string(mapping) << c;
-        if (in.target_alpha[c] >= 0.2) { EXPECT_NEAR(in.simulated.alpha[c], in.target_alpha[c], 1e-5) << name << c; }
+        EXPECT_NEAR(in.simulated.sigma_t[c] / in.target_sigma_t[c], 1.0, 2e-5)
+            << name << " " << to_string(mapping) << c;
+        if (in.target_alpha[c] >= 0.2) {
+          EXPECT_NEAR(in.simulated.alpha[c], in.target_alpha[c], 1e-5) << name << c;
+        }
         EXPECT_GE(in.albedo_color[c], 0.0);
         EXPECT_LE(in.albedo_color[c], 1.0);
       }
@@ -172,7 +176,8 @@ std::vector<Bleed> shadow_edge_bleed(const std::string& name, double width, int 
     // The plateau from the lit half (x > 0): least squares K measured ~ K predicted.
     double num = 0, den = 0;
     for (std::size_t i = columns.size() / 2; i < columns.size(); ++i)
-      num += measured[i] * predicted[i] / (error[i] * error[i]), den += predicted[i] * predicted[i] / (error[i] * error[i]);
+      num += measured[i] * predicted[i] / (error[i] * error[i]),
+          den += predicted[i] * predicted[i] / (error[i] * error[i]);
     const double K = num / den;
     // Bleed: light in the shadowed half, in units of the plateau x length (mm).
     const double dx = width / static_cast<double>(columns.size());
@@ -184,8 +189,9 @@ std::vector<Bleed> shadow_edge_bleed(const std::string& name, double width, int 
       b.predicted += predicted[i] * dx;
     }
     b.sigma = std::sqrt(var + b.measured * b.measured / (K * K * den));  // the columns' noise and K's
-    std::printf("%s %s channel %zu: bleed %.4f +- %.4f mm, predicted %.4f mm (ratio %.3f); render %.1f s\n", name.c_str(), method.c_str(), c,
-                b.measured, b.sigma, b.predicted, b.measured / b.predicted, render["seconds"].get<double>());
+    std::printf("%s %s channel %zu: bleed %.4f +- %.4f mm, predicted %.4f mm (ratio %.3f); render %.1f s\n",
+                name.c_str(), method.c_str(), c, b.measured, b.sigma, b.predicted, b.measured / b.predicted,
+                render["seconds"].get<double>());
     out.push_back(b);
   }
   return out;
@@ -194,7 +200,8 @@ std::vector<Bleed> shadow_edge_bleed(const std::string& name, double width, int 
 TEST(BlenderExport, RenderedShadowEdgeBleedsAsPredicted) {
   if (!have_blender()) GTEST_SKIP() << "blender not installed (apt-get install blender)";
   const auto bleed = shadow_edge_bleed("Skin1", 24, 128);
-  for (std::size_t c = 0; c < 3; ++c) EXPECT_NEAR(bleed[c].measured, bleed[c].predicted, 3 * bleed[c].sigma) << "channel " << c;
+  for (std::size_t c = 0; c < 3; ++c)
+    EXPECT_NEAR(bleed[c].measured, bleed[c].predicted, 3 * bleed[c].sigma) << "channel " << c;
 }
 
 // The radius remap goes through Cycles' own dipole inversion of the colour: the render shows that
@@ -202,7 +209,8 @@ TEST(BlenderExport, RenderedShadowEdgeBleedsAsPredicted) {
 TEST(BlenderExport, RadiusRemapRendersTheSameMedium) {
   if (!have_blender()) GTEST_SKIP() << "blender not installed (apt-get install blender)";
   const auto bleed = shadow_edge_bleed("Skin1", 24, 128, "radius-remap");
-  for (std::size_t c = 0; c < 3; ++c) EXPECT_NEAR(bleed[c].measured, bleed[c].predicted, 3 * bleed[c].sigma) << "channel " << c;
+  for (std::size_t c = 0; c < 3; ++c)
+    EXPECT_NEAR(bleed[c].measured, bleed[c].predicted, 3 * bleed[c].sigma) << "channel " << c;
 }
 
 // Marble (alpha 0.998-0.999) has walks of up to ~1/(1 - alpha) = 400-1000 scattering events; Cycles
@@ -216,5 +224,6 @@ TEST(BlenderExport, BrightMediaLoseLightToCyclesBounceLimitAndTheFileSaysSo) {
   EXPECT_EQ(skin.out.find("256-event walk limit"), std::string::npos);
   if (!have_blender()) GTEST_SKIP() << "blender not installed (apt-get install blender)";
   const auto bleed = shadow_edge_bleed("Marble", 60, 64);
-  for (std::size_t c = 0; c < 3; ++c) EXPECT_LT(bleed[c].measured, bleed[c].predicted - 3 * bleed[c].sigma) << "channel " << c;
+  for (std::size_t c = 0; c < 3; ++c)
+    EXPECT_LT(bleed[c].measured, bleed[c].predicted - 3 * bleed[c].sigma) << "channel " << c;
 }

@@ -2,10 +2,10 @@
 // within tolerance for the target, the object-size flag, and bad input (exit 2, one line, no output).
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
 #include <algorithm>
-#include <filesystem>
 #include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 
@@ -79,10 +79,11 @@ TEST(CliAdvise, TableNamesTheChoiceAndWhyCheaperOnesFail) {
 }
 
 TEST(CliAdvise, BadInputExitsTwoWithOneLine) {
-  for (const char* args : {"--material Skin1 --pixel -1mm", "--material Skin1 --pixel 0.1furlong", "--material Skin1 --pixel 0",
-                           "--material Skin1 --pixel 0.1 --tolerance 0", "--material Skin1 --pixel 0.1 --tolerance nan",
-                           "--material Skin1 --pixel 0.1 --target mobile", "--material Skin1 --pixel 0.1 --object-size -3",
-                           "--material Skin1", "--material Skin1 --pixel 0.1 -n 5", "--all --material Skin1 --pixel 1"}) {
+  for (const char* args :
+       {"--material Skin1 --pixel -1mm", "--material Skin1 --pixel 0.1furlong", "--material Skin1 --pixel 0",
+        "--material Skin1 --pixel 0.1 --tolerance 0", "--material Skin1 --pixel 0.1 --tolerance nan",
+        "--material Skin1 --pixel 0.1 --target mobile", "--material Skin1 --pixel 0.1 --object-size -3",
+        "--material Skin1", "--material Skin1 --pixel 0.1 -n 5", "--all --material Skin1 --pixel 1"}) {
     const auto r = run(std::string("advise ") + args);
     EXPECT_EQ(r.status, 2) << args << ": " << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;
@@ -93,7 +94,8 @@ TEST(CliAdvise, BadInputExitsTwoWithOneLine) {
 TEST(CliValidityMap, WritesEveryModelsPanelAndTheCheapestMap) {
   const auto file = test_cli::temp("map.svg");
   for (const char* over : {"albedo,eta", "albedo,g"}) {
-    const auto r = run(std::string("models --map ") + file.string() + " --over " + over + " --metric total --accuracy 0.05");
+    const auto r =
+        run(std::string("models --map ") + file.string() + " --over " + over + " --metric total --accuracy 0.05");
     ASSERT_EQ(r.status, 0) << r.err;
     const std::string svg = test_cli::slurp(file);
     for (const char* model : {"dipole", "better-dipole", "burley", "pbd", "quantized+ss"})
@@ -115,8 +117,9 @@ TEST(CliValidityMap, WritesPngAndTheImageMetric) {
   ASSERT_GT(bytes.size(), 5000u);
   EXPECT_EQ(bytes.substr(1, 3), "PNG");
   const auto be32 = [&](std::size_t at) {
-    return (static_cast<unsigned>(static_cast<unsigned char>(bytes[at])) << 24) | (static_cast<unsigned char>(bytes[at + 1]) << 16) |
-           (static_cast<unsigned char>(bytes[at + 2]) << 8) | static_cast<unsigned char>(bytes[at + 3]);
+    return (static_cast<unsigned>(static_cast<unsigned char>(bytes[at])) << 24) |
+           (static_cast<unsigned char>(bytes[at + 1]) << 16) | (static_cast<unsigned char>(bytes[at + 2]) << 8) |
+           static_cast<unsigned char>(bytes[at + 3]);
   };
   EXPECT_GT(be32(16), 1000u);  // width: two pixels a unit of the SVG layout
   EXPECT_GT(be32(20), 300u);
@@ -131,9 +134,11 @@ TEST(CliValidityMap, WritesPngAndTheImageMetric) {
 
 TEST(CliValidityMap, BadInputExitsTwoWithoutAFile) {
   const auto file = test_cli::temp("bad.svg");
-  for (const std::string& args : {"--map " + file.string() + " --over albedo,sigma", "--map " + file.string() + " --metric speed",
-                                 "--map " + test_cli::temp("map.gif").string(), "--map " + file.string() + " --accuracy -1",
-                                 "--map " + file.string() + " --metric image --pixel 0", "--map " + file.string() + " --metric image --tolerance -2"}) {
+  for (const std::string& args :
+       {"--map " + file.string() + " --over albedo,sigma", "--map " + file.string() + " --metric speed",
+        "--map " + test_cli::temp("map.gif").string(), "--map " + file.string() + " --accuracy -1",
+        "--map " + file.string() + " --metric image --pixel 0",
+        "--map " + file.string() + " --metric image --tolerance -2"}) {
     const auto r = run("models " + args);
     EXPECT_EQ(r.status, 2) << args << ": " << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;
@@ -160,14 +165,16 @@ TEST(CliAdvise, WriteProducesTheChosenTable) {
   ASSERT_NE(r.out.find("choice: radial-table-8:pbd"), std::string::npos) << r.out;
   table = nlohmann::json::parse(test_cli::slurp(dir / "Skin1.radial-table-8_pbd.json"));
   EXPECT_EQ(table["width"], 8);
-  const auto radius = table["channels"][0]["values"][3].get<double>(), R = table["channels"][1]["values"][3].get<double>();
+  const auto radius = table["channels"][0]["values"][3].get<double>(),
+             R = table["channels"][1]["values"][3].get<double>();
   char radii[64];
   std::snprintf(radii, sizeof radii, "%.17g,%.17g", radius, 2 * radius);
   const auto p = run(std::string("profile --material Skin1 --model pbd -f csv --radii ") + radii);
   ASSERT_EQ(p.status, 0) << p.err;
   std::istringstream lines(p.out);
   std::string line;
-  while (std::getline(lines, line) && (line.empty() || line[0] == '#' || line[0] == 'r')) {}
+  while (std::getline(lines, line) && (line.empty() || line[0] == '#' || line[0] == 'r')) {
+  }
   const double profile_R = std::stod(line.substr(line.find(',') + 1));  // first row, red channel
   EXPECT_NEAR(R, profile_R, 1e-9 * profile_R);
   // Every node is the model's value, the outermost (30 transport mean free paths) too: the table
@@ -178,7 +185,8 @@ TEST(CliAdvise, WriteProducesTheChosenTable) {
 TEST(CliAdvise, WriteWithoutAChoiceFailsWithoutOutput) {
   const auto dir = test_cli::temp("none");
   // Against a Monte Carlo run no candidate is within 0.01 code values (its own noise is larger).
-  const auto r = run("advise --material Skin1 --pixel 1mm --tolerance 0.01 --reference montecarlo -n 20000 --write " + dir.string());
+  const auto r = run("advise --material Skin1 --pixel 1mm --tolerance 0.01 --reference montecarlo -n 20000 --write " +
+                     dir.string());
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_EQ(count_lines(r.err), 1) << r.err;
   EXPECT_TRUE(r.out.empty());

@@ -41,7 +41,9 @@ TEST(CliFit, AlbedoSlabGaussiansBurley) {
   ASSERT_EQ(r.status, 0) << r.err;
   auto doc = json::parse(r.out);
   // transport mfp 1 mm: sigma_t' = 1, so sigma_a + sigma_s' = 1 exactly.
-  EXPECT_NEAR(doc["channels"][0]["sigma_a"]["value"].get<double>() + doc["channels"][0]["sigma_s_prime"]["value"].get<double>(), 1.0, 1e-12);
+  EXPECT_NEAR(
+      doc["channels"][0]["sigma_a"]["value"].get<double>() + doc["channels"][0]["sigma_s_prime"]["value"].get<double>(),
+      1.0, 1e-12);
   r = run("fit slab --reflectance 0.4 --transmittance 0.3 --thickness 2 --eta 1.4 -f json");
   ASSERT_EQ(r.status, 0) << r.err;
   doc = json::parse(r.out);

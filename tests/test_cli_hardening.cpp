@@ -4,12 +4,12 @@
 // accepted range, and no output file.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <chrono>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sys/stat.h>
-#include <sys/sysmacros.h>
 
 #include "cli_runner.hpp"
 
@@ -39,7 +39,8 @@ std::string profile_csv(const std::string& value, const std::string& stderr_valu
   std::string text = "radius_mm,R" + std::string(stderr_value.empty() ? "" : ",R_stderr") + "\n";
   for (int i = 1; i <= 8; ++i) {
     const std::string v = i == 4 ? value : std::to_string(std::exp(-i));
-    text += std::to_string(0.1 * i) + "," + v + (stderr_value.empty() ? "" : "," + (i == 4 ? stderr_value : "0.001")) + "\n";
+    text += std::to_string(0.1 * i) + "," + v + (stderr_value.empty() ? "" : "," + (i == 4 ? stderr_value : "0.001")) +
+            "\n";
   }
   return text;
 }
@@ -48,9 +49,12 @@ std::string profile_csv(const std::string& value, const std::string& stderr_valu
 
 // Crash (SIGSEGV in the covariance) on a value or stderr of 1e308; inf chi^2 on a stderr of 1e-308.
 TEST(Hardening, FitProfileRefusesValuesNoProfileCanHold) {
-  expect_refused(run("fit profile " + write("v.csv", profile_csv("1e308", "0.001")).string()), {"v.csv:5: R = 1e+308", "accepted range is 0 to 1e+30"});
-  expect_refused(run("fit profile " + write("s.csv", profile_csv("0.01", "1e308")).string()), {"R_stderr = 1e+308", "accepted range"});
-  expect_refused(run("fit profile " + write("t.csv", profile_csv("0.01", "1e-308")).string()), {"R_stderr = 1e-308", "1e-30 to 1e+30"});
+  expect_refused(run("fit profile " + write("v.csv", profile_csv("1e308", "0.001")).string()),
+                 {"v.csv:5: R = 1e+308", "accepted range is 0 to 1e+30"});
+  expect_refused(run("fit profile " + write("s.csv", profile_csv("0.01", "1e308")).string()),
+                 {"R_stderr = 1e+308", "accepted range"});
+  expect_refused(run("fit profile " + write("t.csv", profile_csv("0.01", "1e-308")).string()),
+                 {"R_stderr = 1e-308", "1e-30 to 1e+30"});
   expect_refused(run("fit profile " + write("n.csv", profile_csv("1e308", "")).string()), {"R = 1e+308"});
 }
 
@@ -63,8 +67,10 @@ TEST(Hardening, CountsAreSignedAndRangeChecked) {
   expect_refused(run("reference --sigma-a 1 --sigma-s 1 --seed -1"), {"--seed = '-1'"});
   expect_refused(run("reference --sigma-a 1 --sigma-s 1 --threads 99999"), {"--threads = '99999'", "0 to 4096"});
   // CLI11 read '' as 0 for a double: a roulette threshold of 0 traced 1000 photons for 9 s (1e6: hours).
-  expect_refused(run("reference --sigma-a 0.1 --sigma-s 1 --roulette-threshold ''"), {"--roulette-threshold = ''", "a finite number"});
-  expect_refused(run("reference --sigma-a 0.1 --sigma-s 1 --roulette-threshold 0"), {"--roulette-threshold = 0", "1e-12 <= threshold < 1"});
+  expect_refused(run("reference --sigma-a 0.1 --sigma-s 1 --roulette-threshold ''"),
+                 {"--roulette-threshold = ''", "a finite number"});
+  expect_refused(run("reference --sigma-a 0.1 --sigma-s 1 --roulette-threshold 0"),
+                 {"--roulette-threshold = 0", "1e-12 <= threshold < 1"});
   expect_refused(run("lut --kind radial --reference --sigma-a 1 --sigma-s 1 --photons -1 -o " + temp("t.exr").string()),
                  {"--photons = '-1'"});
   expect_refused(run("profile --material skin1 --samples -5"), {"--samples = '-5'", "2 to 1000000"});
@@ -113,27 +119,34 @@ TEST(Hardening, OutputNeverReplacesSpecialFilesOrLinks) {
 
 // JSON numbers beyond a double and wrong types gave "[json.exception...]" with exit 1.
 TEST(Hardening, JsonOverflowAndWrongTypesNameFileAndLine) {
-  const auto db = write("db.json", "{\"format\": \"bssrdf-materials\", \"version\": 1, \"source\": \"x\", \"citation\": \"x\",\n"
-                                   "\"unit\": \"mm\", \"channels\": [\"R\"],\n\"materials\": [{\"name\": \"A\", \"eta\": 1.3,\n"
-                                   "\"sigma_a\": [1e400], \"sigma_s_prime\": [1]}]}\n");
+  const auto db = write("db.json",
+                        "{\"format\": \"bssrdf-materials\", \"version\": 1, \"source\": \"x\", \"citation\": \"x\",\n"
+                        "\"unit\": \"mm\", \"channels\": [\"R\"],\n\"materials\": [{\"name\": \"A\", \"eta\": 1.3,\n"
+                        "\"sigma_a\": [1e400], \"sigma_s_prime\": [1]}]}\n");
   expect_refused(run("profile --material A --db " + db.string()), {db.string() + ":4:", "1e400"});
   const auto digits = std::string(400, '9');
-  const auto layers = write("layers.json", "{\"format\": \"bssrdf-layers\", \"version\": 1,\n\"layers\": [{\"thickness\": " + digits +
-                                               ", \"n\": 1.4, \"sigma_a\": 1, \"sigma_s\": 1}]}\n");
+  const auto layers =
+      write("layers.json", "{\"format\": \"bssrdf-layers\", \"version\": 1,\n\"layers\": [{\"thickness\": " + digits +
+                               ", \"n\": 1.4, \"sigma_a\": 1, \"sigma_s\": 1}]}\n");
   expect_refused(run("reference --layers " + layers.string()), {layers.string() + ":2:"});
-  const auto fit = write("fit.json", "{\"source\": \"fit\", \"shared\": {\"eta\": {\"value\": \"1.3\"}}, \"channels\": [{}]}");
+  const auto fit =
+      write("fit.json", "{\"source\": \"fit\", \"shared\": {\"eta\": {\"value\": \"1.3\"}}, \"channels\": [{}]}");
   expect_refused(run("materials import " + fit.string() + " --name X -o " + temp("m.json").string()), {fit.string()});
   const auto overflow = write("fit2.json", "{\"source\": \"fit\", \"channels\": [{\"sigma_a\": {\"value\": 1e999}}]}");
-  expect_refused(run("materials import " + overflow.string() + " --name X -o " + temp("m.json").string()), {overflow.string() + ":1:", "1e999"});
-  expect_refused(run("materials import " + temp("").string() + " --name X -o " + temp("m.json").string()), {"directory"});
+  expect_refused(run("materials import " + overflow.string() + " --name X -o " + temp("m.json").string()),
+                 {overflow.string() + ":1:", "1e999"});
+  expect_refused(run("materials import " + temp("").string() + " --name X -o " + temp("m.json").string()),
+                 {"directory"});
   EXPECT_FALSE(std::filesystem::exists(temp("m.json")));
 }
 
 // An imported sigma_a of 1e308 was accepted, then the file failed to load ("--r-min = nan"), and
 // errors named an internal temporary file.
 TEST(Hardening, ImportRefusesWhatCannotLoadAndNamesTheUsersFile) {
-  const auto fit = write("fit.json", "{\"source\": \"fit\", \"shared\": {\"eta\": {\"value\": 1.3}}, \"channels\": [{\"name\": \"R\", "
-                                     "\"sigma_a\": {\"value\": 1e308, \"unit\": \"1/mm\"}, \"sigma_s_prime\": {\"value\": 1}}]}");
+  const auto fit =
+      write("fit.json",
+            "{\"source\": \"fit\", \"shared\": {\"eta\": {\"value\": 1.3}}, \"channels\": [{\"name\": \"R\", "
+            "\"sigma_a\": {\"value\": 1e308, \"unit\": \"1/mm\"}, \"sigma_s_prime\": {\"value\": 1}}]}");
   const auto out = temp("mine.json");
   const auto r = run("materials import " + fit.string() + " --name X -o " + out.string());
   expect_refused(r, {out.string(), "sigma_a[R] = 1e+308"});
@@ -147,7 +160,8 @@ TEST(Hardening, MciCountsAndLengthsAreBounded) {
     return "1.0\n1\nout.mco A\n100\n" + grid + "\n" + sizes + "\n1\n1.0\n1.4 1 10 0.9 1e8\n1.0\n";
   };
   const auto a = write("a.mci", mci("0.01 0.01", "10 3e9 1"));
-  expect_refused(run("reference --mci " + a.string()), {a.string() + ":6:", "number of dr bins = 3e9", "1 to 10000000"});
+  expect_refused(run("reference --mci " + a.string()),
+                 {a.string() + ":6:", "number of dr bins = 3e9", "1 to 10000000"});
   const auto b = write("b.mci", mci("0.01 0.01", "10 2e9 1"));
   expect_refused(run("reference --mci " + b.string()), {b.string() + ":6:"});
   const auto c = write("c.mci", mci("4.9e-324 0.01", "10 10 1"));
@@ -160,23 +174,26 @@ TEST(Hardening, MciCountsAndLengthsAreBounded) {
 TEST(Hardening, RefractiveIndicesHavePhysicalBounds) {
   expect_refused(run("reference --sigma-a 1e-9 --sigma-s 1 --eta 100 -n 300"), {"--eta = 100", "0.2 to 5"});
   expect_refused(run("profile --sigma-a 1e308 --sigma-s 1"), {"--sigma-a[c0] = 1e+308", "at most 1e+06"});
-  const auto layers = write("n.json", "{\"format\": \"bssrdf-layers\", \"version\": 1, \"ambient_above\": 1e-9,\n"
-                                      "\"layers\": [{\"thickness\": 1, \"n\": 1.4, \"sigma_a\": 1, \"sigma_s\": 1}]}\n");
+  const auto layers = write("n.json",
+                            "{\"format\": \"bssrdf-layers\", \"version\": 1, \"ambient_above\": 1e-9,\n"
+                            "\"layers\": [{\"thickness\": 1, \"n\": 1.4, \"sigma_a\": 1, \"sigma_s\": 1}]}\n");
   const auto r = run("reference --layers " + layers.string() + " -n 300");
   expect_refused(r, {"ambient_above"});
 }
 
 // A layers file nested 100,000 deep took > 150 s and echoed the whole value.
 TEST(Hardening, DeepJsonIsRefusedQuicklyAndBriefly) {
-  const auto deep = write("deep.json", "{\"format\": \"bssrdf-layers\", \"version\": 1, \"layers\": " + std::string(100000, '[') +
-                                           std::string(100000, ']') + "}");
+  const auto deep =
+      write("deep.json", "{\"format\": \"bssrdf-layers\", \"version\": 1, \"layers\": " + std::string(100000, '[') +
+                             std::string(100000, ']') + "}");
   const auto start = std::chrono::steady_clock::now();
   const auto r = run("reference --layers " + deep.string());
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
   expect_refused(r, {deep.string() + ":1:", "nested deeper than 64"});
   EXPECT_LT(r.err.size(), 300u);
-  const auto wide = write("wide.json", "{\"format\": \"bssrdf-layers\", \"version\": 1, \"layers\": [{\"thickness\": 1, \"n\": " +
-                                           std::string("[") + std::string(20000, '1') + "], \"sigma_a\": 1, \"sigma_s\": 1}]}");
+  const auto wide =
+      write("wide.json", "{\"format\": \"bssrdf-layers\", \"version\": 1, \"layers\": [{\"thickness\": 1, \"n\": " +
+                             std::string("[") + std::string(20000, '1') + "], \"sigma_a\": 1, \"sigma_s\": 1}]}");
   const auto w = run("reference --layers " + wide.string());
   EXPECT_EQ(w.status, 2);
   EXPECT_LT(w.err.size(), 300u) << "the value is echoed in full";
@@ -193,7 +210,10 @@ TEST(Hardening, ControlBytesAreEscapedInMessages) {
 // The tool's own Monte Carlo CSV was fitted with its bin-edge columns as channels (sigma_a = 7.2e10).
 TEST(Hardening, FitProfileReadsMonteCarloCsv) {
   const auto mc = temp("mc.csv");
-  ASSERT_EQ(run("reference --sigma-a 0.05 --sigma-s 5 --eta 1.0 -n 200000 --bins 40 --r-max 8 -q -f csv -o " + mc.string()).status, 0);
+  ASSERT_EQ(
+      run("reference --sigma-a 0.05 --sigma-s 5 --eta 1.0 -n 200000 --bins 40 --r-max 8 -q -f csv -o " + mc.string())
+          .status,
+      0);
   const auto r = run("fit profile " + mc.string() + " -f json");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto doc = json::parse(r.out);
@@ -219,7 +239,8 @@ TEST(Hardening, MultipoleFarTailIsNeverAnInternalError) {
 
 // Burley's R(0) was written as null in a numeric array: r = 0 is refused where R(r) diverges.
 TEST(Hardening, NumericArraysHoldNumbersOnly) {
-  expect_refused(run("profile --material skin1 --model burley --radii 0,0.5,1 -f json"), {"--radii = 0", "> 0 for burley"});
+  expect_refused(run("profile --material skin1 --model burley --radii 0,0.5,1 -f json"),
+                 {"--radii = 0", "> 0 for burley"});
   const auto r = run("profile --material skin1 --model burley --radii 0.001,0.5,1 -f json");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto doc = json::parse(r.out);
@@ -235,9 +256,11 @@ TEST(Hardening, LengthsAreBoundedAndNamedAsTyped) {
   expect_refused(run("transmission --sigma-a 0.1 --sigma-s 1 --d-max 1e308"), {"--d-max = 1e+308"});
   expect_refused(run("reference --sigma-a 0.1 --sigma-s 1 --r-max 1e308 -n 100"), {"--r-max = 1e+308"});
   // Bins of zero width gave R(r) = null in the JSON.
-  expect_refused(run("reference --sigma-a 0.1 --sigma-s 1 --r-max 4.9e-324 -n 100"), {"--r-max = 4.9e-324", "1e-9 mm per bin"});
-  const auto layers = write("thick.json", "{\"format\": \"bssrdf-layers\", \"version\": 1,\n"
-                                          "\"layers\": [{\"thickness\": 1e300, \"n\": 1.4, \"sigma_a\": 1, \"sigma_s\": 1}]}\n");
+  expect_refused(run("reference --sigma-a 0.1 --sigma-s 1 --r-max 4.9e-324 -n 100"),
+                 {"--r-max = 4.9e-324", "1e-9 mm per bin"});
+  const auto layers = write("thick.json",
+                            "{\"format\": \"bssrdf-layers\", \"version\": 1,\n"
+                            "\"layers\": [{\"thickness\": 1e300, \"n\": 1.4, \"sigma_a\": 1, \"sigma_s\": 1}]}\n");
   expect_refused(run("reference --layers " + layers.string() + " -n 100"), {"thickness", "at most 1e6 mm"});
 }
 
@@ -249,15 +272,20 @@ TEST(Hardening, FitWarnsAboutTheModelsOwnError) {
   ASSERT_EQ(r.status, 0) << r.err;
   bool said = false;
   const auto doc = json::parse(r.out);
-  for (const auto& w : doc["warnings"]) said |= w.get<std::string>().find("statistical only; dipole itself differs") != std::string::npos;
+  for (const auto& w : doc["warnings"])
+    said |= w.get<std::string>().find("statistical only; dipole itself differs") != std::string::npos;
   EXPECT_TRUE(said) << r.out.substr(0, 2000);
 }
 
-// --size went through sscanf("%u"): "-1x10" wrapped to 4 billion albedos (a hang), 1e5 x 1e5 ran out of memory (exit 1).
+// --size went through sscanf("%u"): "-1x10" wrapped to 4 billion albedos (a hang), 1e5 x 1e5 ran out of memory (exit
+// 1).
 TEST(Hardening, TableSizesAreSignedAndBounded) {
   const auto out = temp("t.exr");
-  expect_refused(run("lut --kind albedo-radius --layout family --size -1x10 -o " + out.string()), {"--size = '-1x10'", "4 to 2048"});
-  expect_refused(run("lut --kind albedo-radius --layout family --size 100000x100000 -o " + out.string()), {"--size = '100000x100000'"});
-  expect_refused(run("lut --kind preintegrated --material skin1 --size 0x-5 -o " + out.string()), {"--size = '0x-5'", "2 to 8192"});
+  expect_refused(run("lut --kind albedo-radius --layout family --size -1x10 -o " + out.string()),
+                 {"--size = '-1x10'", "4 to 2048"});
+  expect_refused(run("lut --kind albedo-radius --layout family --size 100000x100000 -o " + out.string()),
+                 {"--size = '100000x100000'"});
+  expect_refused(run("lut --kind preintegrated --material skin1 --size 0x-5 -o " + out.string()),
+                 {"--size = '0x-5'", "2 to 8192"});
   EXPECT_FALSE(std::filesystem::exists(out));
 }

@@ -2,9 +2,9 @@
 // status 2, one line on stderr and no file.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
 #include "cli_runner.hpp"
 

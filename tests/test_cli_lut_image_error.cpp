@@ -14,7 +14,9 @@ using test_cli::run;
 
 namespace {
 
-nlohmann::json attributes(const std::filesystem::path& file) { return nlohmann::json::parse(test_cli::slurp(file))["attributes"]; }
+nlohmann::json attributes(const std::filesystem::path& file) {
+  return nlohmann::json::parse(test_cli::slurp(file))["attributes"];
+}
 
 }  // namespace
 
@@ -64,8 +66,9 @@ TEST(CliLutImageError, RadialGaussianAndPreintegratedTablesStateTheirError) {
 
 TEST(CliLutImageError, BadInputExitsTwoWithOneLineAndNoFile) {
   const auto file = test_cli::temp("bad.json");
-  for (const std::string args : {"--kind separable --tolerance 2", "--kind separable --pixel 0", "--kind gaussians --pixel -1",
-                                 "--kind preintegrated --pixel 1 --tolerance 0", "--kind radial --pixel 1 --tolerance x"}) {
+  for (const std::string args :
+       {"--kind separable --tolerance 2", "--kind separable --pixel 0", "--kind gaussians --pixel -1",
+        "--kind preintegrated --pixel 1 --tolerance 0", "--kind radial --pixel 1 --tolerance x"}) {
     const auto r = run("lut --material Skin1 " + args + " -o " + file.string());
     EXPECT_EQ(r.status, 2) << args << ": " << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;

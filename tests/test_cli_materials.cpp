@@ -6,10 +6,10 @@
 
 #include <cctype>
 #include <cmath>
-#include <set>
-#include <sstream>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
 
 #include "bssrdf/derived_quantities.hpp"
 #include "bssrdf/error.hpp"
@@ -35,7 +35,8 @@ bool well_formed_xml(const std::string& text, std::string& error) {
   while ((i = text.find('<', i)) != std::string::npos) {
     if (text.compare(i, 4, "<!--") == 0) {
       const auto end = text.find("-->", i + 4);
-      if (end == std::string::npos || text.substr(i + 4, end - i - 4).find("--") != std::string::npos) return error = "comment", false;
+      if (end == std::string::npos || text.substr(i + 4, end - i - 4).find("--") != std::string::npos)
+        return error = "comment", false;
       i = end + 3;
       continue;
     }
@@ -69,8 +70,15 @@ std::vector<std::string> pbrt_tokens(const std::string& text) {
   std::vector<std::string> out;
   for (std::size_t i = 0; i < text.size();) {
     const char c = text[i];
-    if (std::isspace(static_cast<unsigned char>(c))) { ++i; continue; }
-    if (c == '#') { i = text.find('\n', i); if (i == std::string::npos) break; continue; }
+    if (std::isspace(static_cast<unsigned char>(c))) {
+      ++i;
+      continue;
+    }
+    if (c == '#') {
+      i = text.find('\n', i);
+      if (i == std::string::npos) break;
+      continue;
+    }
     if (c == '"') {
       const auto end = text.find('"', i + 1);
       if (end == std::string::npos) throw std::runtime_error("unterminated string");
@@ -78,16 +86,23 @@ std::vector<std::string> pbrt_tokens(const std::string& text) {
       i = end + 1;
       continue;
     }
-    if (c == '[' || c == ']') { out.emplace_back(1, c); ++i; continue; }
+    if (c == '[' || c == ']') {
+      out.emplace_back(1, c);
+      ++i;
+      continue;
+    }
     std::size_t j = i;
-    while (j < text.size() && !std::isspace(static_cast<unsigned char>(text[j])) && text[j] != '[' && text[j] != ']' && text[j] != '"') ++j;
+    while (j < text.size() && !std::isspace(static_cast<unsigned char>(text[j])) && text[j] != '[' && text[j] != ']' &&
+           text[j] != '"')
+      ++j;
     out.push_back(text.substr(i, j - i));
     i = j;
   }
   return out;
 }
 
-std::vector<double> numbers_after(const std::vector<std::string>& tokens, const std::string& key, std::size_t from = 0) {
+std::vector<double> numbers_after(const std::vector<std::string>& tokens, const std::string& key,
+                                  std::size_t from = 0) {
   for (std::size_t i = from; i < tokens.size(); ++i)
     if (tokens[i] == key) {
       std::vector<double> v;
@@ -123,15 +138,16 @@ TEST(CliMaterials, ShowGivesEveryQuantityPerChannel) {
   EXPECT_EQ(doc["physical_model"], "pbd");
   ASSERT_EQ(doc["channels"].size(), 3u);
   for (const auto& c : doc["channels"])
-    for (const char* key : {"sigma_a", "sigma_s", "g", "albedo_prime", "mfp", "transport_mfp", "diffuse_mfp", "burley_d",
-                            "burley_fit_error", "surface_albedo", "diffusion_valid", "reason"})
+    for (const char* key : {"sigma_a", "sigma_s", "g", "albedo_prime", "mfp", "transport_mfp", "diffuse_mfp",
+                            "burley_d", "burley_fit_error", "surface_albedo", "diffusion_valid", "reason"})
       EXPECT_TRUE(c.contains(key)) << key;
   EXPECT_EQ(doc["channels"][0]["diffusion_valid"], false);
   EXPECT_NE(doc["channels"][0]["reason"].get<std::string>().find("alpha'"), std::string::npos);
   // Units: cm divides lengths by 10 and multiplies coefficients by 10.
   const auto mm = json::parse(run("materials show skin1 -f json").out);
   const auto cm = json::parse(run("materials show skin1 -f json --unit cm").out);
-  EXPECT_NEAR(cm["channels"][0]["transport_mfp"].get<double>() * 10, mm["channels"][0]["transport_mfp"].get<double>(), 1e-12);
+  EXPECT_NEAR(cm["channels"][0]["transport_mfp"].get<double>() * 10, mm["channels"][0]["transport_mfp"].get<double>(),
+              1e-12);
   EXPECT_NEAR(cm["channels"][0]["sigma_a"].get<double>(), 10 * mm["channels"][0]["sigma_a"].get<double>(), 1e-12);
   EXPECT_EQ(mm["channels"][0]["diffusion_valid"], true);
   r = run("materials show skin1");
@@ -197,7 +213,9 @@ TEST(CliMaterials, BlenderExportIsPythonForRandomWalk) {
   EXPECT_NE(text.find("METHODS = {3: 'RANDOM_WALK_FIXED_RADIUS', 4: 'RANDOM_WALK'}"), std::string::npos);
   EXPECT_NE(text.find("R / (4 pi) = 1 / (sigma_t (1 - g))"), std::string::npos);
   if (std::system("python3 -c pass >/dev/null 2>&1") == 0) {
-    EXPECT_EQ(std::system(("python3 -c \"import ast,sys; ast.parse(open(sys.argv[1]).read())\" " + path.string()).c_str()), 0);
+    EXPECT_EQ(
+        std::system(("python3 -c \"import ast,sys; ast.parse(open(sys.argv[1]).read())\" " + path.string()).c_str()),
+        0);
   }
   // Skin1 in mm with the fixed radius: R = 4 pi / sigma_t (g = 0), sigma_t = 0.772 1/mm in red.
   r = run("materials export skin1 --to blender --unit mm");
@@ -258,9 +276,10 @@ TEST(CliMaterials, BurleyExportsReproduceThePhysicalProfile) {
   }
   std::sort(valid_errors.begin(), valid_errors.end());
   std::sort(all_errors.begin(), all_errors.end());
-  std::printf("diffusion-valid channels: %zu, median error %.4f, max %.4f; all fitted channels: %zu, median %.4f, max %.4f\n",
-              valid_errors.size(), valid_errors[valid_errors.size() / 2], valid_errors.back(), all_errors.size(),
-              all_errors[all_errors.size() / 2], all_errors.back());
+  std::printf(
+      "diffusion-valid channels: %zu, median error %.4f, max %.4f; all fitted channels: %zu, median %.4f, max %.4f\n",
+      valid_errors.size(), valid_errors[valid_errors.size() / 2], valid_errors.back(), all_errors.size(),
+      all_errors[all_errors.size() / 2], all_errors.back());
   // The stated bound (README): within 35 % relative L2 everywhere Burley is fitted.
   EXPECT_LT(all_errors.back(), 0.35);
 }
@@ -306,20 +325,22 @@ TEST_P(CliMaterialsBadInput, ExitsTwoWithOneLineAndNoFile) {
 
 INSTANTIATE_TEST_SUITE_P(
     Materials, CliMaterialsBadInput,
-    ::testing::Values(
-        BadMaterialsInput{"materials export skin1 --to povray", "--to = 'povray': accepted range is one of json, pbrt-v4"},
-        BadMaterialsInput{"materials export --to json", "give a material NAME or --all"},
-        BadMaterialsInput{"materials export skinn1 --to json", "did you mean: Skin1"},
-        BadMaterialsInput{"materials export skin1 --all --to json", "excludes"},
-        BadMaterialsInput{"materials export skin1 --to json --unit furlong", "--unit = 'furlong'"},
-        BadMaterialsInput{"materials export skin1 --to unity-hdrp --object-size 0", "--object-size = 0"},
-        BadMaterialsInput{"materials export --all --source nobody --to json", "--source = 'nobody'"},
-        BadMaterialsInput{"materials export skin1 --to json --db /nonexistent/user.json", "cannot open"},
-        BadMaterialsInput{"materials import /nonexistent/fit.json --name X", "cannot open the fit result"}));
+    ::testing::Values(BadMaterialsInput{"materials export skin1 --to povray",
+                                        "--to = 'povray': accepted range is one of json, pbrt-v4"},
+                      BadMaterialsInput{"materials export --to json", "give a material NAME or --all"},
+                      BadMaterialsInput{"materials export skinn1 --to json", "did you mean: Skin1"},
+                      BadMaterialsInput{"materials export skin1 --all --to json", "excludes"},
+                      BadMaterialsInput{"materials export skin1 --to json --unit furlong", "--unit = 'furlong'"},
+                      BadMaterialsInput{"materials export skin1 --to unity-hdrp --object-size 0", "--object-size = 0"},
+                      BadMaterialsInput{"materials export --all --source nobody --to json", "--source = 'nobody'"},
+                      BadMaterialsInput{"materials export skin1 --to json --db /nonexistent/user.json", "cannot open"},
+                      BadMaterialsInput{"materials import /nonexistent/fit.json --name X",
+                                        "cannot open the fit result"}));
 
 TEST(CliMaterials, NameClashWithTheBundledDatabaseIsAnError) {
   const auto user = temp("clash.json");
-  std::ofstream(user) << R"({"format": "bssrdf-materials", "version": 1, "source": "mine", "citation": "c", "unit": "mm",
+  std::ofstream(user)
+      << R"({"format": "bssrdf-materials", "version": 1, "source": "mine", "citation": "c", "unit": "mm",
     "channels": ["R", "G", "B"], "materials": [{"name": "Marble", "eta": 1.5, "sigma_a": [0, 0, 0], "sigma_s": [1, 1, 1]}]})";
   const auto r = run("materials show marble --db " + user.string());
   EXPECT_EQ(r.status, 2);
@@ -335,8 +356,10 @@ TEST(CliMaterials, EngineScriptsCarryTheProfileNumbers) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("ScriptableObject.CreateInstance<DiffusionProfileSettings>()"), std::string::npos);
   EXPECT_NE(r.out.find("FindPropertyRelative(\"scatteringDistanceMultiplier\")"), std::string::npos);
-  EXPECT_NE(r.out.find("Make(\"Skin1\", new Color(" + format_number(unity["scatteringDistance"][0].get<double>()) + "f"),
-            std::string::npos) << r.out;
+  EXPECT_NE(
+      r.out.find("Make(\"Skin1\", new Color(" + format_number(unity["scatteringDistance"][0].get<double>()) + "f"),
+      std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find(format_number(unity["scatteringDistanceMultiplier"].get<double>()) + "f, " +
                        format_number(unity["worldScale"].get<double>()) + "f"),
             std::string::npos);
@@ -346,12 +369,15 @@ TEST(CliMaterials, EngineScriptsCarryTheProfileNumbers) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("set_editor_property('world_unit_scale', 1.0)"), std::string::npos);
   EXPECT_NE(r.out.find("make_profile('Skin1', (" + format_number(unreal["SurfaceAlbedo"][0].get<double>())),
-            std::string::npos) << r.out;
+            std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find(format_number(unreal["MeanFreePathDistance"].get<double>()) + ", 1.3)"), std::string::npos);
   if (std::system("python3 -c pass >/dev/null 2>&1") == 0) {
     const auto path = temp("unreal.py");
     std::ofstream(path) << run("materials export --all --to unreal-python").out;
-    EXPECT_EQ(std::system(("python3 -c \"import ast,sys; ast.parse(open(sys.argv[1]).read())\" " + path.string()).c_str()), 0);
+    EXPECT_EQ(
+        std::system(("python3 -c \"import ast,sys; ast.parse(open(sys.argv[1]).read())\" " + path.string()).c_str()),
+        0);
   }
 }
 

@@ -8,8 +8,8 @@
 
 #include "bssrdf/fit/inverse_fits.hpp"
 #include "bssrdf/fit/profile_fit.hpp"
-#include "bssrdf/models/exact.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/models/exact.hpp"
 #include "bssrdf/profile.hpp"
 
 using namespace bssrdf;
@@ -33,14 +33,15 @@ TEST(ExactFit, ThreeChannelProfileFitConvergesToTheGeneratingCoefficients) {
   const auto start = std::chrono::steady_clock::now();
   const auto report = fit_profile(data, options);
   const double ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("[ measured ] fit profile --model exact, 3 channels x 40 radii: %.1f ms, %d iterations, %s\n", ms, report.iterations,
-              report.termination.c_str());
+  std::printf("[ measured ] fit profile --model exact, 3 channels x 40 radii: %.1f ms, %d iterations, %s\n", ms,
+              report.iterations, report.termination.c_str());
   EXPECT_TRUE(report.converged) << report.full_report();
   for (int c = 0; c < 3; ++c) {
     const std::string name(1, "RGB"[c]);
     ASSERT_NE(report.find("sigma_a", name), nullptr);
     EXPECT_NEAR(report.find("sigma_a", name)->value / sigma_a[c], 1, 1e-3) << name << "\n" << report.full_report();
-    EXPECT_NEAR(report.find("sigma_s_prime", name)->value / sigma_s_prime[c], 1, 1e-3) << name << "\n" << report.full_report();
+    EXPECT_NEAR(report.find("sigma_s_prime", name)->value / sigma_s_prime[c], 1, 1e-3) << name << "\n"
+                                                                                       << report.full_report();
   }
   EXPECT_LT(report.relative_rms, 1e-4);
 }
@@ -60,5 +61,7 @@ TEST(ExactFit, AlbedoInversionIsGAwareAndReproducesTheTotal) {
   }
   // The total at g = 0.9 read at g = 0 would give a different albedo: g matters here.
   const double total = exact_total(bundled_exact_table(), 0.8, 0.9, eta);
-  EXPECT_GT(std::abs(invert_albedo("exact", total, 2.0, DistanceConvention::transport_mfp, eta, 0.0).albedo_prime - 0.8), 1e-3);
+  EXPECT_GT(
+      std::abs(invert_albedo("exact", total, 2.0, DistanceConvention::transport_mfp, eta, 0.0).albedo_prime - 0.8),
+      1e-3);
 }

@@ -41,7 +41,8 @@ double adding_doubling_total(double ap, double g, double eta, double* error_esti
 struct Point {
   double albedo_prime, g, eta;
 };
-std::vector<Point> random_points(int n, unsigned seed, double ap_lo = 0.001, double ap_hi = 0.9999, double g_hi = 0.99) {
+std::vector<Point> random_points(int n, unsigned seed, double ap_lo = 0.001, double ap_hi = 0.9999,
+                                 double g_hi = 0.99) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
   const double lo = std::log(ap_lo / (1 - ap_lo)), hi = std::log(ap_hi / (1 - ap_hi)), gh = -std::log1p(-g_hi);
@@ -129,7 +130,9 @@ TEST(ExactModel, ProfileIntegratesToItsTotalAndIsPositive) {
     double previous = 0;
     for (double r = 1e-4; r < 1e4; r *= 1.7) {
       const double R = profile.reflectance(r), c = profile.cumulative(r);
-      if (c < 0.999 * profile.total()) { ASSERT_GT(R, 0) << r; }  // far out the tail may underflow
+      if (c < 0.999 * profile.total()) {
+        ASSERT_GT(R, 0) << r;
+      }  // far out the tail may underflow
       ASSERT_GE(R, 0) << r;
       ASSERT_GE(c, previous * (1 - 1e-12)) << r;
       previous = c;

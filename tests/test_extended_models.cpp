@@ -50,21 +50,29 @@ TEST(AllModels, StableWhereMethodsFail) {
           }
           const double total = model->total_reflectance(m);
           EXPECT_TRUE(std::isfinite(total) && total >= 0) << name << " a'=" << a << " total=" << total;
-          if (total > 1) { EXPECT_EQ(worst(report), Severity::invalid) << name << " a'=" << a << " total " << total; }
+          if (total > 1) {
+            EXPECT_EQ(worst(report), Severity::invalid) << name << " a'=" << a << " total " << total;
+          }
           if (name == "burley-dmfp" && a == 1.0) {
             EXPECT_TRUE(has_note(report, "no_absorption"));
             continue;  // d is infinite: no profile to evaluate
           }
           for (double r : {1e-9, 1e-4, 0.1, 1.0, 30.0, 1e4}) {
             const double R = model->reflectance(m, r);
-            EXPECT_TRUE(std::isfinite(R) && R >= 0) << name << " a'=" << a << " eta=" << eta << " g=" << g << " r=" << r << " R=" << R;
+            EXPECT_TRUE(std::isfinite(R) && R >= 0)
+                << name << " a'=" << a << " eta=" << eta << " g=" << g << " r=" << r << " R=" << R;
           }
           const double R0 = model->reflectance(m, 0.0);
           // exact: R ~ 1/r from single scattering, stated by its registry row, not a validity note.
-          if (!std::isfinite(R0)) { EXPECT_TRUE(has_note(report, "singular_at_origin") || model_entry(name).reference_accuracy) << name; }
-          else { EXPECT_GE(R0, 0.0) << name; }
+          if (!std::isfinite(R0)) {
+            EXPECT_TRUE(has_note(report, "singular_at_origin") || model_entry(name).reference_accuracy) << name;
+          } else {
+            EXPECT_GE(R0, 0.0) << name;
+          }
           // Diffusion fails at low albedo; the exact model (a radiative-transfer solution) does not.
-          if (a < 0.1 && !model_entry(name).reference_accuracy) { EXPECT_EQ(worst(report), Severity::invalid) << name << " a'=" << a; }
+          if (a < 0.1 && !model_entry(name).reference_accuracy) {
+            EXPECT_EQ(worst(report), Severity::invalid) << name << " a'=" << a;
+          }
         }
   }
 }
@@ -103,7 +111,8 @@ TEST(SingleScattering, QuadratureConvergesWithSamples) {
     const double t_c = r * std::sqrt(1.4 * 1.4 - 1);
     const auto integrand = [&](double t) {
       const double d = std::hypot(r, t), mu = t / d;
-      return m.sigma_s * std::exp(-(t + d)) * henyey_greenstein(-mu, m.g) * (1 - fresnel_reflectance(mu, 1.4)) * mu / (d * d);
+      return m.sigma_s * std::exp(-(t + d)) * henyey_greenstein(-mu, m.g) * (1 - fresnel_reflectance(mu, 1.4)) * mu /
+             (d * d);
     };
     const double reference = integrate_adaptive(integrand, t_c, t_c + 60, 1e-13, 0, 20000, 64).value;
     EXPECT_NEAR(single_scattering_reflectance(m, r, 64) / reference, 1.0, 1e-8) << r;
@@ -122,7 +131,8 @@ TEST(PhotonBeamDiffusion, ConvergesWithTheQuadratureOrderAndReportsIt) {
   for (int n : {8, 16, 32}) {
     double worst_error = 0;
     for (std::size_t i = 0; i < std::size(radii); ++i)
-      worst_error = std::max(worst_error, std::abs(photon_beam_diffusion::reflectance(m, b, radii[i], n) / reference[i] - 1));
+      worst_error =
+          std::max(worst_error, std::abs(photon_beam_diffusion::reflectance(m, b, radii[i], n) / reference[i] - 1));
     std::printf("    n = %3d: %.2e\n", n, worst_error);
     EXPECT_LT(worst_error, previous) << n;
     previous = worst_error;
@@ -133,7 +143,8 @@ TEST(PhotonBeamDiffusion, ConvergesWithTheQuadratureOrderAndReportsIt) {
     const int n = photon_beam_diffusion::samples_for_tolerance(0.99, 0.0, 1.3, tol);
     double worst_error = 0;
     for (std::size_t i = 0; i < std::size(radii); ++i)
-      worst_error = std::max(worst_error, std::abs(photon_beam_diffusion::reflectance(m, b, radii[i], n) / reference[i] - 1));
+      worst_error =
+          std::max(worst_error, std::abs(photon_beam_diffusion::reflectance(m, b, radii[i], n) / reference[i] - 1));
     std::printf("    tolerance %.0e -> n = %d, error %.2e\n", tol, n, worst_error);
     EXPECT_LT(worst_error, tol) << tol;
   }
@@ -162,8 +173,11 @@ TEST(QuantizedDiffusion, ConvergesAsTheBinsNarrow) {
     const auto mix = quantized_diffusion::mixture(m, b, std::pow(golden, 1.0 / (1 << k)));
     double worst_error = 0;
     for (double r : radii)
-      worst_error = std::max(worst_error, std::abs(quantized_diffusion::reflectance(mix, r) / quantized_diffusion::reflectance(fine, r) - 1));
-    std::printf("    %4zu Gaussians (ratio %.4f): %.2e\n", mix.variance.size(), std::pow(golden, 1.0 / (1 << k)), worst_error);
+      worst_error =
+          std::max(worst_error,
+                   std::abs(quantized_diffusion::reflectance(mix, r) / quantized_diffusion::reflectance(fine, r) - 1));
+    std::printf("    %4zu Gaussians (ratio %.4f): %.2e\n", mix.variance.size(), std::pow(golden, 1.0 / (1 << k)),
+                worst_error);
     EXPECT_LT(worst_error, previous / 3) << k;
     previous = worst_error;
   }
@@ -173,8 +187,11 @@ TEST(QuantizedDiffusion, ConvergesAsTheBinsNarrow) {
     const auto mix = quantized_diffusion::mixture(m, b, ratio);
     double worst_error = 0;
     for (double r : radii)
-      worst_error = std::max(worst_error, std::abs(quantized_diffusion::reflectance(mix, r) / quantized_diffusion::reflectance(fine, r) - 1));
-    std::printf("    tolerance %.0e -> ratio %.4f, %zu Gaussians, error %.2e\n", tol, ratio, mix.variance.size(), worst_error);
+      worst_error =
+          std::max(worst_error,
+                   std::abs(quantized_diffusion::reflectance(mix, r) / quantized_diffusion::reflectance(fine, r) - 1));
+    std::printf("    tolerance %.0e -> ratio %.4f, %zu Gaussians, error %.2e\n", tol, ratio, mix.variance.size(),
+                worst_error);
     EXPECT_LT(worst_error, tol);
   }
 }
@@ -187,7 +204,9 @@ TEST(QuantizedDiffusion, MixtureIsExposedAndCarriesTheTotal) {
   for (std::size_t i = 0; i < mix.variance.size(); ++i) {
     EXPECT_GT(mix.variance[i], 0.0);
     EXPECT_GE(mix.weight[i], 0.0);
-    if (i) { EXPECT_GT(mix.variance[i], mix.variance[i - 1]); }
+    if (i) {
+      EXPECT_GT(mix.variance[i], mix.variance[i - 1]);
+    }
   }
   EXPECT_NEAR(std::accumulate(mix.weight.begin(), mix.weight.end(), 0.0), model.total_reflectance(m), 1e-15);
   // Close to the better dipole (same theory, extended source): within 10 % in total here.
@@ -200,7 +219,8 @@ TEST(NormalizedDiffusion, CdfAndInverseAreExactInverses) {
       const double r = normalized_diffusion::inverse_cdf(d, u);
       EXPECT_NEAR(normalized_diffusion::cdf(d, r), u, 1e-12) << d << " " << u;
     }
-  for (double r : {1e-6, 0.3, 2.0, 50.0}) EXPECT_NEAR(normalized_diffusion::inverse_cdf(1.0, normalized_diffusion::cdf(1.0, r)), r, 1e-9 * std::max(1.0, r));
+  for (double r : {1e-6, 0.3, 2.0, 50.0})
+    EXPECT_NEAR(normalized_diffusion::inverse_cdf(1.0, normalized_diffusion::cdf(1.0, r)), r, 1e-9 * std::max(1.0, r));
 }
 
 TEST(NormalizedDiffusion, TotalIsTheSurfaceAlbedo) {
@@ -210,14 +230,19 @@ TEST(NormalizedDiffusion, TotalIsTheSurfaceAlbedo) {
     const auto m = reduce_prime(0.02, 1.5, 1.0);
     EXPECT_EQ(model.total_reflectance(m), 0.42);
     const double numeric = integrate_radial([&](double r) { return model.reflectance(m, r); }, 0.0,
-                                            std::numeric_limits<double>::infinity(), m.ell, 1e-11).value;
+                                            std::numeric_limits<double>::infinity(), m.ell, 1e-11)
+                               .value;
     EXPECT_NEAR(numeric, 0.42, 1e-10);
-    EXPECT_NEAR(model.cumulative_reflectance(m, 1.0), 0.42 * normalized_diffusion::cdf(model.shape_parameter(m), 1.0), 1e-15);
+    EXPECT_NEAR(model.cumulative_reflectance(m, 1.0), 0.42 * normalized_diffusion::cdf(model.shape_parameter(m), 1.0),
+                1e-15);
   }
   // The published scalings: s(A) by hand at A = 0.5.
-  EXPECT_NEAR(normalized_diffusion::scaling_factor(normalized_diffusion::Scaling::searchlight_mfp, 0.5), 1.85 - 0.5 + 7 * 0.027, 1e-12);
-  EXPECT_NEAR(normalized_diffusion::scaling_factor(normalized_diffusion::Scaling::diffuse_mfp, 0.5), 1.9 - 0.5 + 3.5 * 0.09, 1e-12);
-  EXPECT_NEAR(normalized_diffusion::scaling_factor(normalized_diffusion::Scaling::searchlight_dmfp, 0.5), 3.5 + 100 * std::pow(0.17, 4), 1e-12);
+  EXPECT_NEAR(normalized_diffusion::scaling_factor(normalized_diffusion::Scaling::searchlight_mfp, 0.5),
+              1.85 - 0.5 + 7 * 0.027, 1e-12);
+  EXPECT_NEAR(normalized_diffusion::scaling_factor(normalized_diffusion::Scaling::diffuse_mfp, 0.5),
+              1.9 - 0.5 + 3.5 * 0.09, 1e-12);
+  EXPECT_NEAR(normalized_diffusion::scaling_factor(normalized_diffusion::Scaling::searchlight_dmfp, 0.5),
+              3.5 + 100 * std::pow(0.17, 4), 1e-12);
   // Index mismatch is outside the fits: reported.
   EXPECT_TRUE(has_note(make_model("burley")->validity(reduce_prime(0.02, 1.5, 1.4)), "index_mismatch"));
 }
@@ -229,12 +254,14 @@ TEST(AllModels, DifferentiateUnderCeresJet) {
   const auto bj = improved_boundary(Jet(1.3));
   const auto pbd = [&](auto sigma_a) {
     using T = decltype(sigma_a);
-    return photon_beam_diffusion::reflectance(reduce(sigma_a, T(1.2), T(0.5), T(1.3)), std::is_same_v<T, Jet> ? bj : b, T(r), 32);
+    return photon_beam_diffusion::reflectance(reduce(sigma_a, T(1.2), T(0.5), T(1.3)), std::is_same_v<T, Jet> ? bj : b,
+                                              T(r), 32);
   };
   (void)pbd;
   const Jet j = photon_beam_diffusion::reflectance(reduce(Jet(sa, 0), Jet(1.2), Jet(0.5), Jet(1.3)), bj, Jet(r), 32);
   const double fd = (photon_beam_diffusion::reflectance(reduce(sa + h, 1.2, 0.5, 1.3), b, r, 32) -
-                     photon_beam_diffusion::reflectance(reduce(sa - h, 1.2, 0.5, 1.3), b, r, 32)) / (2 * h);
+                     photon_beam_diffusion::reflectance(reduce(sa - h, 1.2, 0.5, 1.3), b, r, 32)) /
+                    (2 * h);
   EXPECT_NEAR(j.v[0], fd, 1e-6 * std::abs(fd));
   const auto mj = quantized_diffusion::mixture(reduce_prime(Jet(sa, 0), Jet(1.2), Jet(1.3)), bj, 1.618);
   const Jet qj = quantized_diffusion::reflectance(mj, Jet(r));
@@ -243,6 +270,7 @@ TEST(AllModels, DifferentiateUnderCeresJet) {
   };
   EXPECT_NEAR(qj.v[0], (qd(sa + h) - qd(sa - h)) / (2 * h), 1e-5 * std::abs(qj.v[0]));
   const Jet bu = normalized_diffusion::profile(Jet(0.5), Jet(0.3, 0), Jet(r));
-  const double bfd = (normalized_diffusion::profile(0.5, 0.3 + h, r) - normalized_diffusion::profile(0.5, 0.3 - h, r)) / (2 * h);
+  const double bfd =
+      (normalized_diffusion::profile(0.5, 0.3 + h, r) - normalized_diffusion::profile(0.5, 0.3 - h, r)) / (2 * h);
   EXPECT_NEAR(bu.v[0], bfd, 1e-6 * std::abs(bfd));
 }

@@ -23,7 +23,7 @@ TEST(FitAlbedo, ExactRoundTripsForEveryModelAndConvention) {
         const auto m = reduce(sigma_t_prime * (1 - a), sigma_t_prime * a / (1 - g), g, 1.3);
         const double total = model->total_reflectance(m);
         for (auto convention : {DistanceConvention::mfp, DistanceConvention::transport_mfp, DistanceConvention::dmfp}) {
-          const double distance = convention == DistanceConvention::mfp ? 1 / m.sigma_t()
+          const double distance = convention == DistanceConvention::mfp             ? 1 / m.sigma_t()
                                   : convention == DistanceConvention::transport_mfp ? m.ell
                                                                                     : m.ell_d;
           const auto x = invert_albedo(name, total, distance, convention, 1.3, g);
@@ -50,7 +50,8 @@ TEST(FitAlbedo, UnreachableInputsAreErrorsNotClamps) {
 }
 
 TEST(FitSlab, RoundTripsAndPropagatedUncertainty) {
-  for (const auto& [sa, ssp, d] : {std::tuple{0.05, 1.5, 3.0}, std::tuple{0.01, 2.0, 2.0}, std::tuple{0.2, 1.0, 10.0}}) {
+  for (const auto& [sa, ssp, d] :
+       {std::tuple{0.05, 1.5, 3.0}, std::tuple{0.01, 2.0, 2.0}, std::tuple{0.2, 1.0, 10.0}}) {
     const auto [R, T] = slab_measurables(sa, ssp, 0.0, 1.4, d);
     SlabFitOptions multipole;
     multipole.model = "multipole";
@@ -72,10 +73,11 @@ TEST(FitSlab, AddingDoublingSlabsRecoverTheAlbedoWithinTheModelError) {
     const double albedo = row.at("albedo"), b = row.at("b"), n = row.at("n");
     SlabFitOptions multipole;
     multipole.model = "multipole";
-    const auto report = fit_slab({{"x", row.at("R_incident"), row.at("T_total"), 0.002, 0.002, 0.0}}, b, LengthUnit::millimetre, n, multipole);
+    const auto report = fit_slab({{"x", row.at("R_incident"), row.at("T_total"), 0.002, 0.002, 0.0}}, b,
+                                 LengthUnit::millimetre, n, multipole);
     const double fitted = report.find("albedo_prime", "x")->value;
-    std::printf("  %.2f  %.2f   %4.0f %.5f  %.5f  %.4f         %+.2f %%\n", n, albedo, b, row.at("R_incident"), row.at("T_total"),
-                fitted, 100 * (fitted / albedo - 1));
+    std::printf("  %.2f  %.2f   %4.0f %.5f  %.5f  %.4f         %+.2f %%\n", n, albedo, b, row.at("R_incident"),
+                row.at("T_total"), fitted, 100 * (fitted / albedo - 1));
     // Measured: within 2.5 % in albedo for b >= 4 (the multipole's own error, single scattering
     // included in the data).
     EXPECT_NEAR(fitted / albedo, 1.0, 0.025) << "n=" << n << " albedo=" << albedo << " b=" << b;
@@ -102,7 +104,8 @@ TEST(FitGaussians, ReproducesThePublishedSkinMixture) {
     NamedProfile p{c, {}};
     for (double r : radii) {
       double v = 0;
-      for (const auto& row : rows) v += row.at(std::string("w_") + c) * quantized_diffusion::gaussian_2d(row.at("variance_mm2"), r);
+      for (const auto& row : rows)
+        v += row.at(std::string("w_") + c) * quantized_diffusion::gaussian_2d(row.at("variance_mm2"), r);
       p.profile.radius.push_back(r);
       p.profile.value.push_back(v);
     }

@@ -45,8 +45,8 @@ const Truth kSkin{{0.032, 0.17, 0.48}, {0.74, 0.88, 1.01}};
 }  // namespace
 
 TEST(FitProfile, NoiseFreeRoundTripsForEveryModel) {
-  for (const char* name : {"dipole", "better-dipole", "pbd", "quantized", "better-dipole+ss", "quantized+ss",
-                           "burley", "burley-diffuse", "burley-dmfp"}) {
+  for (const char* name : {"dipole", "better-dipole", "pbd", "quantized", "better-dipole+ss", "quantized+ss", "burley",
+                           "burley-diffuse", "burley-dmfp"}) {
     const auto data = synthesize(name, kSkin, 1.3);
     ProfileFitOptions options;
     options.model = name;
@@ -125,8 +125,8 @@ TEST(FitProfile, MonteCarloDataAndHowWellEachModelExplainsIt) {
     const auto report = fit_profile(data, options);
     const auto* a = report.find("sigma_a", "x");
     const auto* s = report.find("sigma_s_prime", "x");
-    std::printf("  %-17s %.4f +- %.4f          %.4f +- %.4f          %.2f\n", name, a->value, a->standard_error, s->value,
-                s->standard_error, report.residual_rms * report.residual_rms);
+    std::printf("  %-17s %.4f +- %.4f          %.4f +- %.4f          %.2f\n", name, a->value, a->standard_error,
+                s->value, s->standard_error, report.residual_rms * report.residual_rms);
     EXPECT_TRUE(report.converged) << name;
     // Photon beam diffusion explains this medium best (tools/validation): within 15 % of the truth.
     if (std::string(name) == "pbd") {
@@ -148,7 +148,8 @@ TEST(FitProfile, BadDataFilesNameFileAndLine) {
   EXPECT_NE(error("").find("spot.csv: empty file"), std::string::npos);
   EXPECT_NE(error("radius_mm,R\n0.1,1\n0.2,-1\n").find("spot.csv:3: R = -1"), std::string::npos);
   EXPECT_NE(error("radius_mm,R\n0.1,1\n0.2,nan\n").find("spot.csv:3: R = 'nan'"), std::string::npos);
-  EXPECT_NE(error("radius_mm,R\n0.2,1\n0.1,1\n").find("spot.csv:3: radius_mm = 0.1: accepted range is > 0.2"), std::string::npos);
+  EXPECT_NE(error("radius_mm,R\n0.2,1\n0.1,1\n").find("spot.csv:3: radius_mm = 0.1: accepted range is > 0.2"),
+            std::string::npos);
   EXPECT_NE(error("radius_mm,R\n0.1,1\n0.2,1\n0.3,1\n").find("3 data rows"), std::string::npos);
   EXPECT_NE(error("radius_mm,R\n0.1,1,2\n").find("spot.csv:2: 3 fields"), std::string::npos);
   EXPECT_NE(error("radius_mm,R,R_stderr\n0.1,1,0\n").find("R_stderr = 0"), std::string::npos);

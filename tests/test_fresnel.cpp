@@ -76,8 +76,10 @@ TEST(Fresnel, FitsStayWithinTheirDocumentedError) {
     }
     worst_eh = std::max(worst_eh, std::abs(diffuse_reflectance_egan_hilgeman(eta) - 2 * fresnel_moment(1, eta)));
   }
-  std::printf("max |fit - exact| over eta in [1, 2] and [0.5, 1]: 2C1 %.5f, 3C2 %.5f; "
-              "Egan-Hilgeman F_dr vs 2C1 (eta >= 1): %.5f\n", worst_c1, worst_c2, worst_eh);
+  std::printf(
+      "max |fit - exact| over eta in [1, 2] and [0.5, 1]: 2C1 %.5f, 3C2 %.5f; "
+      "Egan-Hilgeman F_dr vs 2C1 (eta >= 1): %.5f\n",
+      worst_c1, worst_c2, worst_eh);
   EXPECT_LT(worst_c1, kFitErrorTwoC1);
   EXPECT_LT(worst_c2, kFitErrorThreeC2);
   EXPECT_LT(worst_eh, kFitErrorEganHilgeman);

@@ -38,10 +38,43 @@ std::vector<std::filesystem::path> files_in(const std::filesystem::path& dir) {
 
 // One to three random edits of `text`.
 std::string mutate(std::string text, std::mt19937_64& rng) {
-  static const std::vector<std::string> tokens = {
-      "1e400", "-1e400", "1e-400", "4.9e-324", "1e308", "-1", "0", "-0", "3e9", "2e9", "99999999999999999999999",
-      "nan", "inf", "null", "true", "\"\"", "\"x\"", "[]", "{}", "[[[[[[[[[[[[[[[[", "]]]]", ",", ":", "\"", "\\",
-      "\r", "\n", std::string(1, '\0'), "\xff\xfe", "#", " ", "1.0.0", "0x10", "1e", "-", "+5", std::string(300, '9')};
+  static const std::vector<std::string> tokens = {"1e400",
+                                                  "-1e400",
+                                                  "1e-400",
+                                                  "4.9e-324",
+                                                  "1e308",
+                                                  "-1",
+                                                  "0",
+                                                  "-0",
+                                                  "3e9",
+                                                  "2e9",
+                                                  "99999999999999999999999",
+                                                  "nan",
+                                                  "inf",
+                                                  "null",
+                                                  "true",
+                                                  "\"\"",
+                                                  "\"x\"",
+                                                  "[]",
+                                                  "{}",
+                                                  "[[[[[[[[[[[[[[[[",
+                                                  "]]]]",
+                                                  ",",
+                                                  ":",
+                                                  "\"",
+                                                  "\\",
+                                                  "\r",
+                                                  "\n",
+                                                  std::string(1, '\0'),
+                                                  "\xff\xfe",
+                                                  "#",
+                                                  " ",
+                                                  "1.0.0",
+                                                  "0x10",
+                                                  "1e",
+                                                  "-",
+                                                  "+5",
+                                                  std::string(300, '9')};
   const int edits = 1 + static_cast<int>(rng() % 3);
   for (int e = 0; e < edits; ++e) {
     const std::size_t n = text.size();
@@ -50,20 +83,28 @@ std::string mutate(std::string text, std::mt19937_64& rng) {
       case 0:
         if (n) text[at % n] = static_cast<char>(rng() % 256);
         break;
-      case 1: text.erase(at, 1 + rng() % 16); break;
-      case 2: text.insert(at, tokens[rng() % tokens.size()]); break;
+      case 1:
+        text.erase(at, 1 + rng() % 16);
+        break;
+      case 2:
+        text.insert(at, tokens[rng() % tokens.size()]);
+        break;
       case 3:  // replace the number or word at `at` with a hostile token
         if (n) {
           std::size_t b = at % n, end = b;
           while (b > 0 && std::isalnum(static_cast<unsigned char>(text[b - 1]))) --b;
-          while (end < n && (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '.' || text[end] == '-')) ++end;
+          while (end < n &&
+                 (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '.' || text[end] == '-'))
+            ++end;
           text.replace(b, end - b, tokens[rng() % tokens.size()]);
         }
         break;
       case 4:
         if (n) text.insert(at, text.substr(rng() % n, 1 + rng() % 64));
         break;
-      case 5: text.resize(at); break;
+      case 5:
+        text.resize(at);
+        break;
     }
   }
   return text;
@@ -97,7 +138,8 @@ TEST_P(FuzzMutations, EveryMutantParsesOrIsRefused) {
       const std::string failure = check(*target, mutant);
       if (!failure.empty()) {
         // Keep the input, so it can become a regression file.
-        const auto saved = std::filesystem::temp_directory_path() / ("bssrdf-fuzz-" + GetParam() + "-" + std::to_string(k));
+        const auto saved =
+            std::filesystem::temp_directory_path() / ("bssrdf-fuzz-" + GetParam() + "-" + std::to_string(k));
         std::ofstream(saved, std::ios::binary) << mutant;
         ADD_FAILURE() << seed.filename() << " mutant " << k << ": " << failure << " (input saved to " << saved << ")";
       }
@@ -119,7 +161,8 @@ TEST_P(FuzzMutations, EveryMutantParsesOrIsRefused) {
 TEST_P(FuzzMutations, RegressionInputsAreRefusedCleanly) {
   const auto* target = bssrdf::fuzz::find_target(GetParam());
   ASSERT_NE(target, nullptr);
-  for (const auto& input : files_in(kFuzzDir / "regressions" / GetParam())) EXPECT_EQ(check(*target, slurp(input)), "") << input;
+  for (const auto& input : files_in(kFuzzDir / "regressions" / GetParam()))
+    EXPECT_EQ(check(*target, slurp(input)), "") << input;
 }
 
 std::vector<std::string> target_names() {

@@ -22,7 +22,8 @@ std::vector<AnnularProfile> model_profiles(const Medium& medium, const std::vect
   std::vector<AnnularProfile> out;
   for (std::size_t c = 0; c < medium.channels(); ++c) {
     const auto m = medium.reduced(c);
-    out.push_back(annuli_of(edges, [&](double r) { return model.reflectance(m, r); }, model.total_reflectance(m)));
+    out.push_back(annuli_of(
+        edges, [&](double r) { return model.reflectance(m, r); }, model.total_reflectance(m)));
   }
   return out;
 }
@@ -46,12 +47,14 @@ TEST(ImageError, EdgeImageOfAGaussianMatchesTheClosedForm) {
   const double s = 0.3;
   const auto gaussian = [s](double r) { return std::exp(-r * r / (2 * s * s)) / (2 * std::numbers::pi * s * s); };
   const auto F = [s](double t) {
-    return t * 0.5 * std::erfc(-t / (s * std::sqrt(2.0))) + s * std::exp(-t * t / (2 * s * s)) / std::sqrt(2 * std::numbers::pi);
+    return t * 0.5 * std::erfc(-t / (s * std::sqrt(2.0))) +
+           s * std::exp(-t * t / (2 * s * s)) / std::sqrt(2 * std::numbers::pi);
   };
   std::map<int, double> worst_code;  // by annuli per decade
   for (int per_decade : {24, 48}) {
     std::vector<double> edges{0.0};
-    for (int j = 0; j <= per_decade * 5; ++j) edges.push_back(1e-3 * std::pow(10.0, double(j) / per_decade));  // 1e-3 .. 100 mm
+    for (int j = 0; j <= per_decade * 5; ++j)
+      edges.push_back(1e-3 * std::pow(10.0, double(j) / per_decade));  // 1e-3 .. 100 mm
     const AnnularProfile profile = annuli_of(edges, gaussian, 1.0);
     EXPECT_NEAR(profile.total(), 1.0, 1e-9);
     for (double pixel : {0.01, 0.1, 0.5, 3.0}) {
@@ -59,8 +62,11 @@ TEST(ImageError, EdgeImageOfAGaussianMatchesTheClosedForm) {
       const PatternImage image = meter.render(profile);
       for (std::size_t k = 0; k < image.edge.size(); ++k) {
         const double a = meter.pixel_centre(k) - pixel / 2, exact = (F(a + pixel) - F(a)) / pixel;
-        worst_code[per_decade] = std::max(worst_code[per_decade], 255 * std::abs(srgb_encode(image.edge[k]) - srgb_encode(exact)));
-        if (k > 0) { EXPECT_NEAR(image.line[k], image.edge[k] - image.edge[k - 1], 1e-15); }
+        worst_code[per_decade] =
+            std::max(worst_code[per_decade], 255 * std::abs(srgb_encode(image.edge[k]) - srgb_encode(exact)));
+        if (k > 0) {
+          EXPECT_NEAR(image.line[k], image.edge[k] - image.edge[k - 1], 1e-15);
+        }
       }
     }
   }
@@ -130,13 +136,16 @@ TEST(ImageError, MeetingAToleranceAtAPixelSizeMeansMeetingItAtCoarserOnes) {
     };
     for (double pixel : {0.01, 0.07, 0.3}) {
       const double base = edge_error(pixel);
-      for (int n : {2, 3, 5, 8, 13}) EXPECT_LE(edge_error(n * pixel), base * (1 + 1e-9)) << name << " at " << n << " x " << pixel << " mm";
+      for (int n : {2, 3, 5, 8, 13})
+        EXPECT_LE(edge_error(n * pixel), base * (1 + 1e-9)) << name << " at " << n << " x " << pixel << " mm";
     }
     double previous = INFINITY;
     for (double pixel = 0.01; pixel <= 1000; pixel *= 1.25) {
       const double e = ImageErrorMeter(edges, pixel).error(ref.channels, profiles).error;
-      if (pixel >= radius) { EXPECT_LE(e, previous * (1 + 1e-6)) << name << " at " << pixel << " mm"; }
-      else code_error_grew_below_profile |= e > previous;
+      if (pixel >= radius) {
+        EXPECT_LE(e, previous * (1 + 1e-6)) << name << " at " << pixel << " mm";
+      } else
+        code_error_grew_below_profile |= e > previous;
       previous = e;
     }
   }

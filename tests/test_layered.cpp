@@ -40,8 +40,11 @@ TEST(Hankel, BesselZeros) {
 TEST(Hankel, KnownPairs) {
   // e^{-a r}/r <-> 1/sqrt(a^2 + k^2) and the Gaussian e^{-r^2/2} <-> e^{-k^2/2}.
   for (double k : {0.0, 0.3, 2.0, 10.0}) {
-    EXPECT_NEAR(hankel_transform([](double r) { return std::exp(-1.5 * r) / r; }, k, 1.0), 1 / std::sqrt(2.25 + k * k), 1e-9) << k;
-    EXPECT_NEAR(hankel_transform([](double r) { return std::exp(-r * r / 2); }, k, 1.0), std::exp(-k * k / 2), 1e-10) << k;
+    EXPECT_NEAR(hankel_transform([](double r) { return std::exp(-1.5 * r) / r; }, k, 1.0), 1 / std::sqrt(2.25 + k * k),
+                1e-9)
+        << k;
+    EXPECT_NEAR(hankel_transform([](double r) { return std::exp(-r * r / 2); }, k, 1.0), std::exp(-k * k / 2), 1e-10)
+        << k;
   }
 }
 
@@ -65,13 +68,16 @@ TEST(Hankel, RoundTripOfAMultipoleProfile) {
   for (double r : {0.0, 0.1, 1.0, 3.0, 10.0, 20.0}) {
     const double back = hankel_transform([&](double k) { return spectrum(k); }, r, 1.0) / (2 * std::numbers::pi);
     inverse = std::max(inverse, std::abs(back / R(r) - 1));
-    const double round = hankel_transform([&](double k) { return grid.interpolate(k); }, r, 1.0) / (2 * std::numbers::pi);
+    const double round =
+        hankel_transform([&](double k) { return grid.interpolate(k); }, r, 1.0) / (2 * std::numbers::pi);
     std::printf("  r = %4.1f ell: R %.6e, inverse %.1e, round trip %.1e\n", r, R(r), back / R(r) - 1, round / R(r) - 1);
     if (r <= 10) trip = std::max(trip, std::abs(round / R(r) - 1));
     EXPECT_LT(std::abs(round - R(r)), 5e-5 * R(0.0)) << r;  // absolute: the grid's interpolation error
   }
-  std::printf("  Hankel transform, worst relative error: forward %.1e, inverse %.1e, round trip via a log grid %.1e (r <= 10 ell)\n",
-              forward, inverse, trip);
+  std::printf(
+      "  Hankel transform, worst relative error: forward %.1e, inverse %.1e, round trip via a log grid %.1e (r <= 10 "
+      "ell)\n",
+      forward, inverse, trip);
   EXPECT_LT(forward, 1e-7);
   EXPECT_LT(inverse, 1e-8);
   // Interpolating a sampled spectrum costs accuracy where R(r) is small: the layered model therefore
@@ -98,7 +104,8 @@ TEST(Layered, SemiInfiniteLayerIsTheDipole) {
   const auto m = reduce(0.02, 1.5, 0.0, 1.3);
   EXPECT_NEAR(model.total_reflectance(), classical_dipole::total_reflectance(m.albedo_prime, 1.3), 1e-14);
   EXPECT_EQ(model.total_transmittance(), 0.0);
-  for (double r : {0.1, 1.0, 5.0}) EXPECT_NEAR(model.reflectance(r) / classical_dipole::reflectance(m, r), 1.0, 1e-7) << r;
+  for (double r : {0.1, 1.0, 5.0})
+    EXPECT_NEAR(model.reflectance(r) / classical_dipole::reflectance(m, r), 1.0, 1e-7) << r;
 }
 
 TEST(Layered, AddingEquationsBehave) {
@@ -110,7 +117,8 @@ TEST(Layered, AddingEquationsBehave) {
   const double stacked = layered::Stack(stack_of({top, layer(0.01, 2.0, 0.0, 1.4, 38.0)}), 0).total_reflectance();
   EXPECT_NEAR(stacked / alone, 1.0, 0.05);
   const double dark = layered::Stack(stack_of({top, layer(0.5, 2.0, 0.0, 1.4, kSemiInfinite)}), 0).total_reflectance();
-  const double bright = layered::Stack(stack_of({top, layer(0.001, 2.0, 0.0, 1.4, kSemiInfinite)}), 0).total_reflectance();
+  const double bright =
+      layered::Stack(stack_of({top, layer(0.001, 2.0, 0.0, 1.4, kSemiInfinite)}), 0).total_reflectance();
   EXPECT_LT(dark, stacked);
   EXPECT_GT(bright, stacked);
   const layered::Stack conservative(stack_of({layer(0.0, 2.0, 0.0, 1.4, 3.0), layer(0.0, 1.0, 0.0, 1.3, 5.0)}), 0);
@@ -118,7 +126,8 @@ TEST(Layered, AddingEquationsBehave) {
 }
 
 TEST(Layered, ThinLayersAndClearLayersAreReported) {
-  const layered::Stack thin(stack_of({layer(0.01, 2.0, 0.0, 1.4, 0.5, "epidermis"), layer(0.01, 2.0, 0.0, 1.4, kSemiInfinite)}), 0);
+  const layered::Stack thin(
+      stack_of({layer(0.01, 2.0, 0.0, 1.4, 0.5, "epidermis"), layer(0.01, 2.0, 0.0, 1.4, kSemiInfinite)}), 0);
   const auto report = thin.validity();
   EXPECT_EQ(worst(report), Severity::invalid);
   bool named = false;

@@ -34,7 +34,7 @@ TEST(AlbedoRadiusTable, CellsMatchTheConvergedModelAndAreFinite) {
     const auto b = improved_boundary(eta);
     for (double v : t.profile) EXPECT_TRUE(std::isfinite(v));
     for (double v : t.cdf) EXPECT_TRUE(std::isfinite(v));
-    for (std::size_t j = 0; j < t.columns(); ++j) EXPECT_EQ(t.profile[j], 0.0);  // albedo 0 row
+    for (std::size_t j = 0; j < t.columns(); ++j) EXPECT_EQ(t.profile[j], 0.0);             // albedo 0 row
     for (std::size_t i = 0; i < t.rows(); ++i) EXPECT_EQ(t.profile[i * t.columns()], 0.0);  // r = 0 column
     for (std::size_t i = 10; i < t.rows(); i += 11) {
       const double rho = t.layout.albedo[i];
@@ -52,7 +52,9 @@ TEST(AlbedoRadiusTable, CellsMatchTheConvergedModelAndAreFinite) {
       // 2 % of the model's accurately integrated total (the grid ends at 203 mfp and is coarse there).
       const double total = photon_beam_diffusion::Model(1e-6).total_reflectance(m);
       // Above rho ~ 0.999 the profile reaches beyond the layout's 203 mfp and the row loses more.
-      if (rho < 0.999) { EXPECT_NEAR(t.effective_albedo[i], total, 2e-2 * total + 1e-6) << rho; }
+      if (rho < 0.999) {
+        EXPECT_NEAR(t.effective_albedo[i], total, 2e-2 * total + 1e-6) << rho;
+      }
     }
     for (std::size_t i = 1; i < t.rows(); ++i) EXPECT_GT(t.effective_albedo[i], t.effective_albedo[i - 1]);
   }
@@ -73,7 +75,8 @@ TEST(AlbedoRadiusTable, IndependentOfThreadsAndRejectsBadInput) {
   one.threads = 1;
   two.threads = 2;
   const auto layout = AlbedoRadiusLayout::family(20, 16);
-  EXPECT_EQ(build_albedo_radius_table(layout, 0.5, 1.4, one).profile, build_albedo_radius_table(layout, 0.5, 1.4, two).profile);
+  EXPECT_EQ(build_albedo_radius_table(layout, 0.5, 1.4, one).profile,
+            build_albedo_radius_table(layout, 0.5, 1.4, two).profile);
   AlbedoRadiusOptions bad;
   bad.tolerance = 0;
   EXPECT_ANY_THROW(build_albedo_radius_table(layout, 0.0, 1.3, bad));

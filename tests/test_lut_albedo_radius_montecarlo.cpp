@@ -37,12 +37,14 @@ TEST(AlbedoRadiusVsMonteCarlo, DefaultToleranceRowsMatchTheDocumentedError) {
     ASSERT_NEAR(rho, doc.rho, 1e-4);
     std::vector<double> pbrt(cols);
     const auto m = reduced_unit_extinction(rho, g, eta);
-    for (std::size_t j = 0; j < cols; ++j) pbrt[j] = 2 * std::numbers::pi * layout.radius[j] * bench::pbrt_style_pbd(m, b, layout.radius[j]);
+    for (std::size_t j = 0; j < cols; ++j)
+      pbrt[j] = 2 * std::numbers::pi * layout.radius[j] * bench::pbrt_style_pbd(m, b, layout.radius[j]);
     // The radii holding 99.9 % of the row's energy, as the validation driver chooses them.
     const std::span<const double> cdf(&ours.cdf[row * cols], cols);
     std::size_t k = 1;
     while (k + 1 < cols && cdf[k] < 0.999) ++k;
-    const double r_max = layout.radius[k - 1] + (layout.radius[k] - layout.radius[k - 1]) * (0.999 - cdf[k - 1]) / (cdf[k] - cdf[k - 1]);
+    const double r_max =
+        layout.radius[k - 1] + (layout.radius[k] - layout.radius[k - 1]) * (0.999 - cdf[k - 1]) / (cdf[k] - cdf[k - 1]);
 
     const auto medium = Medium::single_channel(1 - rho, rho, g, eta);
     MonteCarloOptions options;
@@ -67,7 +69,8 @@ TEST(AlbedoRadiusVsMonteCarlo, DefaultToleranceRowsMatchTheDocumentedError) {
       sq_ours += (v_ours - f) * (v_ours - f) * w;
       sq_pbrt += (v_pbrt - f) * (v_pbrt - f) * w;
     }
-    const double l2_ours = std::sqrt(sq_ours / norm), l2_pbrt = std::sqrt(sq_pbrt / norm), l2_noise = std::sqrt(noise / norm);
+    const double l2_ours = std::sqrt(sq_ours / norm), l2_pbrt = std::sqrt(sq_pbrt / norm),
+                 l2_noise = std::sqrt(noise / norm);
     // The noise adds in quadrature to the L2 error; remove it, then allow for its fluctuation.
     const double l2_ours_clean = std::sqrt(std::max(0.0, l2_ours * l2_ours - l2_noise * l2_noise));
     // Over ten seeds the noise-removed L2 stayed within 0.45 pp of the documented figure: allow 1 pp.
@@ -90,18 +93,21 @@ TEST(AlbedoRadiusAdaptive, MeetsItsToleranceBetweenTheSamples) {
     const auto& a = adaptive.layout.albedo;
     const auto& r = adaptive.layout.radius;
     for (std::size_t i = 0; i + 1 < a.size(); i += 3) quarter.albedo.push_back(0.75 * a[i] + 0.25 * a[i + 1]);
-    for (std::size_t j = 1; j + 1 < r.size(); ++j) quarter.radius.push_back(std::pow(r[j], 0.75) * std::pow(r[j + 1], 0.25));
+    for (std::size_t j = 1; j + 1 < r.size(); ++j)
+      quarter.radius.push_back(std::pow(r[j], 0.75) * std::pow(r[j + 1], 0.25));
     const auto direct = build_albedo_radius_table(quarter, 0.0, 1.3, options);
     double worst = 0;
     for (std::size_t i = 0; i < direct.rows(); ++i) {
       double peak = 0;
-      for (std::size_t j = 0; j < direct.columns(); ++j) peak = std::max(peak, direct.profile[i * direct.columns() + j]);
+      for (std::size_t j = 0; j < direct.columns(); ++j)
+        peak = std::max(peak, direct.profile[i * direct.columns() + j]);
       for (std::size_t j = 0; j < direct.columns(); ++j)
         worst = std::max(worst, std::abs(table.interpolate(quarter.albedo[i], quarter.radius[j]) -
-                                         direct.profile[i * direct.columns() + j]) / peak);
+                                         direct.profile[i * direct.columns() + j]) /
+                                    peak);
     }
-    std::printf("  tolerance %.0e: %zu albedos x %zu radii (pbrt: 100 x 64), worst error at quarter points %.2e\n", tolerance,
-                table.rows(), table.columns(), worst);
+    std::printf("  tolerance %.0e: %zu albedos x %zu radii (pbrt: 100 x 64), worst error at quarter points %.2e\n",
+                tolerance, table.rows(), table.columns(), worst);
     EXPECT_LE(adaptive.albedo_error, tolerance / 3);
     EXPECT_LE(adaptive.radius_error, tolerance / 3);
     EXPECT_LT(worst, tolerance);
@@ -110,11 +116,13 @@ TEST(AlbedoRadiusAdaptive, MeetsItsToleranceBetweenTheSamples) {
     double pbrt_worst = 0;
     for (std::size_t i = 0; i < direct.rows(); ++i) {
       double peak = 0;
-      for (std::size_t j = 0; j < direct.columns(); ++j) peak = std::max(peak, direct.profile[i * direct.columns() + j]);
+      for (std::size_t j = 0; j < direct.columns(); ++j)
+        peak = std::max(peak, direct.profile[i * direct.columns() + j]);
       for (std::size_t j = 0; j < direct.columns(); ++j)
         if (quarter.radius[j] >= pbrt.layout.radius[1] && quarter.radius[j] <= pbrt.layout.radius.back())
           pbrt_worst = std::max(pbrt_worst, std::abs(pbrt.interpolate(quarter.albedo[i], quarter.radius[j]) -
-                                                     direct.profile[i * direct.columns() + j]) / peak);
+                                                     direct.profile[i * direct.columns() + j]) /
+                                                peak);
     }
     std::printf("  pbrt's 100 x 64 layout at the same points: worst error %.2e\n", pbrt_worst);
     EXPECT_GT(pbrt_worst, worst);

@@ -11,10 +11,10 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfIntAttribute.h>
 #include <OpenEXR/ImfStringAttribute.h>
+#include <unistd.h>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/io/atomic_file.hpp"
@@ -175,9 +175,12 @@ TEST(RadialTable, ExrReadsBackWithValuesAndAttributes) {
   const int width = dw.max.x - dw.min.x + 1;
   ASSERT_EQ(width, static_cast<int>(t.size()));
   ASSERT_EQ(dw.max.y - dw.min.y + 1, 1);
-  for (const auto& [name, value] : std::vector<std::pair<std::string, std::string>>{
-           {"bssrdf:material", "Skin1"}, {"bssrdf:model", "pbd"}, {"bssrdf:unit", "mm"}, {"bssrdf:kind", "radial"},
-           {"bssrdf:tool", std::string("bssrdf ") + BSSRDF_VERSION}}) {
+  for (const auto& [name, value] :
+       std::vector<std::pair<std::string, std::string>>{{"bssrdf:material", "Skin1"},
+                                                        {"bssrdf:model", "pbd"},
+                                                        {"bssrdf:unit", "mm"},
+                                                        {"bssrdf:kind", "radial"},
+                                                        {"bssrdf:tool", std::string("bssrdf ") + BSSRDF_VERSION}}) {
     const auto* a = header.findTypedAttribute<Imf::StringAttribute>(name);
     ASSERT_NE(a, nullptr) << name;
     EXPECT_EQ(a->value(), value);
@@ -186,7 +189,8 @@ TEST(RadialTable, ExrReadsBackWithValuesAndAttributes) {
     EXPECT_NE(header.findTypedAttribute<Imf::StringAttribute>(name), nullptr) << name;
   EXPECT_DOUBLE_EQ(header.findTypedAttribute<Imf::DoubleAttribute>("bssrdf:tolerance")->value(), 1e-3);
   EXPECT_EQ(header.findTypedAttribute<Imf::IntAttribute>("bssrdf:size")->value(), width);
-  EXPECT_DOUBLE_EQ(header.findTypedAttribute<Imf::DoubleAttribute>("bssrdf:total_reflectance.R")->value(), t.total_reflectance[0]);
+  EXPECT_DOUBLE_EQ(header.findTypedAttribute<Imf::DoubleAttribute>("bssrdf:total_reflectance.R")->value(),
+                   t.total_reflectance[0]);
 
   for (const char* name : {"R", "G", "B", "radius", "ring.R", "cdf.G", "inverse_cdf.B", "u"})
     ASSERT_NE(header.channels().findChannel(name), nullptr) << name;
@@ -211,13 +215,18 @@ TEST(RadialTable, JsonCarriesTheSameContentInTheOutputUnit) {
   const auto& material = database().find("Marble");
   const auto model = make_model("better-dipole");
   const auto t = build_radial_table(material.medium, *model, {});
-  const auto doc = nlohmann::json::parse(to_json(to_lookup_table(t, {material, &material.medium, model.get(), LengthUnit::centimetre})));
+  const auto doc = nlohmann::json::parse(
+      to_json(to_lookup_table(t, {material, &material.medium, model.get(), LengthUnit::centimetre})));
   EXPECT_EQ(doc["kind"], "radial");
   EXPECT_EQ(doc["attributes"]["bssrdf:unit"], "cm");
   EXPECT_EQ(doc["width"], t.size());
   for (const auto& c : doc["channels"]) {
-    if (c["name"] == "radius") { EXPECT_NEAR(c["values"][3].get<double>(), t.radius[3] / 10, 1e-15); }
-    if (c["name"] == "R") { EXPECT_NEAR(c["values"][3].get<double>(), t.reflectance[0][3] * 100, 1e-12 * t.reflectance[0][3] * 100); }
+    if (c["name"] == "radius") {
+      EXPECT_NEAR(c["values"][3].get<double>(), t.radius[3] / 10, 1e-15);
+    }
+    if (c["name"] == "R") {
+      EXPECT_NEAR(c["values"][3].get<double>(), t.reflectance[0][3] * 100, 1e-12 * t.reflectance[0][3] * 100);
+    }
   }
 }
 

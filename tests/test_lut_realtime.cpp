@@ -2,12 +2,12 @@
 // projections they rest on. Conservation is measured against independent integrals.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <numbers>
-#include <unistd.h>
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/lut/gaussian_mixture_table.hpp"
@@ -68,7 +68,8 @@ TEST(ProjectedProfile, ConservesTheTotalAndMatchesGaussianProjection) {
   for (double x : {0.01, 0.1, 1.0, 5.0}) {
     double expected = 0;
     for (std::size_t k = 0; k < mix.weight.size(); ++k)
-      expected += mix.weight[k] * std::exp(-x * x / (2 * mix.variance[k])) / std::sqrt(2 * std::numbers::pi * mix.variance[k]);
+      expected +=
+          mix.weight[k] * std::exp(-x * x / (2 * mix.variance[k])) / std::sqrt(2 * std::numbers::pi * mix.variance[k]);
     EXPECT_NEAR(p.line(x), expected, 3e-3 * expected) << x;
   }
 }
@@ -136,7 +137,8 @@ TEST(PenumbraTable, MatchesTheDirectConvolutionAndItsLimits) {
     for (std::size_t j : {0u, 5u, 15u})
       for (std::size_t i : {2u, 10u, 27u}) {
         const double w = t.penumbra_width[j], p = (t.shadow[i] - 0.5) * w;
-        EXPECT_NEAR(t.value[c][j * o.width + i], ramp_exitance(*model, skin.reduced(c), p, w), 1e-4) << c << ' ' << i << ' ' << j;
+        EXPECT_NEAR(t.value[c][j * o.width + i], ramp_exitance(*model, skin.reduced(c), p, w), 1e-4)
+            << c << ' ' << i << ' ' << j;
       }
   }
   // Light scatters into the umbra side, red (widest) most; far wider penumbrae tend to D = s.
@@ -144,7 +146,8 @@ TEST(PenumbraTable, MatchesTheDirectConvolutionAndItsLimits) {
   EXPECT_GT(t.value[0][5 * o.width + 3], t.value[2][5 * o.width + 3]);
   o.width_max = 1e4;
   const auto wide = build_penumbra_table(skin, *model, o);
-  for (std::size_t i = 0; i < o.width; ++i) EXPECT_NEAR(wide.value[1][(o.height - 1) * o.width + i], wide.shadow[i], 1e-3);
+  for (std::size_t i = 0; i < o.width; ++i)
+    EXPECT_NEAR(wide.value[1][(o.height - 1) * o.width + i], wide.shadow[i], 1e-3);
   // A channel without scattering passes the light ramp through: D = s.
   const auto coke = build_penumbra_table(material("Coke"), *model, o);
   for (std::size_t i = 0; i < o.width; ++i) EXPECT_EQ(coke.value[2][3 * o.width + i], coke.shadow[i]);
@@ -163,7 +166,8 @@ TEST(PreintegratedTable, QuadratureIsConverged) {
     const auto fine = build_preintegrated_table(material(name), *model, o);
     double worst = 0;
     for (std::size_t c = 0; c < 3; ++c)
-      for (std::size_t i = 0; i < coarse.value[c].size(); ++i) worst = std::max(worst, std::abs(coarse.value[c][i] - fine.value[c][i]));
+      for (std::size_t i = 0; i < coarse.value[c].size(); ++i)
+        worst = std::max(worst, std::abs(coarse.value[c][i] - fine.value[c][i]));
     EXPECT_LT(worst, 5e-5) << name;
   }
   PreintegratedOptions bad;
@@ -197,7 +201,9 @@ TEST(SeparableKernel, ConservesTheBandEnergyAndFollowsJimenez) {
   // the direct 2D integral; the narrower channels hold more.
   const auto fitted = build_separable_kernel(medium, *model, {});
   EXPECT_TRUE(fitted.range_from_band);
-  EXPECT_NEAR(band_energy(*model, medium.reduced(0), fitted.options.range) / model->total_reflectance(medium.reduced(0)), 0.95, 2e-3);
+  EXPECT_NEAR(
+      band_energy(*model, medium.reduced(0), fitted.options.range) / model->total_reflectance(medium.reduced(0)), 0.95,
+      2e-3);
   EXPECT_NEAR(fitted.captured[0], 0.95, 2e-3);
   EXPECT_GT(fitted.captured[1], 0.95);
   EXPECT_GT(fitted.captured[2], fitted.captured[1]);
@@ -271,8 +277,8 @@ TEST(GaussianMixtures, ConserveTheTotal) {
 }
 
 TEST(CliLutRealtime, FilesCarryValuesAndAttributes) {
-  const auto pre = temp("pre.exr"), ker = temp("k.exr"), glsl = temp("k.glsl"), hlsl = temp("k.hlsl"), gauss = temp("g.exr"),
-             gauss_json = temp("g.json");
+  const auto pre = temp("pre.exr"), ker = temp("k.exr"), glsl = temp("k.glsl"), hlsl = temp("k.hlsl"),
+             gauss = temp("g.exr"), gauss_json = temp("g.json");
   auto r = test_cli::run("lut --material Skin1 --kind preintegrated --size 32x8 -q -o " + pre.string());
   ASSERT_EQ(r.status, 0) << r.err;
   const auto p = test_exr::read_exr(pre);
@@ -318,7 +324,8 @@ TEST(CliLutRealtime, FilesCarryValuesAndAttributes) {
   EXPECT_EQ(q.ints.at("bssrdf:count.B"), static_cast<int>(mix.weight.size()));
   EXPECT_FLOAT_EQ(q.channels.at("variance.B")[3], static_cast<float>(mix.variance[3]));
   EXPECT_FLOAT_EQ(q.channels.at("B")[3], static_cast<float>(mix.weight[3]));
-  r = test_cli::run("lut --material Skin1 --kind gaussians --model better-dipole --count 4 -q -o " + gauss_json.string());
+  r = test_cli::run("lut --material Skin1 --kind gaussians --model better-dipole --count 4 -q -o " +
+                    gauss_json.string());
   ASSERT_EQ(r.status, 0) << r.err;
   const auto doc = nlohmann::json::parse(test_cli::slurp(gauss_json));
   EXPECT_EQ(doc["width"], 4);
@@ -328,7 +335,8 @@ TEST(CliLutRealtime, FilesCarryValuesAndAttributes) {
 
 TEST(CliLutRealtime, PenumbraExrReadsBack) {
   const auto file = temp("pen.exr");
-  const auto r = test_cli::run("lut --material Skin1 --kind penumbra --size 32x8 --width-max 1 --unit cm -q -o " + file.string());
+  const auto r =
+      test_cli::run("lut --material Skin1 --kind penumbra --size 32x8 --width-max 1 --unit cm -q -o " + file.string());
   ASSERT_EQ(r.status, 0) << r.err;
   const auto p = test_exr::read_exr(file);
   EXPECT_EQ(p.width, 32);
@@ -343,7 +351,10 @@ TEST(CliLutRealtime, PenumbraExrReadsBack) {
   for (std::size_t i = 0; i < 256; ++i) EXPECT_FLOAT_EQ(p.channels.at("R")[i], static_cast<float>(t.value[0][i]));
   // CSV for plots carries both axes: row, column, w (cm), s, then the channels.
   const auto csv = temp("pen.csv");
-  ASSERT_EQ(test_cli::run("lut --material Skin1 --kind penumbra --size 32x8 --width-max 1 --unit cm -q -o " + csv.string()).status, 0);
+  ASSERT_EQ(
+      test_cli::run("lut --material Skin1 --kind penumbra --size 32x8 --width-max 1 --unit cm -q -o " + csv.string())
+          .status,
+      0);
   const auto text = test_cli::slurp(csv);
   EXPECT_EQ(text.substr(0, text.find('\n')), "row,column,penumbra_width (cm),shadow,R,G,B");
   EXPECT_EQ(test_cli::count_lines(text), 1 + 256);
@@ -353,11 +364,12 @@ TEST(CliLutRealtime, PenumbraExrReadsBack) {
 TEST(CliLutRealtime, BadInputIsOneLineExitTwoAndNoFile) {
   const auto out = temp("bad.exr");
   for (const std::string args :
-       {"--kind separable --taps 2", "--kind separable --taps 1", "--kind separable --taps 12", "--kind separable --range 0", "--kind separable --range wide", "--kind separable --band 1",
+       {"--kind separable --taps 2", "--kind separable --taps 1", "--kind separable --taps 12",
+        "--kind separable --range 0", "--kind separable --range wide", "--kind separable --band 1",
         "--kind preintegrated --size 0x0", "--kind preintegrated --size 0x16", "--kind preintegrated --size 16x0",
         "--kind preintegrated --size 16", "--kind preintegrated --curvature-max -1", "--kind penumbra --width-max -1",
-        "--kind penumbra --size 1x16", "--kind gaussians --count -1",
-        "--kind gaussians --count 40", "--kind unknown", "--kind radial --format glsl"}) {
+        "--kind penumbra --size 1x16", "--kind gaussians --count -1", "--kind gaussians --count 40", "--kind unknown",
+        "--kind radial --format glsl"}) {
     std::filesystem::remove(out);
     const auto r = test_cli::run("lut --material Skin1 " + args + " -o " + out.string());
     EXPECT_EQ(r.status, 2) << args << ": " << r.err;
@@ -376,8 +388,9 @@ TEST(CliLutRealtime, PreviewIsAPngAndBadPathsWriteNothing) {
   const auto bytes = test_cli::slurp(png);
   ASSERT_GT(bytes.size(), 100u);
   EXPECT_EQ(bytes.substr(1, 3), "PNG");
-  for (const std::string& args : std::vector<std::string>{"--preview " + temp("x.jpg").string(), "--preview /nonexistent-dir/x.png",
-                                 "--sigma-a 0.1,0.2 --sigma-s 1,1 --preview " + temp("two.png").string()}) {
+  for (const std::string& args :
+       std::vector<std::string>{"--preview " + temp("x.jpg").string(), "--preview /nonexistent-dir/x.png",
+                                "--sigma-a 0.1,0.2 --sigma-s 1,1 --preview " + temp("two.png").string()}) {
     r = test_cli::run("lut " + std::string(args.find("sigma") == std::string::npos ? "--material Skin1 " : "") + args);
     EXPECT_EQ(r.status, 2) << args << ": " << r.err;
     EXPECT_EQ(test_cli::count_lines(r.err), 1) << args;
@@ -404,7 +417,8 @@ TEST(CliLutRealtime, BatchWritesEveryMaterialReproducibly) {
   // Built in parallel, the files are the same bytes.
   const auto parallel = temp("batch2");
   std::filesystem::create_directories(parallel);
-  const auto r2 = test_cli::run("lut --all --kind separable --taps 11 -f json -q --threads 2 --output-dir " + parallel.string());
+  const auto r2 =
+      test_cli::run("lut --all --kind separable --taps 11 -f json -q --threads 2 --output-dir " + parallel.string());
   EXPECT_EQ(r2.status, 0) << r2.err;
   for (const auto& entry : std::filesystem::directory_iterator(dir))
     EXPECT_EQ(test_cli::slurp(entry.path()), test_cli::slurp(parallel / entry.path().filename())) << entry.path();
@@ -415,7 +429,9 @@ TEST(CliLutRealtime, BatchSkipsWhatCannotBeTabulatedAndWritesTheRest) {
   // refuses: the batch names it on stderr, one line, and still writes every other material.
   const auto dir = temp("batch-t");
   std::filesystem::create_directories(dir);
-  const auto r = test_cli::run("lut --all --kind transmission --model multipole --samples 8 -f json -q --threads 2 --output-dir " + dir.string());
+  const auto r =
+      test_cli::run("lut --all --kind transmission --model multipole --samples 8 -f json -q --threads 2 --output-dir " +
+                    dir.string());
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("bssrdf: skipped Spectralon: "), std::string::npos) << r.err;
   std::size_t files = 0;

@@ -4,9 +4,9 @@
 // thread count, and the command line writes it for a thin-epidermis skin stack the multipole refuses.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -41,7 +41,8 @@ TEST(ReferenceRadialTable, TotalMatchesAddingDoublingAndTheCdfInverts) {
     // The inverse CDF lands where the CDF, linear in ln r between edges, reaches u.
     for (std::size_t j = 5; j + 1 < t.size(); j += 9) {
       const double r = t.inverse_cdf[0][j];
-      const auto i = static_cast<std::size_t>(std::lower_bound(t.r_outer.begin(), t.r_outer.end(), r) - t.r_outer.begin());
+      const auto i =
+          static_cast<std::size_t>(std::lower_bound(t.r_outer.begin(), t.r_outer.end(), r) - t.r_outer.begin());
       ASSERT_GT(i, 0u);
       const double s = std::log(r / t.r_outer[i - 1]) / std::log(t.r_outer[i] / t.r_outer[i - 1]);
       EXPECT_NEAR(t.cdf[0][i - 1] + s * (t.cdf[0][i] - t.cdf[0][i - 1]), t.u[j], 1e-9);
@@ -65,21 +66,25 @@ TEST(ReferenceRadialTable, ThinSkinLayersWhereTheMultipoleRefuses) {
   EXPECT_EQ(r.status, 2);  // 0.1 mm is 0.4 transport mfp: the multipole refuses
   EXPECT_NE(r.err.find("--reference"), std::string::npos) << r.err;
   const auto out = test_cli::temp("skin-ref.json");
-  r = test_cli::run("lut --layers " + layers.string() + " --kind radial --reference --photons 20000 -q -o " + out.string());
+  r = test_cli::run("lut --layers " + layers.string() + " --kind radial --reference --photons 20000 -q -o " +
+                    out.string());
   ASSERT_EQ(r.status, 0) << r.err;
   const auto doc = nlohmann::json::parse(test_cli::slurp(out));
   EXPECT_EQ(doc["attributes"]["bssrdf:model"], "monte carlo");
   EXPECT_EQ(doc["attributes"]["bssrdf:photons"], 20000.0);
   std::vector<std::string> names;
   for (const auto& c : doc["channels"]) names.push_back(c["name"]);
-  for (const char* want : {"R", "G", "B", "radius", "r_inner", "r_outer", "stderr.R", "ring.G", "cdf.B", "u", "inverse_cdf.R"})
+  for (const char* want :
+       {"R", "G", "B", "radius", "r_inner", "r_outer", "stderr.R", "ring.G", "cdf.B", "u", "inverse_cdf.R"})
     EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
   // Red, the least absorbed, reflects most.
-  EXPECT_GT(doc["attributes"]["bssrdf:total_reflectance.R"].get<double>(), doc["attributes"]["bssrdf:total_reflectance.B"].get<double>());
-  for (const std::string& args : std::vector<std::string>{"--layers " + layers.string() + " --kind radial -o x.json",
-                                 "--layers " + layers.string() + " --kind preintegrated --reference -o x.json",
-                                 "--material Skin1 --kind radial --reference --model pbd -o x.json",
-                                 "--material Skin1 --layers " + layers.string() + " --kind radial --reference -o x.json"}) {
+  EXPECT_GT(doc["attributes"]["bssrdf:total_reflectance.R"].get<double>(),
+            doc["attributes"]["bssrdf:total_reflectance.B"].get<double>());
+  for (const std::string& args : std::vector<std::string>{
+           "--layers " + layers.string() + " --kind radial -o x.json",
+           "--layers " + layers.string() + " --kind preintegrated --reference -o x.json",
+           "--material Skin1 --kind radial --reference --model pbd -o x.json",
+           "--material Skin1 --layers " + layers.string() + " --kind radial --reference -o x.json"}) {
     r = test_cli::run("lut " + args);
     EXPECT_EQ(r.status, 2) << args;
     EXPECT_EQ(test_cli::count_lines(r.err), 1) << args << ": " << r.err;

@@ -3,9 +3,9 @@
 // JSON / CSV files carry the values and attributes.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
 #include "bssrdf/lut/transmission_table.hpp"
 #include "bssrdf/materials.hpp"
@@ -33,7 +33,9 @@ TEST(TransmissionTable, MatchesTheMultipoleAndDecreasesWhereItHolds) {
     for (std::size_t c = 0; c < medium.channels(); ++c) {
       EXPECT_EQ(t.transmittance[c][j], model.total_transmittance(medium.reduced(c)));
       EXPECT_TRUE(multipole_invalid_code(model, medium.reduced(c)).empty());
-      if (j > 0) { EXPECT_LT(t.transmittance[c][j], t.transmittance[c][j - 1]); }
+      if (j > 0) {
+        EXPECT_LT(t.transmittance[c][j], t.transmittance[c][j - 1]);
+      }
     }
   }
   for (double d : t.omitted_thickness) EXPECT_LT(d, 2 * medium.reduced(0).ell + 1e-12);
@@ -62,7 +64,8 @@ TEST(TransmissionTable, ReferenceFillsInvalidThicknesses) {
 TEST(TransmissionTable, ExrJsonCsvCarryValuesAndAttributes) {
   const auto exr = temp("t.exr"), json = temp("t.json"), csv = temp("t.csv");
   for (const auto& path : {exr, json, csv}) {
-    const auto r = test_cli::run("lut --material Skin1 --kind transmission --model multipole --thickness 0.5,3,6,12 -q -o " + path.string());
+    const auto r = test_cli::run(
+        "lut --material Skin1 --kind transmission --model multipole --thickness 0.5,3,6,12 -q -o " + path.string());
     ASSERT_EQ(r.status, 0) << r.err;
   }
   const auto t = test_exr::read_exr(exr);
@@ -88,7 +91,8 @@ TEST(TransmissionTable, ExrJsonCsvCarryValuesAndAttributes) {
   EXPECT_EQ(doc["attributes"]["bssrdf:omitted_count"], 1);
   EXPECT_EQ(test_cli::slurp(csv).substr(0, 17), "thickness,R,G,B\n3");
   // cm: thicknesses and the unit attribute follow --unit.
-  const auto r = test_cli::run("lut --material Skin1 --kind transmission --unit cm --thickness 0.3,0.6 -q -o " + exr.string());
+  const auto r =
+      test_cli::run("lut --material Skin1 --kind transmission --unit cm --thickness 0.3,0.6 -q -o " + exr.string());
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(test_exr::read_exr(exr).strings.at("bssrdf:unit"), "cm");
   EXPECT_FLOAT_EQ(test_exr::read_exr(exr).channels.at("thickness")[1], 0.6f);
@@ -97,10 +101,11 @@ TEST(TransmissionTable, ExrJsonCsvCarryValuesAndAttributes) {
 TEST(TransmissionTable, BadInputIsOneLineExitTwoAndNoFile) {
   const auto out = temp("bad.exr");
   for (const std::string args :
-       {"--thickness 0,1", "--thickness -1", "--thickness 0.1,0.2", "--d-min 2 --d-max 1", "--samples 1",
-        "--model pbd", "--thickness 1 --d-min 1", "--reference --photons 10 --thickness 0.2"}) {
+       {"--thickness 0,1", "--thickness -1", "--thickness 0.1,0.2", "--d-min 2 --d-max 1", "--samples 1", "--model pbd",
+        "--thickness 1 --d-min 1", "--reference --photons 10 --thickness 0.2"}) {
     std::filesystem::remove(out);
-    const auto r = test_cli::run("lut --material Skin1 --kind transmission --model multipole " + args + " -o " + out.string());
+    const auto r =
+        test_cli::run("lut --material Skin1 --kind transmission --model multipole " + args + " -o " + out.string());
     EXPECT_EQ(r.status, 2) << args << ": " << r.err;
     EXPECT_EQ(test_cli::count_lines(r.err), 1) << args << ": " << r.err;
     EXPECT_FALSE(std::filesystem::exists(out)) << args;

@@ -1,17 +1,17 @@
 // The bundled database and the loader's errors.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 #include "bssrdf/derived_quantities.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/io/renderer_export.hpp"
 #include "bssrdf/materials.hpp"
+#include "cli_runner.hpp"
 #include "json_schema_subset.hpp"
 #include "reference_data.hpp"
-#include "cli_runner.hpp"
 
 using namespace bssrdf;
 
@@ -102,8 +102,9 @@ TEST(Materials, InvalidValuesNameTheField) {
   e = load_error(std::string(kHeader) +
                  R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1], "g": [0, 1.5, 0]}]})");
   EXPECT_NE(e.find("g[G] = 1.5: accepted range is -1 < g < 1"), std::string::npos) << e;
-  e = load_error(std::string(kHeader) +
-                 R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1], "sigma_s_prime": [1, 1, 1]}]})");
+  e = load_error(
+      std::string(kHeader) +
+      R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1], "sigma_s_prime": [1, 1, 1]}]})");
   EXPECT_NE(e.find("exactly one of"), std::string::npos) << e;
   e = load_error(std::string(kHeader) + R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1]},
                                             {"name": "a", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1]}]})");
@@ -113,7 +114,8 @@ TEST(Materials, InvalidValuesNameTheField) {
 }
 
 TEST(Materials, UnitsAreConvertedToPerMillimetre) {
-  const auto path = write_temp("cm.json", R"({"format": "bssrdf-materials", "version": 1, "source": "t", "citation": "c",
+  const auto path =
+      write_temp("cm.json", R"({"format": "bssrdf-materials", "version": 1, "source": "t", "citation": "c",
     "unit": "cm", "channels": ["x"], "materials": [{"name": "A", "eta": 1.4, "sigma_a": [1], "sigma_s": [100], "g": [0.9]}]})");
   const auto db = MaterialDatabase::load(path);
   EXPECT_DOUBLE_EQ(db.find("a").medium.sigma_a[0], 0.1);
@@ -142,7 +144,9 @@ TEST(Materials, BundledNarasimhanTableMatchesTheReference) {
       EXPECT_DOUBLE_EQ(m.medium.sigma_s[c], s[c]) << name;
       EXPECT_DOUBLE_EQ(m.medium.sigma_a[c], a[c]) << name;
       EXPECT_DOUBLE_EQ(m.medium.g[c], g[c]) << name;
-      if (s[c] == 0) { EXPECT_EQ(g[c], 0.0) << name; }  // the TSV's convention
+      if (s[c] == 0) {
+        EXPECT_EQ(g[c], 0.0) << name;
+      }  // the TSV's convention
     }
     EXPECT_FALSE(m.reduced_scattering_only);
     ++compared;
@@ -175,10 +179,12 @@ TEST(MaterialsSchema, IsValidJsonAndDescribesEveryBundledFile) {
 // cannot state, are covered by InvalidValuesNameTheField.)
 TEST(MaterialsSchema, LoaderRejectsWhatTheSchemaRejects) {
   const auto schema = read_json(default_materials_dir() / "schema.json");
-  const std::string good_entry = R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1], "g": [0, 0, 0]})";
+  const std::string good_entry =
+      R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1], "g": [0, 0, 0]})";
   const auto file = [&](const std::string& top, const std::string& entry) {
     return "{" + top + R"("format": "bssrdf-materials", "version": 1, "source": "test", "citation": "c", "unit": "mm",
-      "channels": ["R", "G", "B"], "materials": [)" + entry + "]}";
+      "channels": ["R", "G", "B"], "materials": [)" +
+           entry + "]}";
   };
   ASSERT_EQ(test_schema::validate(schema, test_schema::json::parse(file("", good_entry))), "");
   ASSERT_EQ(load_error(file("", good_entry)), "");
@@ -187,28 +193,46 @@ TEST(MaterialsSchema, LoaderRejectsWhatTheSchemaRejects) {
   };
   const std::vector<Case> cases = {
       {file(R"("extra": 1, )", good_entry), "$.extra: unknown field"},
-      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s_prim": [1, 1, 1]})"), "sigma_s_prim: unknown field"},
-      {file("", R"({"name": "", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1]})"), "$.materials[0].name: expected a non-empty string"},
+      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s_prim": [1, 1, 1]})"),
+       "sigma_s_prim: unknown field"},
+      {file("", R"({"name": "", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1]})"),
+       "$.materials[0].name: expected a non-empty string"},
       {file("", R"({"name": "A", "eta": 0, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1]})"), "(A): eta = 0"},
-      {file("", R"({"name": "A", "eta": "1.3", "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1]})"), "(A).eta: expected a number"},
-      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, -1, 1]})"), "(A): sigma_s[G] = -1"},
-      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s_prime": [1, 1, -1]})"), "(A): sigma_s[B] = -1"},
-      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1], "g": [-1, 0, 0]})"), "g[R] = -1"},
-      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1], "g": [0, 0, 1]})"), "g[B] = 1"},
+      {file("", R"({"name": "A", "eta": "1.3", "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1]})"),
+       "(A).eta: expected a number"},
+      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, -1, 1]})"),
+       "(A): sigma_s[G] = -1"},
+      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s_prime": [1, 1, -1]})"),
+       "(A): sigma_s[B] = -1"},
+      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1], "g": [-1, 0, 0]})"),
+       "g[R] = -1"},
+      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1], "g": [0, 0, 1]})"),
+       "g[B] = 1"},
       {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1]})"), "exactly one of"},
-      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s_prime": [1, 1, 1], "g": [0, 0, 0]})"), "(A).g: 'g' cannot be given"},
+      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s_prime": [1, 1, 1], "g": [0, 0, 0]})"),
+       "(A).g: 'g' cannot be given"},
       {file("", R"({"eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1]})"), "missing required field 'name'"},
-      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, "x", 0.1], "sigma_s": [1, 1, 1]})"), "sigma_a[1]: expected a number"},
-      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1], "notes": 3})"), "(A).notes: expected a string"},
-      {file("", "")+"", "$.materials: expected a non-empty array"},
-      {R"({"format": "bssrdf-materials", "version": 2, "source": "t", "citation": "c", "unit": "mm", "channels": ["R"], "materials": []})", "$.version: only version 1"},
-      {R"({"format": "other", "version": 1, "source": "t", "citation": "c", "unit": "mm", "channels": ["R"], "materials": []})", "$.format"},
-      {R"({"format": "bssrdf-materials", "version": 1, "source": "", "citation": "c", "unit": "mm", "channels": ["R"], "materials": []})", "$.source: expected a non-empty string"},
-      {R"({"format": "bssrdf-materials", "version": 1, "source": "t", "unit": "mm", "channels": ["R"], "materials": []})", "missing required field 'citation'"},
-      {R"({"format": "bssrdf-materials", "version": 1, "source": "t", "citation": "c", "unit": "MM", "channels": ["R"], "materials": []})", "$.unit: 'MM' is not one of"},
-      {R"({"format": "bssrdf-materials", "version": 1, "source": "t", "citation": "c", "unit": "mm", "channels": [], "materials": []})", "$.channels: expected a non-empty array"},
-      {R"({"format": "bssrdf-materials", "version": 1, "source": "t", "citation": "c", "unit": "mm", "channels": ["R", "R"], "materials": []})", "$.channels[1]: 'R' is repeated"},
-      {R"({"format": "bssrdf-materials", "version": 1, "source": "t", "citation": "c", "unit": "mm", "channels": ["R", ""], "materials": []})", "$.channels[1]: expected a non-empty string"},
+      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, "x", 0.1], "sigma_s": [1, 1, 1]})"),
+       "sigma_a[1]: expected a number"},
+      {file("", R"({"name": "A", "eta": 1.3, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1], "notes": 3})"),
+       "(A).notes: expected a string"},
+      {file("", "") + "", "$.materials: expected a non-empty array"},
+      {R"({"format": "bssrdf-materials", "version": 2, "source": "t", "citation": "c", "unit": "mm", "channels": ["R"], "materials": []})",
+       "$.version: only version 1"},
+      {R"({"format": "other", "version": 1, "source": "t", "citation": "c", "unit": "mm", "channels": ["R"], "materials": []})",
+       "$.format"},
+      {R"({"format": "bssrdf-materials", "version": 1, "source": "", "citation": "c", "unit": "mm", "channels": ["R"], "materials": []})",
+       "$.source: expected a non-empty string"},
+      {R"({"format": "bssrdf-materials", "version": 1, "source": "t", "unit": "mm", "channels": ["R"], "materials": []})",
+       "missing required field 'citation'"},
+      {R"({"format": "bssrdf-materials", "version": 1, "source": "t", "citation": "c", "unit": "MM", "channels": ["R"], "materials": []})",
+       "$.unit: 'MM' is not one of"},
+      {R"({"format": "bssrdf-materials", "version": 1, "source": "t", "citation": "c", "unit": "mm", "channels": [], "materials": []})",
+       "$.channels: expected a non-empty array"},
+      {R"({"format": "bssrdf-materials", "version": 1, "source": "t", "citation": "c", "unit": "mm", "channels": ["R", "R"], "materials": []})",
+       "$.channels[1]: 'R' is repeated"},
+      {R"({"format": "bssrdf-materials", "version": 1, "source": "t", "citation": "c", "unit": "mm", "channels": ["R", ""], "materials": []})",
+       "$.channels[1]: expected a non-empty string"},
   };
   for (const auto& c : cases) {
     const auto doc = test_schema::json::parse(c.text);
@@ -220,14 +244,16 @@ TEST(MaterialsSchema, LoaderRejectsWhatTheSchemaRejects) {
 }
 
 TEST(Materials, UserDatabaseAddsToTheBundledOneAndClashesAreErrors) {
-  const auto user = write_temp("user.json", std::string(kHeader) +
-                                                R"({"name": "My Wax", "eta": 1.45, "sigma_a": [0.01, 0.02, 0.03], "sigma_s": [2, 2, 2]}]})");
+  const auto user = write_temp(
+      "user.json", std::string(kHeader) +
+                       R"({"name": "My Wax", "eta": 1.45, "sigma_a": [0.01, 0.02, 0.03], "sigma_s": [2, 2, 2]}]})");
   const auto db = MaterialDatabase::load_with_user(user);
   EXPECT_EQ(db.all().size(), 48u);
   EXPECT_EQ(db.find("my wax").medium.eta, 1.45);
   EXPECT_EQ(db.find("Skin1").source, "jensen2001");
-  const auto clash = write_temp("clash.json", std::string(kHeader) +
-                                                  R"({"name": "skin1", "eta": 1.3, "sigma_a": [0.01, 0.02, 0.03], "sigma_s": [2, 2, 2]}]})");
+  const auto clash = write_temp(
+      "clash.json",
+      std::string(kHeader) + R"({"name": "skin1", "eta": 1.3, "sigma_a": [0.01, 0.02, 0.03], "sigma_s": [2, 2, 2]}]})");
   try {
     MaterialDatabase::load_with_user(clash);
     FAIL();

@@ -112,14 +112,17 @@ TEST(Mco, WrittenForEachRunAndReadBackAsMcmlReadsIt) {
     for (double v : m.A_z) a_z += v * m.dz;
     for (double v : m.A_l) a_l += v;
     EXPECT_NEAR(rd / m.Rd, 1.0, 2e-4);
-    if (k == 0) { EXPECT_NEAR(tt / m.Tt, 1.0, 2e-4); }
+    if (k == 0) {
+      EXPECT_NEAR(tt / m.Tt, 1.0, 2e-4);
+    }
     EXPECT_NEAR(a_z / m.A, 1.0, 2e-4);
     EXPECT_NEAR(a_l / m.A, 1.0, 2e-4);
     const double da = std::numbers::pi / 2;
     EXPECT_NEAR(m.Rd_a[0] * 2 * std::numbers::pi * da * std::sin(da / 2) / m.Rd, 1.0, 2e-4);
     // Rd_r is the run's R(r) in 1/cm^2 (the JSON is in cm too), bin for bin below the last.
     for (int i = 0; i + 1 < m.nr; ++i)
-      EXPECT_NEAR(m.Rd_r[i], ch["reflectance"][i].get<double>(), 1e-4 * ch["reflectance"][i].get<double>() + 1e-12) << i;
+      EXPECT_NEAR(m.Rd_r[i], ch["reflectance"][i].get<double>(), 1e-4 * ch["reflectance"][i].get<double>() + 1e-12)
+          << i;
     // A_rz is not tallied: zeros, and the file says so.
     for (double v : m.A_rz) EXPECT_EQ(v, 0.0);
   }

@@ -35,10 +35,12 @@ TEST(Medium, ValidMediumPasses) { EXPECT_EQ(error_of(rgb()), ""); }
 TEST(Medium, EachRuleNamesFieldValueAndRange) {
   auto m = rgb();
   m.sigma_a[1] = -1;
-  EXPECT_EQ(error_of(m), "sigma_a[G] = -1: accepted range is >= 0 and finite, at most 1e+06 (a 1 nm mean free path in mm)");
+  EXPECT_EQ(error_of(m),
+            "sigma_a[G] = -1: accepted range is >= 0 and finite, at most 1e+06 (a 1 nm mean free path in mm)");
   m = rgb();
   m.sigma_s[2] = std::nan("");
-  EXPECT_EQ(error_of(m), "sigma_s[B] = nan: accepted range is >= 0 and finite, at most 1e+06 (a 1 nm mean free path in mm)");
+  EXPECT_EQ(error_of(m),
+            "sigma_s[B] = nan: accepted range is >= 0 and finite, at most 1e+06 (a 1 nm mean free path in mm)");
   m = rgb();
   m.sigma_a[0] = m.sigma_s[0] = 0;
   EXPECT_NE(error_of(m).find("sigma_a[R] + sigma_s[R]"), std::string::npos);

@@ -66,8 +66,8 @@ TEST(ModelChoice, BetweenCasesTheEstimateIsTheWorstAround) {
     if (model_entry(e.model).reference_accuracy) continue;
     double worst_total = 0, worst_l2 = 0;
     for (const auto& row : validation_table())
-      if ((row.at("albedo_prime") == 0.9 || row.at("albedo_prime") == 0.95) && (row.at("eta") == 1.3 || row.at("eta") == 1.4) &&
-          (row.at("g") == 0 || row.at("g") == 0.9)) {
+      if ((row.at("albedo_prime") == 0.9 || row.at("albedo_prime") == 0.95) &&
+          (row.at("eta") == 1.3 || row.at("eta") == 1.4) && (row.at("g") == 0 || row.at("g") == 0.9)) {
         worst_total = std::max(worst_total, std::abs(row.at(e.model + "_total")));
         worst_l2 = std::max(worst_l2, row.at(e.model + "_l2"));
       }
@@ -109,7 +109,9 @@ TEST(ModelChoice, PicksTheCheapestWithinTheAccuracyForEveryChannel) {
     for (std::size_t c = 0; c < 3; ++c) {
       const auto estimates = estimate_model_errors(skin.reduced(c));  // named: a range-for over *temporary dangles
       for (const auto& e : *estimates)
-        if (e.model == choice.model) { EXPECT_LE(e.error(), accuracy); }
+        if (e.model == choice.model) {
+          EXPECT_LE(e.error(), accuracy);
+        }
     }
   }
   // Skin1 is inside the exact domain: exact (40 ns) within 10 %, every cheaper model invalid here.
@@ -121,7 +123,8 @@ TEST(ModelChoice, PicksTheCheapestWithinTheAccuracyForEveryChannel) {
     FAIL();
   } catch (const InvalidInput& e) {
     EXPECT_NE(std::string(e.what()).find(">= " + format_number(model_entry("exact").reference_accuracy->profile)),
-              std::string::npos) << e.what();
+              std::string::npos)
+        << e.what();
     EXPECT_NE(std::string(e.what()).find("exact"), std::string::npos) << e.what();
   }
   EXPECT_EQ(choose_model(db.find("Ketchup").medium, 0.1).model, "exact");  // refused before (alpha' 0.07)
@@ -161,8 +164,8 @@ TEST(ModelChoice, TheChosenModelMeetsTheAccuracyAgainstMonteCarlo) {
     const auto d = compare_with_monte_carlo(*model, m, run);
     EXPECT_LE(std::abs(d.total), accuracy + 3 * noise / total) << choice.model;
     EXPECT_LE(d.l2, accuracy + 3 * d.l2_noise) << choice.model;
-    std::printf("[ measured ] accuracy %g: %s, total %+.1f %%, L2 %.1f %% (Monte Carlo noise %.1f %%)\n", accuracy, choice.model.c_str(),
-                100 * d.total, 100 * d.l2, 100 * d.l2_noise);
+    std::printf("[ measured ] accuracy %g: %s, total %+.1f %%, L2 %.1f %% (Monte Carlo noise %.1f %%)\n", accuracy,
+                choice.model.c_str(), 100 * d.total, 100 * d.l2, 100 * d.l2_noise);
   }
 }
 
@@ -177,9 +180,10 @@ TEST(ModelChoice, CommandLineAutoSaysWhichModelAndWhy) {
   r = test_cli::run("lut --material Skin1 --model auto --accuracy 0.3 -f json -o " + file.string());
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("auto: "), std::string::npos) << r.out;
-  for (const std::string args : {"profile --material Skin1 --model auto --accuracy 0.01", "profile --material Coke --model auto",
-                                 "profile --material Skin1 --accuracy 0.1", "lut --material Skin1 --model auto --accuracy -1 -o x.exr",
-                                 "models --accuracy 0.1", "profile --material Skin1 --model auto --single-scattering"}) {
+  for (const std::string args :
+       {"profile --material Skin1 --model auto --accuracy 0.01", "profile --material Coke --model auto",
+        "profile --material Skin1 --accuracy 0.1", "lut --material Skin1 --model auto --accuracy -1 -o x.exr",
+        "models --accuracy 0.1", "profile --material Skin1 --model auto --single-scattering"}) {
     r = test_cli::run(args);
     EXPECT_EQ(r.status, 2) << args;
     EXPECT_EQ(test_cli::count_lines(r.err), 1) << args << ": " << r.err;

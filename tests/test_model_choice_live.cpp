@@ -94,7 +94,9 @@ TEST(ModelChoiceLive, InsideTheDomainEstimatesAreLiveAndExactIsACandidate) {
   ASSERT_TRUE(outside);
   for (const auto& e : *outside) {
     EXPECT_EQ(e.source, "table") << e.model;
-    if (e.model == "exact") { EXPECT_NE(e.invalid.find("exact_albedo"), std::string::npos) << e.invalid; }
+    if (e.model == "exact") {
+      EXPECT_NE(e.invalid.find("exact_albedo"), std::string::npos) << e.invalid;
+    }
   }
 }
 
@@ -121,11 +123,15 @@ TEST(ModelChoiceLive, ALooserAccuracyNeverServesFewerMaterials) {
           for (const auto& note : model->validity(material.medium.reduced(c)))
             EXPECT_NE(note.severity, Severity::invalid) << material.name << " " << choice.model << ": " << note.message;
       } catch (const InvalidInput& e) {
-        if (in_domain && accuracy >= model_entry("exact").reference_accuracy->profile) ADD_FAILURE() << material.name << " is inside the exact domain and refused at " << accuracy << ": " << e.what();
+        if (in_domain && accuracy >= model_entry("exact").reference_accuracy->profile)
+          ADD_FAILURE() << material.name << " is inside the exact domain and refused at " << accuracy << ": "
+                        << e.what();
       }
     }
-    for (const auto& name : previous) EXPECT_TRUE(served.count(name)) << name << " served at a tighter accuracy, not at " << accuracy;
-    std::printf("[ measured ] accuracy %g: %zu of 47 served (%zu inside the exact domain):", accuracy, served.size(), inside);
+    for (const auto& name : previous)
+      EXPECT_TRUE(served.count(name)) << name << " served at a tighter accuracy, not at " << accuracy;
+    std::printf("[ measured ] accuracy %g: %zu of 47 served (%zu inside the exact domain):", accuracy, served.size(),
+                inside);
     for (const auto& [model, n] : by_model) std::printf(" %s %d", model.c_str(), n);
     std::printf("\n");
     previous = served;

@@ -85,7 +85,8 @@ TEST(ModelRegistry, AutoCandidatesAreTheRegistryCandidates) {
   for (const auto& e : model_registry())
     if (e.auto_candidate) {
       candidates.insert(e.name);
-      EXPECT_TRUE(e.limits || e.reference_accuracy) << e.name << ": a candidate needs measured bands for its validity report";
+      EXPECT_TRUE(e.limits || e.reference_accuracy)
+          << e.name << ": a candidate needs measured bands for its validity report";
       EXPECT_GT(e.cost_ns, 0) << e.name;
     }
   std::set<std::string> tabulated;  // the candidates with a column of the Monte Carlo table: all but reference models

@@ -126,12 +126,12 @@ TEST_P(EachModel, ValidityReportsLowAlbedoAndKnownLimits) {
   EXPECT_EQ(model->includes_single_scattering(), model->name() == "dipole");
 }
 
-INSTANTIATE_TEST_SUITE_P(Dipoles, EachModel, ::testing::Values("dipole", "better-dipole"),
-                         [](const auto& info) {
-                           std::string n = info.param;
-                           for (auto& c : n) if (c == '-') c = '_';
-                           return n;
-                         });
+INSTANTIATE_TEST_SUITE_P(Dipoles, EachModel, ::testing::Values("dipole", "better-dipole"), [](const auto& info) {
+  std::string n = info.param;
+  for (auto& c : n)
+    if (c == '-') c = '_';
+  return n;
+});
 
 TEST(Models, PublishedReferenceChecks) {
   // MODELS.md section 10: semi-infinite, eta = 1.3, g = 0, alpha = 0.99, per entered flux.
@@ -142,7 +142,8 @@ TEST(Models, PublishedReferenceChecks) {
 TEST(Models, ClassicalTotalFormulaByHand) {
   // alpha' = 0.9, eta = 1: A from Egan-Hilgeman (F_dr = 0.0016).
   const double A = (1 + 0.0016) / (1 - 0.0016), s = std::sqrt(3 * 0.1);
-  EXPECT_NEAR(classical_dipole::total_reflectance(0.9, 1.0), 0.45 * (1 + std::exp(-4.0 / 3 * A * s)) * std::exp(-s), 1e-12);
+  EXPECT_NEAR(classical_dipole::total_reflectance(0.9, 1.0), 0.45 * (1 + std::exp(-4.0 / 3 * A * s)) * std::exp(-s),
+              1e-12);
 }
 
 TEST(Models, UnknownModelNamesTheKnownOnes) {
@@ -164,7 +165,8 @@ TEST(Models, ProfilesDifferentiateUnderCeresJet) {
   const auto fd = [&](auto f) {
     return std::pair{(f(sa + h, ssp) - f(sa - h, ssp)) / (2 * h), (f(sa, ssp + h) - f(sa, ssp - h)) / (2 * h)};
   };
-  const auto [c0, c1] = fd([&](double a, double s) { return classical_dipole::reflectance(reduce_prime(a, s, eta), r); });
+  const auto [c0, c1] =
+      fd([&](double a, double s) { return classical_dipole::reflectance(reduce_prime(a, s, eta), r); });
   const auto [b0, b1] = fd([&](double a, double s) { return better_dipole::reflectance(reduce_prime(a, s, eta), r); });
   EXPECT_NEAR(R_classical.v[0], c0, 1e-6 * std::abs(c0));
   EXPECT_NEAR(R_classical.v[1], c1, 1e-6 * std::abs(c1));
@@ -172,8 +174,10 @@ TEST(Models, ProfilesDifferentiateUnderCeresJet) {
   EXPECT_NEAR(R_better.v[1], b1, 1e-6 * std::abs(b1));
   // The closed-form totals too (alpha' and eta derivatives).
   const Jet total = better_dipole::total_reflectance(Jet(0.9, 0), Jet(1.3, 1));
-  const double dt_da = (better_dipole::total_reflectance(0.9 + h, 1.3) - better_dipole::total_reflectance(0.9 - h, 1.3)) / (2 * h);
-  const double dt_de = (better_dipole::total_reflectance(0.9, 1.3 + h) - better_dipole::total_reflectance(0.9, 1.3 - h)) / (2 * h);
+  const double dt_da =
+      (better_dipole::total_reflectance(0.9 + h, 1.3) - better_dipole::total_reflectance(0.9 - h, 1.3)) / (2 * h);
+  const double dt_de =
+      (better_dipole::total_reflectance(0.9, 1.3 + h) - better_dipole::total_reflectance(0.9, 1.3 - h)) / (2 * h);
   EXPECT_NEAR(total.v[0], dt_da, 1e-6 * std::abs(dt_da));
   EXPECT_NEAR(total.v[1], dt_de, 1e-5 * std::abs(dt_de));
 }

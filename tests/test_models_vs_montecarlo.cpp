@@ -45,8 +45,8 @@ TEST(ModelsVsMonteCarlo, SingleScatteringMatchesTheTally) {
     const auto ref = simulate(ap, eta, g, 60000);
     const auto& tally = ref.entered.single_scattering_reflectance;
     const double exact = single_scattering_total(ref.albedo, g, eta);
-    std::printf("  alpha'=%.2f eta=%.1f g=%.1f: single scattering MC %.5f +- %.5f, exact %.5f (%+.2f sigma)\n", ap, eta, g,
-                tally.value, tally.standard_error, exact, (tally.value - exact) / tally.standard_error);
+    std::printf("  alpha'=%.2f eta=%.1f g=%.1f: single scattering MC %.5f +- %.5f, exact %.5f (%+.2f sigma)\n", ap, eta,
+                g, tally.value, tally.standard_error, exact, (tally.value - exact) / tally.standard_error);
     EXPECT_LT(std::abs(tally.value - exact), 4 * tally.standard_error);
   }
 }
@@ -63,9 +63,16 @@ TEST(ModelsVsMonteCarlo, DocumentedProfileErrors) {
   };
   const Case cases[] = {
       // Semi-infinite, alpha' = 0.99, eta = 1.3, g = 0.
-      {0.99, 1.3, 0.0, {{"pbd", false, 0.073}, {"pbd", true, 0.029}, {"quantized", false, 0.070},
-                        {"better-dipole", false, 0.181}, {"dipole", false, 0.242}, {"burley-dmfp", false, 0.073},
-                        {"better-dipole+ss", true, 0.099}}},
+      {0.99,
+       1.3,
+       0.0,
+       {{"pbd", false, 0.073},
+        {"pbd", true, 0.029},
+        {"quantized", false, 0.070},
+        {"better-dipole", false, 0.181},
+        {"dipole", false, 0.242},
+        {"burley-dmfp", false, 0.073},
+        {"better-dipole+ss", true, 0.099}}},
       // Forward scattering: alpha' = 0.95, eta = 1.3, g = 0.9.
       {0.95, 1.3, 0.9, {{"better-dipole", false, 0.029}, {"pbd", false, 0.110}, {"quantized", false, 0.096}}},
   };
@@ -75,8 +82,8 @@ TEST(ModelsVsMonteCarlo, DocumentedProfileErrors) {
       const auto model = make_model(check.model);
       const auto d = compare_with_monte_carlo(*model, ref.m, ref.run);
       const double error = check.near ? d.near : d.far, noise = check.near ? d.near_noise : d.far_noise;
-      std::printf("  alpha'=%.2f g=%.1f %-17s %s L2 %.3f (documented %.3f, noise %.3f)\n", c.albedo_prime, c.g, check.model,
-                  check.near ? "near" : "far ", error, check.documented, noise);
+      std::printf("  alpha'=%.2f g=%.1f %-17s %s L2 %.3f (documented %.3f, noise %.3f)\n", c.albedo_prime, c.g,
+                  check.model, check.near ? "near" : "far ", error, check.documented, noise);
       EXPECT_LT(error, check.documented + 3 * noise + 0.005) << check.model;
       EXPECT_GT(error, check.documented - 3 * noise - 0.005) << check.model;
     }

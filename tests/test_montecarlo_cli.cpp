@@ -48,13 +48,15 @@ TEST(MonteCarloCli, SameSeedSameOutputForOneAndTwoThreads) {
   for (auto* d : {&a, &b})
     for (const char* key : {"threads", "seconds", "photons_per_second"}) d->erase(key);
   EXPECT_EQ(a.dump(), b.dump());
-  EXPECT_EQ(run(kMedium + "--threads 1 --bins 20 --format csv").out, run(kMedium + "--threads 2 --bins 20 --format csv").out);
+  EXPECT_EQ(run(kMedium + "--threads 1 --bins 20 --format csv").out,
+            run(kMedium + "--threads 2 --bins 20 --format csv").out);
 }
 
 TEST(MonteCarloCli, RunsMcmlFilesAndLayerFiles) {
   const auto mci = temp("case.mci");
   std::ofstream(mci) << "1.0\n1\nx.mco A\n2000\n0.01 0.01\n10 20 1\n1\n1.0\n1.4 1 100 0.9 1\n1.0\n";
-  auto r = run("reference --mci " + mci.string() + " --mco-dir " + scratch().string() + " --format json");  // x.mco in the scratch folder
+  auto r = run("reference --mci " + mci.string() + " --mco-dir " + scratch().string() +
+               " --format json");  // x.mco in the scratch folder
   ASSERT_EQ(r.status, 0) << r.err;
   auto doc = nlohmann::json::parse(r.out);
   ASSERT_EQ(doc["runs"].size(), 1u);
@@ -86,16 +88,17 @@ TEST(MonteCarloCli, BadInputExitsTwoWithOneLineAndNoPartialFile) {
   EXPECT_FALSE(std::filesystem::exists(out));
 
   const auto bad_layers = temp("bad.json");
-  std::ofstream(bad_layers) << "{\"format\": \"bssrdf-layers\", \"version\": 1,\n \"layers\": [\n {\"sigma_a\": -1, \"sigma_s\": 1}]}\n";
+  std::ofstream(bad_layers)
+      << "{\"format\": \"bssrdf-layers\", \"version\": 1,\n \"layers\": [\n {\"sigma_a\": -1, \"sigma_s\": 1}]}\n";
   r = run("reference --layers " + bad_layers.string() + " -o " + out.string());
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(count_lines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find(bad_layers.string() + ":3:"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(out));
 
-  for (const std::string args : {"--photons 0", "--thickness -1", "--r-max 0", "--bins 1", "--g 1.5",
-                                 "--layers /nonexistent.json", "--bin-spacing cubic", "--roulette-threshold 1",
-                                 "--roulette-survival 0", "--roulette-survival 1.5"}) {
+  for (const std::string args :
+       {"--photons 0", "--thickness -1", "--r-max 0", "--bins 1", "--g 1.5", "--layers /nonexistent.json",
+        "--bin-spacing cubic", "--roulette-threshold 1", "--roulette-survival 0", "--roulette-survival 1.5"}) {
     r = run("reference --sigma-a 0.1 --sigma-s 1 " + args + " -o " + out.string());
     EXPECT_EQ(r.status, 2) << args << ": " << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;

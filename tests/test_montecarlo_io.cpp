@@ -109,8 +109,8 @@ TEST(MonteCarloLayersJson, ReadsAStackAndConvertsUnits) {
   EXPECT_EQ(s.channel_names, (std::vector<std::string>{"R", "G", "B"}));
   EXPECT_DOUBLE_EQ(s.ambient_below, 1.33);
   EXPECT_EQ(s.layers[0].name, "epidermis");
-  EXPECT_DOUBLE_EQ(s.layers[0].thickness, 0.1);  // mm
-  EXPECT_DOUBLE_EQ(s.layers[0].sigma_a[2], 0.3);  // 1/mm
+  EXPECT_DOUBLE_EQ(s.layers[0].thickness, 0.1);    // mm
+  EXPECT_DOUBLE_EQ(s.layers[0].sigma_a[2], 0.3);   // 1/mm
   EXPECT_DOUBLE_EQ(s.layers[0].sigma_s[1], 10.0);  // one value for all channels
   EXPECT_DOUBLE_EQ(s.layers[0].g[2], 0.8);
   EXPECT_DOUBLE_EQ(s.layers[1].n, 1.38);  // "eta" is a synonym of "n"
@@ -192,26 +192,26 @@ TEST(MonteCarloMci, ReadsTheReferenceFileInMillimetres) {
 
 TEST(MonteCarloMci, MalformedFilesNameFileAndLine) {
   const std::string good =
-      "1.0   # version\n"           // 1
-      "2\n"                         // 2
-      "a.mco A\n"                   // 3
-      "1000\n"                      // 4
-      "0.01 0.01\n"                 // 5
-      "10 10 1\n"                   // 6
-      "2\n"                         // 7
-      "1.0\n"                       // 8
-      "1.5 0 0 0 0.1  # glass\n"    // 9
-      "1.4 1 100 0.9 1\n"           // 10
-      "1.0\n"                       // 11
-      "\n"                          // 12
-      "b.mco A\n"                   // 13
-      "1000\n"                      // 14
-      "0.01 0.01\n"                 // 15
-      "10 10 1\n"                   // 16
-      "1\n"                         // 17
-      "1.0\n"                       // 18
-      "1.4 1 100 0.9 1\n"           // 19
-      "1.0\n";                      // 20
+      "1.0   # version\n"         // 1
+      "2\n"                       // 2
+      "a.mco A\n"                 // 3
+      "1000\n"                    // 4
+      "0.01 0.01\n"               // 5
+      "10 10 1\n"                 // 6
+      "2\n"                       // 7
+      "1.0\n"                     // 8
+      "1.5 0 0 0 0.1  # glass\n"  // 9
+      "1.4 1 100 0.9 1\n"         // 10
+      "1.0\n"                     // 11
+      "\n"                        // 12
+      "b.mco A\n"                 // 13
+      "1000\n"                    // 14
+      "0.01 0.01\n"               // 15
+      "10 10 1\n"                 // 16
+      "1\n"                       // 17
+      "1.0\n"                     // 18
+      "1.4 1 100 0.9 1\n"         // 19
+      "1.0\n";                    // 20
   const auto file = parse_mci(good, "two.mci");
   ASSERT_EQ(file.runs.size(), 2u);
   EXPECT_EQ(file.runs[0].stack.layers.size(), 2u);

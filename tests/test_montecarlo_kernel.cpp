@@ -29,7 +29,8 @@ TEST(MonteCarloKernel, LogarithmWithinOneUlp) {
       EXPECT_EQ(ours, 0.0);
       return;
     }
-    const double error = static_cast<double>(std::abs(static_cast<long double>(ours) - exact)) / ulp(static_cast<double>(exact));
+    const double error =
+        static_cast<double>(std::abs(static_cast<long double>(ours) - exact)) / ulp(static_cast<double>(exact));
     worst = std::max(worst, error);
     EXPECT_LT(error, 1.0) << u;
   };
@@ -50,7 +51,8 @@ TEST(MonteCarloKernel, LogarithmWithinOneUlp) {
     const auto exact = std::log(static_cast<long double>(u));
     for (const double factor : {1 + 4 * 0x1p-53, 1 - 4 * 0x1p-53}) {
       const double ours = log_finish(p, s * factor);
-      const double error = static_cast<double>(std::abs(static_cast<long double>(ours) - exact)) / ulp(static_cast<double>(exact));
+      const double error =
+          static_cast<double>(std::abs(static_cast<long double>(ours) - exact)) / ulp(static_cast<double>(exact));
       worst_perturbed = std::max(worst_perturbed, error);
     }
   }
@@ -71,7 +73,8 @@ TEST(MonteCarloKernel, AzimuthCosineAndSineAccurate) {
     // The angle this v stands for: quadrant q (bits 31-30), cell midpoint of the other 30 bits.
     const long double q = static_cast<long double>((v >> 30) & 3), cell = static_cast<long double>(v & 0x3fffffff);
     const long double phi = (q + (cell + 0.5L) / 1073741824.0L) * std::numbers::pi_v<long double> / 2;
-    worst = std::max({worst, static_cast<double>(std::abs(c - std::cos(phi))), static_cast<double>(std::abs(s - std::sin(phi)))});
+    worst = std::max(
+        {worst, static_cast<double>(std::abs(c - std::cos(phi))), static_cast<double>(std::abs(s - std::sin(phi)))});
     EXPECT_LT(std::abs(c - std::cos(phi)), 4e-16L) << v;
     EXPECT_LT(std::abs(s - std::sin(phi)), 4e-16L) << v;
     EXPECT_LT(std::abs(c * c + s * s - 1), 1e-15) << v;  // includes the rounding of c^2 + s^2
@@ -85,7 +88,8 @@ TEST(MonteCarloKernel, AzimuthCosineAndSineAccurate) {
     sum_s += s;
   }
   for (std::uint64_t q = 0; q < 4; ++q)
-    for (std::uint64_t cell : {0ull, 1ull, 0x1fffffffull, 0x20000000ull, 0x3ffffffeull, 0x3fffffffull}) check((q << 30) | cell);
+    for (std::uint64_t cell : {0ull, 1ull, 0x1fffffffull, 0x20000000ull, 0x3ffffffeull, 0x3fffffffull})
+      check((q << 30) | cell);
   std::printf("  azimuth_cos_sin: worst error %.3g; means of cos, sin over 1e6 draws %.2g %.2g\n", worst, sum_c / 1e6,
               sum_s / 1e6);
   EXPECT_LT(std::abs(sum_c / 1e6), 5 * std::sqrt(0.5 / 1e6));
@@ -163,5 +167,6 @@ TEST(MonteCarloKernel, Sse2AndAvx2GiveIdenticalTallies) {
       EXPECT_EQ(best.lost, sse2.lost);
     }
   }
-  std::printf("  AVX2 %s on this machine\n", avx2_available() ? "available: compared with SSE2" : "not available: SSE2 only");
+  std::printf("  AVX2 %s on this machine\n",
+              avx2_available() ? "available: compared with SSE2" : "not available: SSE2 only");
 }

@@ -73,13 +73,14 @@ TEST(MonteCarloValidation, SemiInfiniteAgainstAddingDoubling) {
     // The nearly conservative rows (albedo' = 0.999) need ~10^4 interactions per photon: left to
     // the benchmark, not CI.
     if (row.at("reduced_albedo") > 0.995) continue;
-    const auto result = run_monte_carlo(single(1 - albedo, albedo, g, n, kSemiInfinite), photons(g > 0 ? 10000 : 20000));
+    const auto result =
+        run_monte_carlo(single(1 - albedo, albedo, g, n, kSemiInfinite), photons(g > 0 ? 10000 : 20000));
     const auto& c = result.channels[0];
     EXPECT_NEAR(c.specular_reflectance, row.at("Rsp"), 5e-6);
     check(fmt("AD half-space n=%.1f g=%.1f a=%.6f  Rd_incident", n, g, albedo), c.diffuse_reflectance,
           row.at("Rd_incident"), 5e-6);
-    check(fmt("AD half-space n=%.1f g=%.1f a=%.6f  Rd_entered", n, g, albedo),
-          c.per_entered_flux().diffuse_reflectance, row.at("Rd_entered"), 5e-6);
+    check(fmt("AD half-space n=%.1f g=%.1f a=%.6f  Rd_entered", n, g, albedo), c.per_entered_flux().diffuse_reflectance,
+          row.at("Rd_entered"), 5e-6);
   }
 }
 
@@ -89,14 +90,16 @@ TEST(MonteCarloValidation, SlabAgainstAddingDoubling) {
     const double n = row.at("n"), g = row.at("g"), albedo = row.at("albedo"), b = row.at("b");
     const auto result = run_monte_carlo(single(1 - albedo, albedo, g, n, b), photons(20000));
     const auto& c = result.channels[0];
-    check(fmt("AD slab n=%.1f a=%.2f b=%.0f  R_incident", n, albedo, b), c.diffuse_reflectance, row.at("R_incident"), 5e-6);
+    check(fmt("AD slab n=%.1f a=%.2f b=%.0f  R_incident", n, albedo, b), c.diffuse_reflectance, row.at("R_incident"),
+          5e-6);
     check(fmt("AD slab n=%.1f a=%.2f b=%.0f  T_total (ballistic incl.)", n, albedo, b), c.total_transmittance,
           row.at("T_total"), 5e-6);
     // The ballistic part alone is exact: (1 - R_sp) e^{-b} times the internal reflections
     // (checked where the photons give it a standard error, i.e. where some get through).
     const double r = c.specular_reflectance, e = std::exp(-b);
-    if (b <= 4) check(fmt("slab n=%.1f a=%.2f b=%.0f  T_unscattered (exact)", n, albedo, b), c.unscattered_transmittance,
-          (1 - r) * (1 - r) * e / (1 - r * r * e * e), 0);
+    if (b <= 4)
+      check(fmt("slab n=%.1f a=%.2f b=%.0f  T_unscattered (exact)", n, albedo, b), c.unscattered_transmittance,
+            (1 - r) * (1 - r) * e / (1 - r * r * e * e), 0);
   }
 }
 
@@ -133,7 +136,8 @@ TEST(MonteCarloValidation, IndexMatchedHalfSpaceExact) {
     if (albedo > 0.995) continue;  // see SemiInfiniteAgainstAddingDoubling
     const auto r = run_monte_carlo(single(1 - albedo, albedo, 0.0, 1.0, kSemiInfinite), photons(20000, 11));
     const auto& c = r.channels[0];
-    check(fmt("exact half-space eta=1 a=%.3f  R_normal", albedo, 0, 0), c.diffuse_reflectance, row.at("R_normal"), 5e-6);
+    check(fmt("exact half-space eta=1 a=%.3f  R_normal", albedo, 0, 0), c.diffuse_reflectance, row.at("R_normal"),
+          5e-6);
     check(fmt("exact half-space eta=1 a=%.3f  R_single", albedo, 0, 0), c.single_scattering_reflectance,
           row.at("R_single_normal"), 5e-5);
   }
@@ -182,13 +186,13 @@ TEST(MonteCarloValidation, RadialProfileAgainstMcml) {
     chi2 += z * z;
     worst = std::max(worst, std::abs(z));
     if (std::abs(z) > 4)
-      std::printf("  bin %zu r = %.3f mm: %.5g +- %.2g (ours) vs %.5g (MCML), %.2f sigma\n", i, r.bin_radius[i], c.reflectance[i],
-                  c.reflectance_stderr[i], mcml[i], z);
+      std::printf("  bin %zu r = %.3f mm: %.5g +- %.2g (ours) vs %.5g (MCML), %.2f sigma\n", i, r.bin_radius[i],
+                  c.reflectance[i], c.reflectance_stderr[i], mcml[i], z);
     outside += std::abs(z) > 4;
     ++compared;
   }
-  std::printf("  R(r) vs MCML: %d bins compared, chi2/bin = %.3f, worst |dev| = %.2f sigma, %d beyond 4 sigma\n", compared,
-              chi2 / compared, worst, outside);
+  std::printf("  R(r) vs MCML: %d bins compared, chi2/bin = %.3f, worst |dev| = %.2f sigma, %d beyond 4 sigma\n",
+              compared, chi2 / compared, worst, outside);
   EXPECT_EQ(outside, 0);
   // Consistency as a whole: chi2/bin of 1 +- 4 sigma (sigma = sqrt(2/bins) for independent bins).
   EXPECT_NEAR(chi2 / compared, 1.0, 4 * std::sqrt(2.0 / compared));
@@ -244,7 +248,8 @@ TEST(MonteCarloValidation, TalliesAreConsistent) {
   o.depth_bins = 15;
   const auto r = run_monte_carlo(s, o);
   const auto& c = r.channels[0];
-  EXPECT_NEAR(c.specular_reflectance + c.diffuse_reflectance.value + c.total_transmittance.value + c.absorbed.value, 1.0, 1e-12);
+  EXPECT_NEAR(c.specular_reflectance + c.diffuse_reflectance.value + c.total_transmittance.value + c.absorbed.value,
+              1.0, 1e-12);
   // Binned R(r) and T(r) times the bin areas, plus what lies beyond r_max, is the total.
   double binned_r = c.reflectance_beyond, binned_t = c.transmittance_beyond, binned_a = 0;
   for (std::size_t i = 0; i < r.bin_radius.size(); ++i) {
@@ -252,7 +257,8 @@ TEST(MonteCarloValidation, TalliesAreConsistent) {
     binned_r += c.reflectance[i] * area;
     binned_t += c.transmittance[i] * area;
   }
-  for (std::size_t i = 0; i < r.depth_inner.size(); ++i) binned_a += c.absorbed_by_depth[i] * (r.depth_outer[i] - r.depth_inner[i]);
+  for (std::size_t i = 0; i < r.depth_inner.size(); ++i)
+    binned_a += c.absorbed_by_depth[i] * (r.depth_outer[i] - r.depth_inner[i]);
   EXPECT_NEAR(binned_r, c.diffuse_reflectance.value, 1e-12);
   EXPECT_NEAR(binned_t, c.total_transmittance.value, 1e-12);
   EXPECT_NEAR(binned_a, c.absorbed.value, 1e-12);
@@ -265,8 +271,9 @@ TEST(MonteCarloValidation, TalliesAreConsistent) {
   o.absorption = AbsorptionEstimator::implicit_capture;
   const auto implicit = run_monte_carlo(s, o);
   const auto& d = implicit.channels[0];
-  for (const auto& [a, b] : {std::pair{c.diffuse_reflectance, d.diffuse_reflectance},
-                             std::pair{c.total_transmittance, d.total_transmittance}, std::pair{c.absorbed, d.absorbed}}) {
+  for (const auto& [a, b] :
+       {std::pair{c.diffuse_reflectance, d.diffuse_reflectance},
+        std::pair{c.total_transmittance, d.total_transmittance}, std::pair{c.absorbed, d.absorbed}}) {
     EXPECT_LE(std::abs(a.value - b.value), 4 * std::hypot(a.standard_error, b.standard_error));
   }
 }

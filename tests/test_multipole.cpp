@@ -61,8 +61,9 @@ TEST(Multipole, AddingDoublingErrorTable) {
   double worst[2][3][2] = {};  // [A][thickness 1, 4, 16][R, T]
   for (const auto& c : ad_slabs()) {
     const auto cl = totals(c, BoundaryA::classical), im = totals(c, BoundaryA::improved);
-    std::printf(" %.2f  %.2f  %4.0f  | %.5f  %.5f | %+8.1f%% %+8.1f%%     | %+8.1f%% %+8.1f%%\n", c.eta, c.albedo, c.b, c.R,
-                c.T, 100 * (cl.R / c.R - 1), 100 * (cl.T / c.T - 1), 100 * (im.R / c.R - 1), 100 * (im.T / c.T - 1));
+    std::printf(" %.2f  %.2f  %4.0f  | %.5f  %.5f | %+8.1f%% %+8.1f%%     | %+8.1f%% %+8.1f%%\n", c.eta, c.albedo, c.b,
+                c.R, c.T, 100 * (cl.R / c.R - 1), 100 * (cl.T / c.T - 1), 100 * (im.R / c.R - 1),
+                100 * (im.T / c.T - 1));
     const int band = c.b == 1 ? 0 : c.b == 4 ? 1 : 2;
     for (int a = 0; a < 2; ++a) {
       const auto t = a == 0 ? cl : im;
@@ -72,7 +73,10 @@ TEST(Multipole, AddingDoublingErrorTable) {
   }
   std::printf(" worst |error| by thickness  classical A (R, T)   improved A (R, T)\n");
   for (int band = 0; band < 3; ++band)
-    std::printf("   d = %2d ell               %5.1f%% %6.1f%%        %5.1f%% %6.1f%%\n", band == 0 ? 1 : band == 1 ? 4 : 16,
+    std::printf("   d = %2d ell               %5.1f%% %6.1f%%        %5.1f%% %6.1f%%\n",
+                band == 0   ? 1
+                : band == 1 ? 4
+                            : 16,
                 100 * worst[0][band][0], 100 * worst[0][band][1], 100 * worst[1][band][0], 100 * worst[1][band][1]);
   // The documented behaviour (slab_validity's messages), classical A, rounded up to 0.1 %:
   // invalid below 2 ell (at 1 ell T is off by up to 171 %); at 4 ell R within 10.6 %, T within
@@ -124,7 +128,8 @@ TEST(Multipole, ThickSlabIsTheClassicalDipole) {
   const auto m = reduced_optical(0.99, 1.3);
   double previous = kInf;
   for (double d : {2.0, 4.0, 8.0, 16.0, 32.0, 64.0}) {
-    const double gap = std::abs(multipole::Model(d).total_reflectance(m) - classical_dipole::total_reflectance(0.99, 1.3));
+    const double gap =
+        std::abs(multipole::Model(d).total_reflectance(m) - classical_dipole::total_reflectance(0.99, 1.3));
     EXPECT_LT(gap, previous) << d;
     previous = gap;
   }
@@ -158,9 +163,11 @@ TEST(Multipole, PairCountGrowsAsTheToleranceTightensAndTotalsConverge) {
     return integrate_radial(profile, 0.0, rho, m.ell, 1e-11).value;
   };
   EXPECT_NEAR(integral([&](double r) { return multipole::reflectance(m, slab, n, r); }, kInf) /
-                  multipole::total_reflectance(m, slab, n), 1.0, 1e-7);
+                  multipole::total_reflectance(m, slab, n),
+              1.0, 1e-7);
   EXPECT_NEAR(integral([&](double r) { return multipole::transmittance(m, slab, n, r); }, kInf) /
-                  multipole::total_transmittance(m, slab, n), 1.0, 1e-7);
+                  multipole::total_transmittance(m, slab, n),
+              1.0, 1e-7);
   EXPECT_NEAR(integral([&](double r) { return multipole::reflectance(m, slab, n, r); }, 2.0),
               multipole::cumulative_reflectance(m, slab, n, 2.0), 1e-9);
   EXPECT_NEAR(integral([&](double r) { return multipole::transmittance(m, slab, n, r); }, 2.0),
@@ -251,7 +258,8 @@ TEST(Multipole, ThinSlabsProduceTheValidityReport) {
   const auto m = reduced_optical(0.99, 1.3);
   const auto codes = [&](double d) {
     std::string out;
-    for (const auto& note : multipole::Model(d).validity(m)) out += note.code + "/" + std::string(to_string(note.severity)) + " ";
+    for (const auto& note : multipole::Model(d).validity(m))
+      out += note.code + "/" + std::string(to_string(note.severity)) + " ";
     return out;
   };
   const auto at_half = codes(0.5);
@@ -269,7 +277,9 @@ TEST(Multipole, ThinSlabsProduceTheValidityReport) {
   EXPECT_EQ(at_ten.find("thin_slab"), std::string::npos) << at_ten;
   EXPECT_NE(at_ten.find("slab_accuracy/note"), std::string::npos) << at_ten;
   for (const auto& note : multipole::Model(10.0).validity(m))
-    if (note.code == "slab_accuracy") { EXPECT_NE(note.message.find("10.6 %"), std::string::npos) << note.message; }
+    if (note.code == "slab_accuracy") {
+      EXPECT_NE(note.message.find("10.6 %"), std::string::npos) << note.message;
+    }
 }
 
 TEST(Multipole, BadConstructionIsInvalidInput) {

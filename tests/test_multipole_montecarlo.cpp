@@ -45,9 +45,9 @@ void compare(const char* label, std::vector<Layer> layers, double r_max, Documen
   const double R_mc = c.diffuse_reflectance.value - c.unscattered_reflectance.value;
   const double T_mc = c.total_transmittance.value - c.unscattered_transmittance.value;
   const double R = model.total_reflectance(), T = model.total_transmittance();
-  std::printf("  %-34s R_total %.4f vs MC %.4f +- %.4f (%+5.1f%%)   T_total %.4f vs MC %.4f +- %.4f (%+5.1f%%)\n", label, R,
-              R_mc, c.diffuse_reflectance.standard_error, 100 * (R / R_mc - 1), T, T_mc, c.total_transmittance.standard_error,
-              100 * (T / T_mc - 1));
+  std::printf("  %-34s R_total %.4f vs MC %.4f +- %.4f (%+5.1f%%)   T_total %.4f vs MC %.4f +- %.4f (%+5.1f%%)\n",
+              label, R, R_mc, c.diffuse_reflectance.standard_error, 100 * (R / R_mc - 1), T, T_mc,
+              c.total_transmittance.standard_error, 100 * (T / T_mc - 1));
   EXPECT_LE(std::abs(R - R_mc), documented.R_total * R_mc + 4 * c.diffuse_reflectance.standard_error) << label;
   EXPECT_LE(std::abs(T - T_mc), documented.T_total * T_mc + 4 * c.total_transmittance.standard_error) << label;
 
@@ -101,7 +101,8 @@ TEST(MultipoleMonteCarlo, ForwardScatteringSlabAtTwoTransportMeanFreePaths) {
 TEST(MultipoleMonteCarlo, TwoLayers) {
   // An epidermis-like layer (ell = 0.2 mm, 2.5 ell thick) over a thicker dermis-like one.
   compare("2 layers (0.5 mm over 5 mm)",
-          {layer(0.05, 5.0, 1.4, 0.5, "epidermis"), layer(0.02, 2.0, 1.4, 5.0, "dermis")}, 4.0, {0.02, 0.02, 0.19, 0.24});
+          {layer(0.05, 5.0, 1.4, 0.5, "epidermis"), layer(0.02, 2.0, 1.4, 5.0, "dermis")}, 4.0,
+          {0.02, 0.02, 0.19, 0.24});
 }
 
 TEST(MultipoleMonteCarlo, ThreeLayers) {

@@ -23,7 +23,8 @@ TEST(ParallelFor, RunsEveryItemOnceWhateverTheThreadCount) {
     for (unsigned threads : {0u, 1u, 2u, 3u, 16u}) {
       std::vector<std::atomic<int>> runs(n);
       parallel_for(n, threads, [&](std::size_t i) { ++runs[i]; });
-      for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(runs[i].load(), 1) << "n " << n << ", threads " << threads << ", item " << i;
+      for (std::size_t i = 0; i < n; ++i)
+        EXPECT_EQ(runs[i].load(), 1) << "n " << n << ", threads " << threads << ", item " << i;
     }
   EXPECT_EQ(worker_count(5, 16), 5u);
   EXPECT_EQ(worker_count(0, 4), 1u);
@@ -68,7 +69,8 @@ TEST(SlabThicknessRule, TransmissionAndLutAgreeOnTheDefaultThicknesses) {
     ASSERT_EQ(t.status, 0) << t.err;
     const auto rows = nlohmann::json::parse(t.out)["rows"];
     const auto out = test_cli::temp("rule-" + model + ".json");
-    const auto l = test_cli::run("lut --material Skin1 --kind transmission --model " + model + " -q -o " + out.string());
+    const auto l =
+        test_cli::run("lut --material Skin1 --kind transmission --model " + model + " -q -o " + out.string());
     ASSERT_EQ(l.status, 0) << l.err;
     const auto table = nlohmann::json::parse(test_cli::slurp(out));
     std::vector<double> lut_thickness;
@@ -77,7 +79,8 @@ TEST(SlabThicknessRule, TransmissionAndLutAgreeOnTheDefaultThicknesses) {
     ASSERT_EQ(rows.size(), static_cast<std::size_t>(kThicknessSamples)) << model;
     ASSERT_EQ(lut_thickness.size(), rows.size()) << model;  // the default range holds no omitted thickness
     for (std::size_t i = 0; i < rows.size(); ++i)
-      EXPECT_NEAR(lut_thickness[i], rows[i]["thickness"].get<double>(), 1e-12 * lut_thickness[i]) << model << " row " << i;
+      EXPECT_NEAR(lut_thickness[i], rows[i]["thickness"].get<double>(), 1e-12 * lut_thickness[i])
+          << model << " row " << i;
   }
 }
 

@@ -24,7 +24,9 @@ TEST(Profile, IntegralConvergesAtFourthOrderOnLogRadii) {
   for (std::size_t n : {32, 64, 128, 256}) {
     const double error = std::abs(sampled(n, m, *model).integrate() / exact - 1);
     std::printf("  %3zu log-spaced samples: relative integration error %.2e\n", n, error);
-    if (n >= 64) { EXPECT_LT(error, previous_error / 8) << n; }  // 4th order: /16 per doubling
+    if (n >= 64) {
+      EXPECT_LT(error, previous_error / 8) << n;
+    }  // 4th order: /16 per doubling
     previous_error = error;
   }
   EXPECT_LT(previous_error, 1e-6);

@@ -12,9 +12,9 @@
 #include "bssrdf/io/profile_csv.hpp"
 #include "bssrdf/io/renderer_export.hpp"
 #include "bssrdf/materials.hpp"
-#include "bssrdf/montecarlo.hpp"
 #include "bssrdf/medium.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/montecarlo.hpp"
 #include "bssrdf/profile_report.hpp"
 
 using namespace bssrdf;
@@ -70,7 +70,8 @@ TEST_P(ModelProperties, ProfileIsFiniteNonNegativeAndIntegratesToItsTotal) {
       previous = f;
     }
     // The part inside 1e-6 ell is below 1e-6 of the total for every model (R ~ 1/r at worst).
-    EXPECT_NEAR(integral, total, 2e-3 * total + 1e-9) << GetParam() << " alpha' = " << m.albedo_prime << ", eta = " << m.eta;
+    EXPECT_NEAR(integral, total, 2e-3 * total + 1e-9)
+        << GetParam() << " alpha' = " << m.albedo_prime << ", eta = " << m.eta;
     ++checked;
   }
   EXPECT_EQ(checked + refused, 12);
@@ -96,7 +97,8 @@ TEST_P(ModelProperties, CdfIsMonotoneAndRadiusForFractionInvertsIt) {
     for (double fraction : {0.05, 0.5, 0.9, 0.99}) {
       const double r = model->radius_for_fraction(m, fraction);
       ASSERT_TRUE(std::isfinite(r) && r > 0) << GetParam();
-      EXPECT_NEAR(model->cumulative_reflectance(m, r) / total, fraction, 1e-6) << GetParam() << " fraction " << fraction;
+      EXPECT_NEAR(model->cumulative_reflectance(m, r) / total, fraction, 1e-6)
+          << GetParam() << " fraction " << fraction;
     }
   }
   std::printf("%s: largest CDF decrease %.2g of the total\n", GetParam().c_str(), worst_decrease);
@@ -110,7 +112,8 @@ INSTANTIATE_TEST_SUITE_P(EveryModel, ModelProperties, ::testing::ValuesIn(model_
 });
 
 // Synthetic measurement of one channel: 48 log-spaced radii, relative Gaussian noise `noise`.
-MeasuredProfile measure(const std::string& model_name, double sigma_a, double sigma_s_prime, double noise, std::mt19937_64& rng) {
+MeasuredProfile measure(const std::string& model_name, double sigma_a, double sigma_s_prime, double noise,
+                        std::mt19937_64& rng) {
   const auto model = make_model(model_name);
   const auto m = reduce(sigma_a, sigma_s_prime, 0.0, 1.3);
   MeasuredProfile data;

@@ -46,7 +46,8 @@ TEST(RealtimeTables, TapKernelImageIsTheDirectSumOfBilinearReads) {
   const std::vector<double> edges{0, 0.5, 1, 2, 4};
   const double pixel = 0.3;
   const ImageErrorMeter meter(edges, pixel);
-  const std::vector<double> offset{0, -0.71, 0.71, -0.2, 0.2, -0.05, 0.45}, weight{0.3, 0.05, 0.1, 0.15, 0.15, 0.1, 0.15};
+  const std::vector<double> offset{0, -0.71, 0.71, -0.2, 0.2, -0.05, 0.45},
+      weight{0.3, 0.05, 0.1, 0.15, 0.15, 0.1, 0.15};
   const PatternImage image = meter.render_taps(offset, weight, 0.6);
   ASSERT_EQ(image.edge.size(), 2 * meter.pixels_each_side());
   for (std::size_t k = 0; k < image.edge.size(); ++k) {
@@ -76,7 +77,8 @@ TEST(RealtimeTables, SeparableKernelConvergesAndIsSizedByTheTolerance) {
     SeparableKernelOptions options;
     options.taps = taps;
     options.band = 0.999;
-    const double e = j.judge.error(render_separable(j.meter, build_separable_kernel(material("Skin1"), projections, options))).error;
+    const double e =
+        j.judge.error(render_separable(j.meter, build_separable_kernel(material("Skin1"), projections, options))).error;
     EXPECT_LT(e, previous) << taps << " taps";
     previous = e;
   }
@@ -142,9 +144,13 @@ TEST(RealtimeTables, GaussianCountAndRadialSizeAreTheSmallestWithinTolerance) {
   EXPECT_GT(j.judge.error(radial_table_profiles(marble, *model, radial.count / 2, j.meter.edges())).error, 1);
   const auto gaussians = choose_gaussian_count(marble, *model, j.judge, 5);
   if (gaussians.meets_tolerance && gaussians.count > 1) {
-    EXPECT_GT(j.judge.error(gaussian_sum_profiles(marble, *model, static_cast<int>(gaussians.count) / 2, j.meter.edges())).error, 5);
+    EXPECT_GT(
+        j.judge.error(gaussian_sum_profiles(marble, *model, static_cast<int>(gaussians.count) / 2, j.meter.edges()))
+            .error,
+        5);
   }
-  EXPECT_GE(gaussians.image.error, choose_gaussian_count(marble, *model, j.judge, 1e-3).image.error - 1e-9);  // the most accurate
+  EXPECT_GE(gaussians.image.error,
+            choose_gaussian_count(marble, *model, j.judge, 1e-3).image.error - 1e-9);  // the most accurate
 }
 
 // advise() offers the separable kernel and the pre-integrated LUT with their chosen sizes, and
@@ -186,14 +192,18 @@ TEST(RealtimeTables, AdvisedKernelIsWrittenWithItsTapsRangeAndError) {
     const auto& name = skin.channel_names[c];
     std::vector<double> w, o;
     for (const auto& ch : doc["channels"])
-      if (ch["name"] == name) w = ch["values"].get<std::vector<double>>();
-      else if (ch["name"] == "offset") o = ch["values"].get<std::vector<double>>();
+      if (ch["name"] == name)
+        w = ch["values"].get<std::vector<double>>();
+      else if (ch["name"] == "offset")
+        o = ch["values"].get<std::vector<double>>();
     ASSERT_EQ(w.size(), o.size());
-    const double albedo = attribute("bssrdf:total_reflectance." + name).get<double>(), range = attribute("bssrdf:range").get<double>();
+    const double albedo = attribute("bssrdf:total_reflectance." + name).get<double>(),
+                 range = attribute("bssrdf:range").get<double>();
     const PatternImage r = meter.render(ref.channels[c]);
     for (std::size_t px = 0; px < r.edge.size(); ++px) {
       double v = 0;
-      for (std::size_t i = 0; i < w.size(); ++i) v += w[i] * std::clamp((meter.pixel_centre(px) + o[i] * range) / options.pixel + 0.5, 0.0, 1.0);
+      for (std::size_t i = 0; i < w.size(); ++i)
+        v += w[i] * std::clamp((meter.pixel_centre(px) + o[i] * range) / options.pixel + 0.5, 0.0, 1.0);
       worst = std::max(worst, 255 * std::abs(srgb_encode(albedo * v) - srgb_encode(r.edge[px])));
     }
   }

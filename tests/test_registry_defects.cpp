@@ -81,7 +81,9 @@ TEST(RegistryDefects, AutoNeverPicksAModelThatMarksItselfInvalid) {
   const auto spectralon = MaterialDatabase::load(default_materials_dir()).find("Spectralon").medium;
   const auto choice = choose_model(spectralon, 0.5);
   for (const auto& e : choice.estimates)
-    if (e.model == choice.model) { EXPECT_TRUE(e.invalid.empty()) << e.invalid; }
+    if (e.model == choice.model) {
+      EXPECT_TRUE(e.invalid.empty()) << e.invalid;
+    }
   bool dmfp_invalid = false;
   for (const auto& e : choice.estimates) dmfp_invalid |= e.model == "burley-dmfp" && !e.invalid.empty();
   EXPECT_TRUE(dmfp_invalid);

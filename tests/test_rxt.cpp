@@ -47,9 +47,9 @@ std::array<double, 3> measure(const RxtFile& f, double mu_a, double mu_s_prime, 
   slab.above = slab.below = {{f.slide_n, f.slide_thickness, 0.0}};
   const auto c = adding_doubling::solve(slab, adding_doubling::Incidence::collimated);
   const auto d = adding_doubling::solve(slab, adding_doubling::Incidence::diffuse);
-  const auto [m_r, m_t] = sphere_measurements(
-      f, {c.specular_reflectance + c.diffuse_reflectance, c.total_transmittance, d.specular_reflectance + d.diffuse_reflectance,
-          d.total_transmittance});
+  const auto [m_r, m_t] =
+      sphere_measurements(f, {c.specular_reflectance + c.diffuse_reflectance, c.total_transmittance,
+                              d.specular_reflectance + d.diffuse_reflectance, d.total_transmittance});
   return {m_r, m_t, c.unscattered_transmittance};
 }
 
@@ -82,14 +82,16 @@ TEST(Rxt, PublishedExampleRecoversTheTruthOfEveryRow) {
     EXPECT_NEAR(r.mu_s_prime / mu_s, 1, 5e-3) << "row " << k + 1;
     worst = std::max({worst, std::abs(r.mu_a / mu_a - 1), std::abs(r.mu_s_prime / mu_s - 1)});
   }
-  std::printf("  iad test/basic-B.rxt: worst relative deviation of mu_a, mu_s' from the truth: %.2e (%.3f s for 25 rows)\n", worst,
-              fit.seconds);
+  std::printf(
+      "  iad test/basic-B.rxt: worst relative deviation of mu_a, mu_s' from the truth: %.2e (%.3f s for 25 rows)\n",
+      worst, fit.seconds);
 }
 
 TEST(Rxt, RoundTripsThroughOneAndTwoSpheresAndTheUnscatteredBeam) {
   for (int spheres : {0, 1, 2})
     for (bool with_u : {false, true}) {
-      const auto setup = parse_rxt(header(spheres, with_u ? "3" : "2") + "0.3 0.3" + (with_u ? " 0.01\n" : "\n"), "setup");
+      const auto setup =
+          parse_rxt(header(spheres, with_u ? "3" : "2") + "0.3 0.3" + (with_u ? " 0.01\n" : "\n"), "setup");
       std::ostringstream text;
       text << header(spheres, with_u ? "lrtu" : "lrt");
       const double truth[][3] = {{0.05, 1.0, with_u ? 0.7 : 0.0}, {0.2, 3.0, with_u ? 0.5 : 0.0}};
@@ -106,7 +108,9 @@ TEST(Rxt, RoundTripsThroughOneAndTwoSpheresAndTheUnscatteredBeam) {
         EXPECT_EQ(r.row.wavelength, 500 + 100 * k);
         EXPECT_NEAR(r.mu_a / truth[k][0], 1, 5e-3) << spheres << " spheres, M_U " << with_u << ", row " << k;
         EXPECT_NEAR(r.mu_s_prime / truth[k][1], 1, 5e-3) << spheres << " spheres, M_U " << with_u << ", row " << k;
-        if (with_u) { EXPECT_NEAR(r.g, truth[k][2], 5e-3); }
+        if (with_u) {
+          EXPECT_NEAR(r.g, truth[k][2], 5e-3);
+        }
         EXPECT_TRUE(std::isfinite(r.mu_a_stderr) && r.mu_a_stderr > 0);
       }
     }
@@ -150,9 +154,7 @@ TEST(Rxt, BadFilesNameTheLine) {
 TEST(Rxt, CommandLineWritesRowsOrFailsWithOneLine) {
   using namespace bssrdf::test_cli;
   const auto good = temp("good.rxt");
-  {
-    std::ofstream(good) << header(1, "2") << "0.35 0.25\n0.30 0.20\n";
-  }
+  { std::ofstream(good) << header(1, "2") << "0.35 0.25\n0.30 0.20\n"; }
   auto r = run("fit slab --rxt " + good.string() + " -f json");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto doc = nlohmann::json::parse(r.out);
@@ -168,9 +170,7 @@ TEST(Rxt, CommandLineWritesRowsOrFailsWithOneLine) {
   EXPECT_EQ(r.status, 0);
   EXPECT_EQ(count_lines(r.out), 3);
   const auto bad = temp("bad.rxt");
-  {
-    std::ofstream(bad) << header(1, "2") << "0.35 0.25\n0.70 0.40\n";
-  }
+  { std::ofstream(bad) << header(1, "2") << "0.35 0.25\n0.70 0.40\n"; }
   const auto out = temp("never.json");
   r = run("fit slab --rxt " + bad.string() + " -o " + out.string());
   EXPECT_EQ(r.status, 2);
@@ -185,7 +185,8 @@ TEST(Rxt, LostLightCorrectionRecoversWhatTheSmallPortMissed) {
   // port. Without the correction the fit is biased; with it the truth is the fixed point (the
   // correction's Monte Carlo noise, ~7e-4 in R and T here, moves it by ~2 % in mu_a otherwise).
   std::string text = header(1, "2");
-  text.replace(text.find("203.2 25.4 12.7 1.0 0.96\n203.2 25.4 12.7 1.0 0.96"), 49, "203.2 6.0 12.7 1.0 0.96\n203.2 6.0 12.7 1.0 0.96");
+  text.replace(text.find("203.2 25.4 12.7 1.0 0.96\n203.2 25.4 12.7 1.0 0.96"), 49,
+               "203.2 6.0 12.7 1.0 0.96\n203.2 6.0 12.7 1.0 0.96");
   auto setup = parse_rxt(text + "0.3 0.3\n", "setup");
   const double mu_a = 0.05, mu_s_prime = 1.0;
   LayerStack stack;
@@ -203,10 +204,12 @@ TEST(Rxt, LostLightCorrectionRecoversWhatTheSmallPortMissed) {
   const double ur1_lost = ch.reflectance_beyond, ut1_lost = ch.transmittance_beyond;
   ASSERT_GT(ut1_lost, 0.02);  // a real loss
   adding_doubling::Slab slab = adding_doubling::slab_of(stack, 0);
-  const auto both = adding_doubling::solve(slab, {adding_doubling::Incidence::collimated, adding_doubling::Incidence::diffuse});
-  const auto [m_r, m_t] = sphere_measurements(setup, {both[0].specular_reflectance + both[0].diffuse_reflectance - ur1_lost,
-                                                      both[0].total_transmittance - ut1_lost,
-                                                      both[1].specular_reflectance + both[1].diffuse_reflectance, both[1].total_transmittance});
+  const auto both =
+      adding_doubling::solve(slab, {adding_doubling::Incidence::collimated, adding_doubling::Incidence::diffuse});
+  const auto [m_r, m_t] = sphere_measurements(
+      setup,
+      {both[0].specular_reflectance + both[0].diffuse_reflectance - ur1_lost, both[0].total_transmittance - ut1_lost,
+       both[1].specular_reflectance + both[1].diffuse_reflectance, both[1].total_transmittance});
   std::ostringstream rows;
   rows.precision(12);
   rows << m_r << ' ' << m_t << '\n';
@@ -216,9 +219,9 @@ TEST(Rxt, LostLightCorrectionRecoversWhatTheSmallPortMissed) {
   options.lost_light = true;
   options.lost_light_photons = 200000;
   const auto corrected = fit_rxt(file, options);
-  std::printf("  mu_a, mu_s': truth %.4f %.4f; uncorrected %.4f %.4f; corrected %.4f %.4f (lost R %.4f, T %.4f)\n", mu_a, mu_s_prime,
-              plain.rows[0].mu_a, plain.rows[0].mu_s_prime, corrected.rows[0].mu_a, corrected.rows[0].mu_s_prime, corrected.rows[0].ur1_lost,
-              corrected.rows[0].ut1_lost);
+  std::printf("  mu_a, mu_s': truth %.4f %.4f; uncorrected %.4f %.4f; corrected %.4f %.4f (lost R %.4f, T %.4f)\n",
+              mu_a, mu_s_prime, plain.rows[0].mu_a, plain.rows[0].mu_s_prime, corrected.rows[0].mu_a,
+              corrected.rows[0].mu_s_prime, corrected.rows[0].ur1_lost, corrected.rows[0].ut1_lost);
   EXPECT_GT(std::abs(plain.rows[0].mu_a / mu_a - 1), 0.05);  // the loss looks like absorption
   EXPECT_NEAR(corrected.rows[0].mu_a / mu_a, 1, 0.01);
   EXPECT_NEAR(corrected.rows[0].mu_s_prime / mu_s_prime, 1, 0.01);

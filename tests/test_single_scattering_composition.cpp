@@ -63,8 +63,8 @@ TEST(SingleScatteringComposition, LabelsAgreeWithWhatEachModelReproduces) {
       alone_nearer[k] += e.alone < e.plus_ss;
       const auto m = reduce(1 - c.albedo_prime, c.albedo_prime / (1 - c.g), c.g, c.eta);
       const double total = model->total_reflectance(m), ss = single_scattering_total(m.albedo(), m.g, m.eta);
-      std::printf("  %-14s alpha' %.2f g %.1f eta %.1f exact %.5f  alone %+.3f  +ss %+.3f\n", name, c.albedo_prime, c.g, c.eta,
-                  c.exact, total / c.exact - 1, (total + ss) / c.exact - 1);
+      std::printf("  %-14s alpha' %.2f g %.1f eta %.1f exact %.5f  alone %+.3f  +ss %+.3f\n", name, c.albedo_prime, c.g,
+                  c.eta, c.exact, total / c.exact - 1, (total + ss) / c.exact - 1);
     }
     const bool has_plus_ss = find_model_entry(std::string(name) + "+ss") != nullptr;
     if (std::string(name) == "dipole") {

@@ -29,7 +29,9 @@ TEST(SurfaceAlbedoExact, TiedToTheExactTotalInsideTheDomainAndNeverAboveOne) {
       } else {
         ++outside;
         const double model_total = pbd->total_reflectance(m);
-        if (model_total <= 1) { EXPECT_EQ(ch.surface_albedo, model_total) << material.name << " " << ch.name; }
+        if (model_total <= 1) {
+          EXPECT_EQ(ch.surface_albedo, model_total) << material.name << " " << ch.name;
+        }
       }
     }
   }

@@ -1,6 +1,6 @@
 // What a material's coefficients imply, per channel: albedos, the four distance conventions
-// renderers use (mfp 1/sigma_t, transport mfp 1/sigma_t', dmfp 1/sigma_tr, Burley's d), the surface albedo and Burley's d fitted to a physical
-// profile, and whether diffusion applies at all. Computed from the coefficients on demand, never
+// renderers use (mfp 1/sigma_t, transport mfp 1/sigma_t', dmfp 1/sigma_tr, Burley's d), the surface albedo and Burley's
+// d fitted to a physical profile, and whether diffusion applies at all. Computed from the coefficients on demand, never
 // stored in material files, so they cannot disagree with them.
 //
 //   const auto q = bssrdf::derive_quantities(material.medium);      // pbd, object size 10 mm

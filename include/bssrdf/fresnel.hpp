@@ -1,5 +1,6 @@
 // Fresnel reflection at a smooth dielectric boundary and the diffuse quantities diffusion theory
-// builds from it (Egan & Hilgeman 1979 fit of F_dr; d'Eon & Irving 2011 fits of the moments C1, C2). Templated on the scalar for ceres::Jet.
+// builds from it (Egan & Hilgeman 1979 fit of F_dr; d'Eon & Irving 2011 fits of the moments C1, C2). Templated on the
+// scalar for ceres::Jet.
 //
 // Argument convention: x = n_incident / n_transmitted, the ratio seen by light *arriving* at the
 // boundary. Light inside a medium of relative index eta = n_medium / n_outside meets the boundary
@@ -52,16 +53,13 @@ inline constexpr double kFitErrorThreeC2 = 0.007;
 template <class T>
 T fresnel_2c1_fit(T x) {
   if (x < T(1))
-    return T(0.919317) + x * (T(-3.4793) + x * (T(6.75335) + x * (T(-7.80989) +
-           x * (T(4.98554) + x * T(-1.36881)))));
-  return T(-9.23372) + x * (T(22.2272) + x * (T(-20.9292) + x * (T(10.2291) +
-         x * (T(-2.54396) + x * T(0.254913)))));
+    return T(0.919317) + x * (T(-3.4793) + x * (T(6.75335) + x * (T(-7.80989) + x * (T(4.98554) + x * T(-1.36881)))));
+  return T(-9.23372) + x * (T(22.2272) + x * (T(-20.9292) + x * (T(10.2291) + x * (T(-2.54396) + x * T(0.254913)))));
 }
 template <class T>
 T fresnel_3c2_fit(T x) {
   if (x < T(1))
-    return T(0.828421) + x * (T(-2.62051) + x * (T(3.36231) + x * (T(-1.95284) +
-           x * (T(0.236494) + x * T(0.145787)))));
+    return T(0.828421) + x * (T(-2.62051) + x * (T(3.36231) + x * (T(-1.95284) + x * (T(0.236494) + x * T(0.145787)))));
   const T inv = T(1) / x;
   return T(-1641.1) + inv * (T(1376.53) + inv * (T(-656.175) + inv * T(135.926))) +
          x * (T(1213.67) + x * (T(-568.556) + x * (T(164.798) + x * (T(-27.0181) + x * T(1.91826)))));
@@ -72,8 +70,7 @@ T fresnel_3c2_fit(T x) {
 inline constexpr double kFitErrorEganHilgeman = 0.002;
 template <class T>
 T diffuse_reflectance_egan_hilgeman(T eta) {
-  if (eta < T(1))
-    return T(-0.4399) + T(0.7099) / eta - T(0.3319) / (eta * eta) + T(0.0636) / (eta * eta * eta);
+  if (eta < T(1)) return T(-0.4399) + T(0.7099) / eta - T(0.3319) / (eta * eta) + T(0.0636) / (eta * eta * eta);
   return T(-1.440) / (eta * eta) + T(0.710) / eta + T(0.668) + T(0.0636) * eta;
 }
 

@@ -25,9 +25,9 @@ namespace bssrdf {
 
 struct Material {
   std::string name;
-  std::string source;    // short key of the publication, e.g. "jensen2001"
-  std::string citation;  // full reference
-  std::string file;      // the file it was loaded from
+  std::string source;                        // short key of the publication, e.g. "jensen2001"
+  std::string citation;                      // full reference
+  std::string file;                          // the file it was loaded from
   LengthUnit unit = LengthUnit::millimetre;  // unit the file states its coefficients in
   // True when the source published only the reduced scattering sigma_s' (g unknown): the medium
   // then holds sigma_s = sigma_s' and g = 0, which diffusion models treat exactly.

@@ -34,8 +34,8 @@ namespace bssrdf {
 
 struct ModelErrorEstimate {
   std::string model;
-  double cost_ns = 0;        // one R(r) evaluation (bench_models median, alpha' 0.9, eta 1.3)
-  double total_error = 0;    // |relative error of the total reflectance|
+  double cost_ns = 0;      // one R(r) evaluation (bench_models median, alpha' 0.9, eta 1.3)
+  double total_error = 0;  // |relative error of the total reflectance|
   // Relative L2 error of the profile, single scattering included: against `exact`, the larger of
   // near_error and far_error; from the table, the area-weighted L2 of R(r) against Monte Carlo.
   double profile_error = 0;

@@ -42,28 +42,27 @@
 
 namespace bssrdf {
 
-
 struct ModelEntry {
-  std::string name;                               // command-line name, e.g. "better-dipole+ss"
-  std::function<std::unique_ptr<Model>()> make;   // the runtime model (its name() is `name`)
-  bool includes_single_scattering = false;        // what R(r) contains (make()->includes_... agrees)
-  std::string base;                               // NAME+ss: NAME; empty otherwise
+  std::string name;                              // command-line name, e.g. "better-dipole+ss"
+  std::function<std::unique_ptr<Model>()> make;  // the runtime model (its name() is `name`)
+  bool includes_single_scattering = false;       // what R(r) contains (make()->includes_... agrees)
+  std::string base;                              // NAME+ss: NAME; empty otherwise
   // One R(r) evaluation, ns: bench_models medians on the 2-core development machine (alpha' 0.9,
   // g 0, eta 1.3, 64 radii over 0.01-20 ell). Only their order matters to `--model auto`.
   double cost_ns = 0;
   // Worst total error against adding-doubling by albedo band; nullopt where never measured.
   std::optional<DiffusionLimits> limits;
-  FitForm fit_form;                               // what profile fits evaluate
-  bool singular_at_origin = false;                // R(0) infinite: fits leave r = 0 out
-  bool closed_form = false;                       // R(r) in closed form (no quadrature, no mixture)
-  bool auto_candidate = false;                    // served by `--model auto` (needs measured errors)
+  FitForm fit_form;                 // what profile fits evaluate
+  bool singular_at_origin = false;  // R(0) infinite: fits leave r = 0 out
+  bool closed_form = false;         // R(r) in closed form (no quadrature, no mixture)
+  bool auto_candidate = false;      // served by `--model auto` (needs measured errors)
   // A reference model's own accuracy against the Monte Carlo reference, a constant band: what
   // `--model auto` estimates for it (the others are measured against it live). Empty otherwise.
   struct ReferenceAccuracy {
     double total = 0, profile = 0;  // |relative total error|, relative L2 of r R(r) (near and far)
   };
   std::optional<ReferenceAccuracy> reference_accuracy;
-  bool listed = true;                             // shown by `bssrdf models` (NAME+ss: via --single-scattering)
+  bool listed = true;  // shown by `bssrdf models` (NAME+ss: via --single-scattering)
   // Capabilities.
   // The model's own sum of 2D Gaussians at these coefficients, R(r) = sum w G2(v, r) (lut --kind
   // gaussians without --count: own_mixture_table); null if it has none. `model` is this row's make().

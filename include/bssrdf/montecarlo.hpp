@@ -36,9 +36,9 @@
 // uniforms for free paths, 53-bit for roulette and Fresnel, and the HG cosine and the azimuth from
 // the two 32-bit halves of one draw, each at its cell's midpoint (a midpoint rule on 2^32 cells:
 // O(2^-64) error, no bias at any measurable level; the MCML generator's -0.17 % bias came from its
-// lagged-subtractive generator, as measured against exact half-space totals). Threads take batches from an atomic counter and the batch tallies are
-// summed in batch order, so the result depends only on (stack, options, seed, batch_size), never
-// on the thread count: bitwise identical for 1 or 64 threads.
+// lagged-subtractive generator, as measured against exact half-space totals). Threads take batches from an atomic
+// counter and the batch tallies are summed in batch order, so the result depends only on (stack, options, seed,
+// batch_size), never on the thread count: bitwise identical for 1 or 64 threads.
 //
 // Normalisations: every tally is stored per unit INCIDENT flux (specular included in the incident
 // flux, as MCML reports). per_entered_flux() divides by (1 - R_sp), the BSSRDF convention.
@@ -64,8 +64,8 @@ std::string_view to_string(AbsorptionEstimator estimator);
 struct MonteCarloOptions {
   std::uint64_t photons = 1'000'000;  // per channel
   std::uint64_t seed = 1;
-  unsigned threads = 0;               // 0: all hardware threads
-  std::uint64_t batch_size = 4096;    // part of the inputs: results depend on it (and not on threads)
+  unsigned threads = 0;             // 0: all hardware threads
+  std::uint64_t batch_size = 4096;  // part of the inputs: results depend on it (and not on threads)
 
   // Radial bins for R(r) and T(r), in mm. Linear: `bins` bins of width r_max / bins from 0.
   // Log: the first bin is [0, r_min), then bins - 1 geometric bins from r_min to r_max.
@@ -86,8 +86,8 @@ struct MonteCarloOptions {
   // survives with probability roulette_survival and has its weight divided by it (unbiased).
   // Defaults chosen by efficiency (1/(variance x time)) of every output, tools/bench/
   // bench_montecarlo_estimators: they raise it for R_d, R(r), A and A(z) and keep it for T_t.
-  double roulette_threshold = 0.1;   // MCML: 1e-4
-  double roulette_survival = 0.5;    // MCML: 0.1
+  double roulette_threshold = 0.1;  // MCML: 1e-4
+  double roulette_survival = 0.5;   // MCML: 0.1
 
   // A photon still inside after this many interactions is stopped and its weight counted as lost
   // (reported; nonzero only for nearly non-absorbing media, where it is a bias to watch).
@@ -113,31 +113,31 @@ struct Estimate {
 
 // A photon that left the top surface: where, after how many scatterings, with what weight.
 struct ReflectedPhoton {
-  double radius = 0;             // mm
+  double radius = 0;  // mm
   std::uint32_t scatterings = 0;
-  float weight = 0;              // per unit incident flux
+  float weight = 0;  // per unit incident flux
 };
 
 // One channel's tallies. Lengths in mm; everything per unit incident flux unless stated.
 struct ChannelResult {
   std::string name;
-  double specular_reflectance = 0;          // R_sp at entry (not traced)
-  Estimate diffuse_reflectance;             // all light re-emerging at the top, minus R_sp
-  Estimate single_scattering_reflectance;   // part of it that scattered exactly once
-  Estimate unscattered_reflectance;         // part that never scattered (internal interfaces only)
-  Estimate total_transmittance;             // all light leaving at the bottom, ballistic included
-  Estimate unscattered_transmittance;       // ballistic part of it
-  Estimate absorbed;                        // absorbed in the stack
-  double lost = 0;                          // weight stopped by max_interactions (should be 0)
-  std::vector<double> reflectance;          // R(r), 1/mm^2, one per radial bin
+  double specular_reflectance = 0;         // R_sp at entry (not traced)
+  Estimate diffuse_reflectance;            // all light re-emerging at the top, minus R_sp
+  Estimate single_scattering_reflectance;  // part of it that scattered exactly once
+  Estimate unscattered_reflectance;        // part that never scattered (internal interfaces only)
+  Estimate total_transmittance;            // all light leaving at the bottom, ballistic included
+  Estimate unscattered_transmittance;      // ballistic part of it
+  Estimate absorbed;                       // absorbed in the stack
+  double lost = 0;                         // weight stopped by max_interactions (should be 0)
+  std::vector<double> reflectance;         // R(r), 1/mm^2, one per radial bin
   std::vector<double> reflectance_stderr;
-  double reflectance_beyond = 0;            // R from r >= r_max (in diffuse_reflectance, not binned)
-  std::vector<double> transmittance;        // T(r), 1/mm^2 (empty for semi-infinite stacks)
+  double reflectance_beyond = 0;      // R from r >= r_max (in diffuse_reflectance, not binned)
+  std::vector<double> transmittance;  // T(r), 1/mm^2 (empty for semi-infinite stacks)
   std::vector<double> transmittance_stderr;
   double transmittance_beyond = 0;
-  std::vector<double> absorbed_by_depth;    // absorbed fraction per unit depth, 1/mm
+  std::vector<double> absorbed_by_depth;  // absorbed fraction per unit depth, 1/mm
   std::vector<double> absorbed_by_depth_stderr;
-  std::uint64_t interactions = 0;           // scattering/absorption events traced
+  std::uint64_t interactions = 0;                  // scattering/absorption events traced
   std::vector<ReflectedPhoton> reflected_photons;  // with options.record_reflected_photons, batch order
 
   // 1 / (1 - R_sp): multiply per-incident values by this for per-entered ones.
@@ -148,7 +148,7 @@ struct ChannelResult {
 
 struct MonteCarloResult {
   LayerStack stack;
-  MonteCarloOptions options;     // as run (defaults resolved, no progress callback)
+  MonteCarloOptions options;                             // as run (defaults resolved, no progress callback)
   std::vector<double> bin_inner, bin_outer, bin_radius;  // mm; radius: linear midpoint / geometric
   std::vector<double> depth_inner, depth_outer;          // mm
   std::vector<ChannelResult> channels;

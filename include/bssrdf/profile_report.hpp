@@ -24,8 +24,8 @@ struct ChannelProfile {
   double transport_mfp = 0;  // ell = 1/sigma_t'
   double diffuse_mfp = 0;    // ell_d = 1/sigma_tr (classical); infinite when sigma_a = 0
   double total_reflectance = 0;
-  double radius_99 = 0;      // radius holding 99 % of total_reflectance
-  SampledProfile profile;    // radius in unit, R(r) in 1/unit^2
+  double radius_99 = 0;    // radius holding 99 % of total_reflectance
+  SampledProfile profile;  // radius in unit, R(r) in 1/unit^2
   ValidityReport validity;
   // Model-specific forms renderers use directly (empty when the model has none):
   // quantized diffusion's mixture R(r) = sum w_i e^{-r^2/(2 v_i)}/(2 pi v_i) (v_i in unit^2),
@@ -57,8 +57,8 @@ struct ProfileReport {
 std::vector<double> default_radii_mm(const Medium& medium, const Model& model, std::size_t samples);
 
 // radii_mm: one radius grid (mm) shared by all channels.
-ProfileReport compute_profile_report(const Medium& medium, const Model& model,
-                                     const std::vector<double>& radii_mm, LengthUnit unit);
+ProfileReport compute_profile_report(const Medium& medium, const Model& model, const std::vector<double>& radii_mm,
+                                     LengthUnit unit);
 
 // A layer stack under the multipole with the adding equations (models/layered.hpp).
 ProfileReport compute_stack_report(const LayerStack& stack, const std::vector<double>& radii_mm, LengthUnit unit);

@@ -35,14 +35,13 @@ struct QuadratureResult {
 };
 
 // Adaptive Gauss-Kronrod (7, 15) on [a, b] until |error| <= max(abs_tol, rel_tol |value|).
-QuadratureResult integrate_adaptive(const std::function<double(double)>& f, double a, double b,
-                                    double rel_tol = 1e-10, double abs_tol = 0.0,
-                                    int max_intervals = 2000, int initial_pieces = 8);
+QuadratureResult integrate_adaptive(const std::function<double(double)>& f, double a, double b, double rel_tol = 1e-10,
+                                    double abs_tol = 0.0, int max_intervals = 2000, int initial_pieces = 8);
 
 // The radial integral of a profile, int_{r0}^{r1} 2 pi r R(r) dr, computed in u = ln r so that
 // profiles spanning many decades of radius are resolved. r0 = 0 integrates from (scale * 1e-12),
 // r1 = infinity up to (scale * 1e9); `scale` is the medium's characteristic length (e.g. ell).
-QuadratureResult integrate_radial(const std::function<double(double)>& R, double r0, double r1,
-                                  double scale, double rel_tol = 1e-10);
+QuadratureResult integrate_radial(const std::function<double(double)>& R, double r0, double r1, double scale,
+                                  double rel_tol = 1e-10);
 
 }  // namespace bssrdf

@@ -14,19 +14,19 @@ namespace bssrdf {
 
 template <class T>
 struct Reduced {
-  T sigma_a;          // absorption, 1/length
-  T sigma_s;          // scattering (unreduced), 1/length
-  T g;                // phase-function mean cosine
-  T eta;              // relative index n_medium / n_outside
-  T sigma_s_prime;    // reduced scattering
-  T sigma_t_prime;    // reduced extinction
-  T albedo_prime;     // reduced single-scattering albedo alpha'
-  T ell;              // transport mean free path 1/sigma_t'
-  T D;                // classical diffusion coefficient 1/(3 sigma_t')
-  T D_G;              // Grosjean diffusion coefficient
-  T sigma_tr;         // classical effective transport coefficient sqrt(3 sigma_a sigma_t')
-  T sigma_tr_G;       // sqrt(sigma_a / D_G), used by the improved (better-dipole) theory
-  T ell_d;            // classical diffuse mean free path 1/sigma_tr (infinite when sigma_a = 0)
+  T sigma_a;        // absorption, 1/length
+  T sigma_s;        // scattering (unreduced), 1/length
+  T g;              // phase-function mean cosine
+  T eta;            // relative index n_medium / n_outside
+  T sigma_s_prime;  // reduced scattering
+  T sigma_t_prime;  // reduced extinction
+  T albedo_prime;   // reduced single-scattering albedo alpha'
+  T ell;            // transport mean free path 1/sigma_t'
+  T D;              // classical diffusion coefficient 1/(3 sigma_t')
+  T D_G;            // Grosjean diffusion coefficient
+  T sigma_tr;       // classical effective transport coefficient sqrt(3 sigma_a sigma_t')
+  T sigma_tr_G;     // sqrt(sigma_a / D_G), used by the improved (better-dipole) theory
+  T ell_d;          // classical diffuse mean free path 1/sigma_tr (infinite when sigma_a = 0)
 
   T sigma_t() const { return sigma_a + sigma_s; }
   T albedo() const { return sigma_s / sigma_t(); }

@@ -17,8 +17,8 @@
 namespace bssrdf {
 
 struct ProfileDeviation {
-  double total = 0;                                // model total / Monte Carlo diffuse reflectance - 1
-  double l2 = 0, near = 0, far = 0;                // relative L2 errors of R(r)
+  double total = 0;                                    // model total / Monte Carlo diffuse reflectance - 1
+  double l2 = 0, near = 0, far = 0;                    // relative L2 errors of R(r)
   double l2_noise = 0, near_noise = 0, far_noise = 0;  // the run's own, on the same bins
   // The same with the squared differences of r R(r) over dr (bin width times its representative
   // radius squared): the far field counts more, as it does in a rendered image's halo.

@@ -1,8 +1,8 @@
 // Exact single scattering below a smooth planar boundary for a normally incident pencil beam, with
 // the true Henyey-Greenstein phase function (not the similarity-reduced one) and total internal
-// reflection on exit (Habel, Christensen & Jarosz 2013, single-scattering term). Diffusion models omit this part; add it
-// (models/with_single_scattering.hpp) before comparing with totals that include it
-// (adding-doubling, Monte Carlo). All per unit entered flux.
+// reflection on exit (Habel, Christensen & Jarosz 2013, single-scattering term). Diffusion models omit this part; add
+// it (models/with_single_scattering.hpp) before comparing with totals that include it (adding-doubling, Monte Carlo).
+// All per unit entered flux.
 //
 //   R_ss(r) = int_{t_c}^inf sigma_s e^{-sigma_t t} p(-t/d) e^{-sigma_t d} (1 - F_r(t/d)) (t/d) / d^2 dt,
 //             d = sqrt(r^2 + t^2), t_c = r sqrt(eta^2 - 1)
@@ -52,8 +52,8 @@ T single_scattering_reflectance(const Reduced<T>& m, T r, int samples = 64) {
     const T v = v_c + span * s * s;
     // One transcendental call: cosh v = sqrt(1 + sinh^2 v), tanh = sinh / cosh, e^v = sinh + cosh.
     const T sh = sinh(v), c = sqrt(T(1) + sh * sh), mu = sh / c;
-    return exp(-sigma_t * r * (sh + c)) * henyey_greenstein(-mu, m.g) * (T(1) - fresnel_reflectance(mu, m.eta)) *
-           sh / (c * c) * T(2) * span * s;
+    return exp(-sigma_t * r * (sh + c)) * henyey_greenstein(-mu, m.g) * (T(1) - fresnel_reflectance(mu, m.eta)) * sh /
+           (c * c) * T(2) * span * s;
   };
   return m.sigma_s / r * integrate_gauss_legendre<T>(integrand, T(0), T(1), static_cast<std::size_t>(samples));
 }

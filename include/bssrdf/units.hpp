@@ -21,9 +21,7 @@ double millimetres_per(LengthUnit unit);
 
 inline double to_mm(double length, LengthUnit unit) { return length * millimetres_per(unit); }
 inline double from_mm(double length_mm, LengthUnit unit) { return length_mm / millimetres_per(unit); }
-inline double coefficient_to_per_mm(double coefficient, LengthUnit unit) {
-  return coefficient / millimetres_per(unit);
-}
+inline double coefficient_to_per_mm(double coefficient, LengthUnit unit) { return coefficient / millimetres_per(unit); }
 inline double coefficient_from_per_mm(double coefficient_per_mm, LengthUnit unit) {
   return coefficient_per_mm * millimetres_per(unit);
 }

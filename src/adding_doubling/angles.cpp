@@ -61,9 +61,11 @@ void gauss_radau_right(int n, std::vector<double>& nodes, std::vector<double>& w
 }
 
 Angles make_angles(int points, std::vector<double> cuts) {
-  cuts.erase(std::remove_if(cuts.begin(), cuts.end(), [](double c) { return !(c > 1e-9 && c < 1 - 1e-9); }), cuts.end());
+  cuts.erase(std::remove_if(cuts.begin(), cuts.end(), [](double c) { return !(c > 1e-9 && c < 1 - 1e-9); }),
+             cuts.end());
   std::sort(cuts.begin(), cuts.end());
-  cuts.erase(std::unique(cuts.begin(), cuts.end(), [](double a, double b) { return std::abs(a - b) < 1e-12; }), cuts.end());
+  cuts.erase(std::unique(cuts.begin(), cuts.end(), [](double a, double b) { return std::abs(a - b) < 1e-12; }),
+             cuts.end());
   std::vector<double> ends{0.0};
   ends.insert(ends.end(), cuts.begin(), cuts.end());
   ends.push_back(1.0);

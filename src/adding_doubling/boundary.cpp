@@ -36,7 +36,7 @@ Boundary make_boundary(const Angles& angles, double n, const std::vector<ClearLa
     for (std::size_t k = 0; k + 1 < media.size(); ++k) {
       const double a = media[k].n, b = media[k + 1].n;
       const double ca = cosine_in(a), cb = cosine_in(b);
-      Element interface{1, 1, 0};
+      Element interface { 1, 1, 0 };
       if (ca > 0 && cb > 0) {
         const double r = fresnel_reflectance(ca, a / b);
         interface = {r, r, 1 - r};

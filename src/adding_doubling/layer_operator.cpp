@@ -57,7 +57,8 @@ std::pair<MatrixXd, MatrixXd> phase_blocks(const Angles& angles, double g, doubl
 // Diamond initialisation (Wiscombe 1976) of a layer of optical thickness t: the transfer equation
 // with the radiance inside taken as the mean of its values on the two faces. With light entering
 // at the top only, u = L_down(bottom) + L_up(top) and v = their difference solve two N x N systems.
-LayerOperator thin_layer(const Angles& angles, double albedo, const MatrixXd& same, const MatrixXd& opposite, double t) {
+LayerOperator thin_layer(const Angles& angles, double albedo, const MatrixXd& same, const MatrixXd& opposite,
+                         double t) {
   const int n = static_cast<int>(angles.size());
   VectorXd w(n), mu(n), flux(n);
   for (int i = 0; i < n; ++i) {

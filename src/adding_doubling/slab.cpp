@@ -12,7 +12,9 @@
 
 namespace bssrdf::adding_doubling {
 
-std::string_view to_string(Incidence incidence) { return incidence == Incidence::collimated ? "collimated" : "diffuse"; }
+std::string_view to_string(Incidence incidence) {
+  return incidence == Incidence::collimated ? "collimated" : "diffuse";
+}
 
 Incidence parse_incidence(const std::string& text) {
   if (text == "collimated") return Incidence::collimated;
@@ -24,17 +26,22 @@ void Slab::validate() const {
   auto finite_positive = [](double v) { return v > 0 && std::isfinite(v); };
   if (layers.empty()) throw InvalidInput("layers", "none", "at least one scattering layer");
   if (!finite_positive(n)) throw InvalidInput("n", format_number(n), "> 0 and finite");
-  if (!finite_positive(ambient_above)) throw InvalidInput("ambient_above", format_number(ambient_above), "> 0 and finite");
-  if (!finite_positive(ambient_below)) throw InvalidInput("ambient_below", format_number(ambient_below), "> 0 and finite");
+  if (!finite_positive(ambient_above))
+    throw InvalidInput("ambient_above", format_number(ambient_above), "> 0 and finite");
+  if (!finite_positive(ambient_below))
+    throw InvalidInput("ambient_below", format_number(ambient_below), "> 0 and finite");
   for (std::size_t k = 0; k < layers.size(); ++k) {
     const auto& l = layers[k];
     const std::string f = "layers[" + std::to_string(k) + "].";
-    if (!(l.sigma_a >= 0 && std::isfinite(l.sigma_a))) throw InvalidInput(f + "sigma_a", format_number(l.sigma_a), ">= 0 and finite");
-    if (!(l.sigma_s >= 0 && std::isfinite(l.sigma_s))) throw InvalidInput(f + "sigma_s", format_number(l.sigma_s), ">= 0 and finite");
+    if (!(l.sigma_a >= 0 && std::isfinite(l.sigma_a)))
+      throw InvalidInput(f + "sigma_a", format_number(l.sigma_a), ">= 0 and finite");
+    if (!(l.sigma_s >= 0 && std::isfinite(l.sigma_s)))
+      throw InvalidInput(f + "sigma_s", format_number(l.sigma_s), ">= 0 and finite");
     if (!(l.g > -1 && l.g < 1)) throw InvalidInput(f + "g", format_number(l.g), "-1 < g < 1");
     const bool last = k + 1 == layers.size();
     if (!(finite_positive(l.thickness) || (last && l.thickness == kSemiInfinite)))
-      throw InvalidInput(f + "thickness", format_number(l.thickness), last ? "> 0 (or semi-infinite)" : "> 0 and finite");
+      throw InvalidInput(f + "thickness", format_number(l.thickness),
+                         last ? "> 0 (or semi-infinite)" : "> 0 and finite");
     if (last && l.thickness == kSemiInfinite && !(l.sigma_a + l.sigma_s > 0))
       throw InvalidInput(f + "sigma_t", "0", "> 0 for a semi-infinite layer");
   }
@@ -43,8 +50,10 @@ void Slab::validate() const {
       const auto& c = (*side)[k];
       const std::string f = std::string(side == &above ? "slides_above[" : "slides_below[") + std::to_string(k) + "].";
       if (!finite_positive(c.n)) throw InvalidInput(f + "n", format_number(c.n), "> 0 and finite");
-      if (!finite_positive(c.thickness)) throw InvalidInput(f + "thickness", format_number(c.thickness), "> 0 and finite");
-      if (!(c.sigma_a >= 0 && std::isfinite(c.sigma_a))) throw InvalidInput(f + "sigma_a", format_number(c.sigma_a), ">= 0 and finite");
+      if (!finite_positive(c.thickness))
+        throw InvalidInput(f + "thickness", format_number(c.thickness), "> 0 and finite");
+      if (!(c.sigma_a >= 0 && std::isfinite(c.sigma_a)))
+        throw InvalidInput(f + "sigma_a", format_number(c.sigma_a), ">= 0 and finite");
     }
 }
 
@@ -179,7 +188,9 @@ std::vector<Totals> solve(const Slab& slab, const std::vector<Incidence>& incide
   }
 }
 
-Totals solve(const Slab& slab, Incidence incidence, const Options& options) { return solve(slab, std::vector{incidence}, options)[0]; }
+Totals solve(const Slab& slab, Incidence incidence, const Options& options) {
+  return solve(slab, std::vector{incidence}, options)[0];
+}
 
 Slab slab_of(const LayerStack& stack, std::size_t c) {
   stack.validate();
@@ -188,11 +199,13 @@ Slab slab_of(const LayerStack& stack, std::size_t c) {
   slab.ambient_below = stack.ambient_below;
   std::size_t first = 0, last = stack.layers.size();
   while (first < last && stack.layers[first].sigma_s[c] == 0 && std::isfinite(stack.layers[first].thickness)) ++first;
-  while (last > first && stack.layers[last - 1].sigma_s[c] == 0 && std::isfinite(stack.layers[last - 1].thickness)) --last;
+  while (last > first && stack.layers[last - 1].sigma_s[c] == 0 && std::isfinite(stack.layers[last - 1].thickness))
+    --last;
   auto clear = [&](const Layer& l) { return ClearLayer{l.n, l.thickness, l.sigma_a[c]}; };
   for (std::size_t k = 0; k < first; ++k) slab.above.push_back(clear(stack.layers[k]));
   for (std::size_t k = last; k < stack.layers.size(); ++k) slab.below.push_back(clear(stack.layers[k]));
-  if (first == last) throw InvalidInput("layers", "no scattering layer in channel " + stack.channel_names[c], "at least one");
+  if (first == last)
+    throw InvalidInput("layers", "no scattering layer in channel " + stack.channel_names[c], "at least one");
   slab.n = stack.layers[first].n;
   for (std::size_t k = first; k < last; ++k) {
     const auto& l = stack.layers[k];

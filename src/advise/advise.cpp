@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
-#include <numbers>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <sstream>
 
-#include "bssrdf/error.hpp"
 #include "bssrdf/advise/realtime_tables.hpp"
+#include "bssrdf/error.hpp"
 #include "bssrdf/model.hpp"
 #include "bssrdf/model_choice.hpp"
 #include "bssrdf/model_registry.hpp"
@@ -20,7 +20,8 @@ bool closed_form(const std::string& model) { return model_entry(model).closed_fo
 
 }  // namespace
 
-RadialTableNodes radial_table_nodes(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell, double hi_ell) {
+RadialTableNodes radial_table_nodes(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell,
+                                    double hi_ell) {
   if (n < 2) throw InvalidInput("radial table radii", std::to_string(n), ">= 2");
   const double lo = lo_ell * m.ell;
   // By default as far as the reference's annuli reach (profile_extent: the light left out is invisible).
@@ -35,7 +36,8 @@ RadialTableNodes radial_table_nodes(const Model& model, const Reduced<double>& m
 
 std::function<double(double)> radial_table(const RadialTableNodes& nodes) {
   const std::size_t n = nodes.radius.size();
-  const double lo = nodes.radius.front(), hi = nodes.radius.back(), step = std::log(hi / lo) / static_cast<double>(n - 1);
+  const double lo = nodes.radius.front(), hi = nodes.radius.back(),
+               step = std::log(hi / lo) / static_cast<double>(n - 1);
   std::vector<double> log_R;
   for (double R : nodes.value) log_R.push_back(std::log(std::max(R, 1e-300)));
   return [lo, hi, step, log_R](double r) {
@@ -47,7 +49,8 @@ std::function<double(double)> radial_table(const RadialTableNodes& nodes) {
   };
 }
 
-std::function<double(double)> radial_table(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell, double hi_ell) {
+std::function<double(double)> radial_table(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell,
+                                           double hi_ell) {
   return radial_table(radial_table_nodes(model, m, n, lo_ell, hi_ell));
 }
 
@@ -60,14 +63,18 @@ AdviseTarget parse_advise_target(const std::string& text) {
 
 std::string_view to_string(AdviseTarget target) {
   switch (target) {
-    case AdviseTarget::realtime: return "realtime";
-    case AdviseTarget::offline: return "offline";
-    default: return "any";
+    case AdviseTarget::realtime:
+      return "realtime";
+    case AdviseTarget::offline:
+      return "offline";
+    default:
+      return "any";
   }
 }
 
 Advice advise(const Medium& medium, const ReferenceProfile& reference, const AdviseOptions& options) {
-  if (!(options.pixel > 0) || !std::isfinite(options.pixel)) throw InvalidInput("--pixel", format_number(options.pixel), "> 0 and finite");
+  if (!(options.pixel > 0) || !std::isfinite(options.pixel))
+    throw InvalidInput("--pixel", format_number(options.pixel), "> 0 and finite");
   if (!(options.tolerance > 0) || !std::isfinite(options.tolerance))
     throw InvalidInput("--tolerance", format_number(options.tolerance), "> 0 (8-bit sRGB code values) and finite");
   Advice advice;
@@ -101,7 +108,8 @@ Advice advise(const Medium& medium, const ReferenceProfile& reference, const Adv
     std::vector<AnnularProfile> profiles;
     for (std::size_t c = 0; c < channels; ++c) {
       const auto m = medium.reduced(c);
-      profiles.push_back(annuli_of(edges, [&](double r) { return model->reflectance(m, r); }, model->total_reflectance(m)));
+      profiles.push_back(annuli_of(
+          edges, [&](double r) { return model->reflectance(m, r); }, model->total_reflectance(m)));
     }
     add(measured.model, judge.error(profiles), measured.cost_ns, 0, closed_form(measured.model));
     if (advice.candidates.back().image.error < best_error) {
@@ -113,20 +121,22 @@ Advice advise(const Medium& medium, const ReferenceProfile& reference, const Adv
   const auto model = make_model(best_model);
   const std::string of = ":" + best_model;
   const auto radial = choose_radial_table_size(medium, *model, judge, options.tolerance);
-  add("radial-table-" + std::to_string(radial.count) + of, radial.image, kTableLookupNs, radial.count * channels * 4, true,
-      {{"radii", static_cast<double>(radial.count)}});
+  add("radial-table-" + std::to_string(radial.count) + of, radial.image, kTableLookupNs, radial.count * channels * 4,
+      true, {{"radii", static_cast<double>(radial.count)}});
   const auto gaussians = choose_gaussian_count(medium, *model, judge, options.tolerance);
-  add("gaussians-" + std::to_string(gaussians.count) + of, gaussians.image, static_cast<double>(gaussians.count) * kGaussianTermNs,
-      gaussians.count * (channels + 1) * 4, true, {{"count", static_cast<double>(gaussians.count)}});
+  add("gaussians-" + std::to_string(gaussians.count) + of, gaussians.image,
+      static_cast<double>(gaussians.count) * kGaussianTermNs, gaussians.count * (channels + 1) * 4, true,
+      {{"count", static_cast<double>(gaussians.count)}});
   const auto projections = project_channels(medium, *model);
   const auto separable = choose_separable_kernel(medium, projections, judge, options.tolerance);
-  add("separable-" + std::to_string(separable.options.taps) + of, separable.image, 2 * separable.options.taps * kKernelTapNs,
-      static_cast<std::size_t>(separable.options.taps) * 4 * 4, true,
+  add("separable-" + std::to_string(separable.options.taps) + of, separable.image,
+      2 * separable.options.taps * kKernelTapNs, static_cast<std::size_t>(separable.options.taps) * 4 * 4, true,
       {{"taps", separable.options.taps}, {"range_mm", separable.options.range}, {"band", separable.options.band}});
   const auto preintegrated = choose_preintegrated_table(medium, projections, judge, options.tolerance);
   add("preintegrated-" + std::to_string(preintegrated.size) + of, preintegrated.image, kTableLookupNs,
       preintegrated.size * preintegrated.size * channels * 4, true,
-      {{"size", static_cast<double>(preintegrated.size)}, {"curvature_max_per_mm", preintegrated.curvature_max},
+      {{"size", static_cast<double>(preintegrated.size)},
+       {"curvature_max_per_mm", preintegrated.curvature_max},
        {"table_error", preintegrated.table_error}});
   add("reference-table", judge.error(ref.channels), kTableLookupNs, (edges.size() - 1) * channels * 4, true);
   advice.candidates.back().image.error = 2 * advice.candidates.back().image.reference_noise;
@@ -137,24 +147,33 @@ Advice advise(const Medium& medium, const ReferenceProfile& reference, const Adv
   for (std::size_t i = 0; i < advice.candidates.size(); ++i) {
     auto& c = advice.candidates[i];
     c.meets_tolerance = c.image.error <= options.tolerance;
-    if (!advice.choice && c.meets_tolerance && (options.target != AdviseTarget::realtime || c.realtime)) advice.choice = i;
+    if (!advice.choice && c.meets_tolerance && (options.target != AdviseTarget::realtime || c.realtime))
+      advice.choice = i;
   }
 
-  for (const auto& p : ref.channels) advice.profile_radius = std::max(advice.profile_radius, p.radius_for_fraction(0.99));
+  for (const auto& p : ref.channels)
+    advice.profile_radius = std::max(advice.profile_radius, p.radius_for_fraction(0.99));
   if (options.object_size > 0 && 2 * advice.profile_radius > options.object_size)
-    advice.object_warning = "the profile (99 % of the light within " + format_number(advice.profile_radius) +
-                            " mm of entry) is wider than the object (" + format_number(options.object_size) +
-                            " mm): the semi-infinite profile does not apply; model the object as a slab or layers (bssrdf slab, --layers)";
+    advice.object_warning =
+        "the profile (99 % of the light within " + format_number(advice.profile_radius) +
+        " mm of entry) is wider than the object (" + format_number(options.object_size) +
+        " mm): the semi-infinite profile does not apply; model the object as a slab or layers (bssrdf slab, --layers)";
   return advice;
 }
 
 std::string to_json(const Advice& advice, const std::string& material) {
   using nlohmann::json;
   const auto candidate = [](const AdviseCandidate& c) {
-    json out{{"representation", c.representation}, {"error", c.image.error},     {"cost", c.cost},
-                {"cost_unit", "ns"},                  {"memory_bytes", c.memory_bytes}, {"realtime", c.realtime},
-                {"meets_tolerance", c.meets_tolerance}, {"worst_pattern", c.image.pattern}, {"worst_channel", c.image.channel},
-                {"worst_position_mm", c.image.position}};
+    json out{{"representation", c.representation},
+             {"error", c.image.error},
+             {"cost", c.cost},
+             {"cost_unit", "ns"},
+             {"memory_bytes", c.memory_bytes},
+             {"realtime", c.realtime},
+             {"meets_tolerance", c.meets_tolerance},
+             {"worst_pattern", c.image.pattern},
+             {"worst_channel", c.image.channel},
+             {"worst_position_mm", c.image.position}};
     json parameters = json::object();
     for (const auto& [name, value] : c.parameters) parameters[name] = value;
     out["parameters"] = parameters;
@@ -181,16 +200,19 @@ std::string to_json(const Advice& advice, const std::string& material) {
 std::string to_table(const Advice& advice, const std::string& material) {
   std::ostringstream out;
   out << material << " at " << format_number(advice.options.pixel) << " mm per pixel, tolerance "
-      << format_number(advice.options.tolerance) << " (8-bit sRGB code values), target " << to_string(advice.options.target) << "\n";
+      << format_number(advice.options.tolerance) << " (8-bit sRGB code values), target "
+      << to_string(advice.options.target) << "\n";
   out << "reference: " << advice.reference << " (" << std::fixed << std::setprecision(2) << advice.reference_seconds
       << " s), noise " << std::setprecision(3) << advice.reference_noise << " code values (1 standard error)\n\n";
-  out << std::left << std::setw(34) << "representation" << std::right << std::setw(10) << "error" << std::setw(10) << "cost_ns"
-      << std::setw(10) << "bytes" << "  meets\n";
+  out << std::left << std::setw(34) << "representation" << std::right << std::setw(10) << "error" << std::setw(10)
+      << "cost_ns" << std::setw(10) << "bytes"
+      << "  meets\n";
   for (std::size_t i = 0; i < advice.candidates.size(); ++i) {
     const auto& c = advice.candidates[i];
-    out << std::left << std::setw(34) << c.representation << std::right << std::setw(10) << std::setprecision(3) << c.image.error
-        << std::setw(10) << std::setprecision(1) << c.cost << std::setw(10) << c.memory_bytes << "  "
-        << (c.meets_tolerance ? "yes" : "no") << (c.realtime ? "" : " (offline)") << (advice.choice == i ? "  <- choice" : "") << "\n";
+    out << std::left << std::setw(34) << c.representation << std::right << std::setw(10) << std::setprecision(3)
+        << c.image.error << std::setw(10) << std::setprecision(1) << c.cost << std::setw(10) << c.memory_bytes << "  "
+        << (c.meets_tolerance ? "yes" : "no") << (c.realtime ? "" : " (offline)")
+        << (advice.choice == i ? "  <- choice" : "") << "\n";
   }
   out << std::setprecision(3);
   if (advice.choice) {
@@ -198,7 +220,8 @@ std::string to_table(const Advice& advice, const std::string& material) {
     bool any = false;
     for (std::size_t i = 0; i < *advice.choice; ++i) {
       const auto& c = advice.candidates[i];
-      out << (any ? "," : "") << " " << c.representation << " (" << c.image.error << " at the " << c.image.pattern << ")";
+      out << (any ? "," : "") << " " << c.representation << " (" << c.image.error << " at the " << c.image.pattern
+          << ")";
       any = true;
     }
     out << (any ? "\n" : " none\n");

@@ -9,22 +9,24 @@
 #include "bssrdf/layers.hpp"
 #include "bssrdf/lut/gaussian_mixture_table.hpp"
 #include "bssrdf/lut/preintegrated_table.hpp"
-#include "bssrdf/lut/separable_kernel.hpp"
 #include "bssrdf/lut/radial_table.hpp"
 #include "bssrdf/lut/reference_radial_table.hpp"
+#include "bssrdf/lut/separable_kernel.hpp"
 #include "bssrdf/lut/table_context.hpp"
 
 namespace bssrdf {
 
-std::filesystem::path write_advised_file(const std::filesystem::path& dir, const std::string& stem, const Medium& medium,
-                                         const std::optional<Material>& material, const Advice& advice,
-                                         const MonteCarloReferenceOptions& reference) {
-  if (!advice.choice) throw InvalidInput("--write: no candidate meets the tolerance for this target, so there is nothing to write");
+std::filesystem::path write_advised_file(const std::filesystem::path& dir, const std::string& stem,
+                                         const Medium& medium, const std::optional<Material>& material,
+                                         const Advice& advice, const MonteCarloReferenceOptions& reference) {
+  if (!advice.choice)
+    throw InvalidInput("--write: no candidate meets the tolerance for this target, so there is nothing to write");
   const AdviseCandidate& chosen = advice.candidates[*advice.choice];
   const std::string representation = chosen.representation;
   std::error_code error;
   std::filesystem::create_directories(dir, error);
-  if (error || !std::filesystem::is_directory(dir)) throw InvalidInput("--write", "'" + dir.string() + "'", "a directory that can be created");
+  if (error || !std::filesystem::is_directory(dir))
+    throw InvalidInput("--write", "'" + dir.string() + "'", "a directory that can be created");
   std::string name = representation;
   std::replace(name.begin(), name.end(), ':', '_');
   const auto path = dir / (stem + "." + name + ".json");
@@ -41,7 +43,8 @@ std::filesystem::path write_advised_file(const std::filesystem::path& dir, const
   if (representation == "lambertian") {
     table = described_table("albedo", 1, 1, context);
     for (std::size_t c = 0; c < medium.channels(); ++c)
-      table.add_channel(medium.channel_names[c], "diffuse reflectance (albedo), per unit entered flux", {advice.diffuse_reflectance[c]});
+      table.add_channel(medium.channel_names[c], "diffuse reflectance (albedo), per unit entered flux",
+                        {advice.diffuse_reflectance[c]});
   } else if (head.rfind("radial-table-", 0) == 0) {
     const auto n = static_cast<std::size_t>(std::stoul(head.substr(13)));
     table = described_table("radial-log", n, 1, context);
@@ -71,7 +74,8 @@ std::filesystem::path write_advised_file(const std::filesystem::path& dir, const
       table = to_lookup_table(build_preintegrated_table(medium, *model, options), context);
     }
   } else if (head.rfind("gaussians-", 0) == 0) {
-    table = to_lookup_table(fitted_mixture_table(medium, *model, std::stoi(head.substr(10)), kGaussianFitSamples), context);
+    table =
+        to_lookup_table(fitted_mixture_table(medium, *model, std::stoi(head.substr(10)), kGaussianFitSamples), context);
   } else if (representation == "reference-table") {
     ReferenceRadialOptions options;
     options.photons = reference.photons;
@@ -83,9 +87,10 @@ std::filesystem::path write_advised_file(const std::filesystem::path& dir, const
     context.model = model.get();
     table = to_lookup_table(build_radial_table(medium, *model, {}), context);
   }
-  table.set("bssrdf:advice", representation + " at " + format_number(advice.options.pixel) + " mm per pixel: image error " +
-                                 format_number(chosen.image.error) + " code values (tolerance " +
-                                 format_number(advice.options.tolerance) + ") against " + advice.reference);
+  table.set("bssrdf:advice", representation + " at " + format_number(advice.options.pixel) +
+                                 " mm per pixel: image error " + format_number(chosen.image.error) +
+                                 " code values (tolerance " + format_number(advice.options.tolerance) + ") against " +
+                                 advice.reference);
   table.set("bssrdf:image_error", chosen.image.error);
   table.set("bssrdf:image_error_pixel_mm", advice.options.pixel);
   write_file_atomically(path, to_json(table));

@@ -35,8 +35,10 @@ double srgb_slope(double linear) {
 }
 
 ImageErrorMeter::ImageErrorMeter(std::vector<double> edges, double pixel) : edges_(std::move(edges)), pixel_(pixel) {
-  if (!(pixel > 0) || !std::isfinite(pixel)) throw InvalidInput("pixel size", format_number(pixel), "> 0 mm and finite");
-  if (edges_.size() < 2 || edges_.front() != 0) throw InvalidInput("annulus edges", std::to_string(edges_.size()), "0 = r_0 < r_1 < ...");
+  if (!(pixel > 0) || !std::isfinite(pixel))
+    throw InvalidInput("pixel size", format_number(pixel), "> 0 mm and finite");
+  if (edges_.size() < 2 || edges_.front() != 0)
+    throw InvalidInput("annulus edges", std::to_string(edges_.size()), "0 = r_0 < r_1 < ...");
   const double extent = edges_.back();
   K_ = std::clamp<std::size_t>(static_cast<std::size_t>(std::ceil(extent / pixel)) + 1, 2, kMaxPixelsEachSide);
   // The exitance at x of the edge pattern is sum_i R_i [A(r_{i+1}, -x) - A(r_i, -x)] (the light of
@@ -81,7 +83,8 @@ double ImageErrorMeter::pixel_centre(std::size_t index) const {
 }
 
 PatternImage ImageErrorMeter::render(const AnnularProfile& profile) const {
-  if (profile.edges != edges_) throw InvalidInput("profile annuli", std::to_string(profile.edges.size()), "the meter's annuli");
+  if (profile.edges != edges_)
+    throw InvalidInput("profile annuli", std::to_string(profile.edges.size()), "the meter's annuli");
   PatternImage image;
   const std::size_t pixels = weight_.size();
   image.edge.resize(pixels);
@@ -119,8 +122,11 @@ PatternImage ImageErrorMeter::render(const AnnularProfile& profile) const {
   return image;
 }
 
-PatternImage ImageErrorMeter::render_taps(const std::vector<double>& offset, const std::vector<double>& weight, double albedo) const {
-  if (offset.size() != weight.size()) throw InvalidInput("kernel taps", std::to_string(weight.size()) + " weights", std::to_string(offset.size()) + " (one per offset)");
+PatternImage ImageErrorMeter::render_taps(const std::vector<double>& offset, const std::vector<double>& weight,
+                                          double albedo) const {
+  if (offset.size() != weight.size())
+    throw InvalidInput("kernel taps", std::to_string(weight.size()) + " weights",
+                       std::to_string(offset.size()) + " (one per offset)");
   const std::size_t pixels = weight_.size();
   PatternImage image;
   image.flat = albedo;
@@ -159,23 +165,28 @@ PatternImage ImageErrorMeter::render_taps(const std::vector<double>& offset, con
   return image;
 }
 
-ImageError ImageErrorMeter::error(const std::vector<AnnularProfile>& reference, const std::vector<AnnularProfile>& candidate) const {
+ImageError ImageErrorMeter::error(const std::vector<AnnularProfile>& reference,
+                                  const std::vector<AnnularProfile>& candidate) const {
   if (reference.size() != candidate.size())
-    throw InvalidInput("candidate channels", std::to_string(candidate.size()), std::to_string(reference.size()) + " (the reference's)");
+    throw InvalidInput("candidate channels", std::to_string(candidate.size()),
+                       std::to_string(reference.size()) + " (the reference's)");
   std::vector<PatternImage> ref, cand;
   for (const auto& p : reference) ref.push_back(render(p));
   for (const auto& p : candidate) cand.push_back(render(p));
   return error(ref, cand);
 }
 
-ImageError ImageErrorMeter::error(const std::vector<PatternImage>& reference, const std::vector<PatternImage>& candidate) const {
+ImageError ImageErrorMeter::error(const std::vector<PatternImage>& reference,
+                                  const std::vector<PatternImage>& candidate) const {
   if (reference.size() != candidate.size())
-    throw InvalidInput("candidate channels", std::to_string(candidate.size()), std::to_string(reference.size()) + " (the reference's)");
+    throw InvalidInput("candidate channels", std::to_string(candidate.size()),
+                       std::to_string(reference.size()) + " (the reference's)");
   ImageError result;
   result.error = -1;
   for (std::size_t c = 0; c < reference.size(); ++c) {
     const PatternImage &ref = reference[c], &cand = candidate[c];
-    const auto compare = [&](const std::vector<double>& a, const std::vector<double>& a_err, const std::vector<double>& b, const char* name) {
+    const auto compare = [&](const std::vector<double>& a, const std::vector<double>& a_err,
+                             const std::vector<double>& b, const char* name) {
       // sRGB's slope is largest (12.92) at black, so 255 x 12.92 x a linear difference bounds the
       // code difference: pixels whose bound cannot raise the maximum skip the two pow()s.
       constexpr double kMaxCodeSlope = 255 * 12.92;

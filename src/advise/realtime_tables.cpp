@@ -54,11 +54,13 @@ std::vector<PatternImage> render_separable(const ImageErrorMeter& meter, const S
   std::vector<double> offset;
   for (double o : kernel.offset) offset.push_back(o * kernel.options.range);
   std::vector<PatternImage> images;
-  for (std::size_t c = 0; c < kernel.weight.size(); ++c) images.push_back(meter.render_taps(offset, kernel.weight[c], kernel.total_reflectance[c]));
+  for (std::size_t c = 0; c < kernel.weight.size(); ++c)
+    images.push_back(meter.render_taps(offset, kernel.weight[c], kernel.total_reflectance[c]));
   return images;
 }
 
-SeparableChoice choose_separable_kernel(const Medium& medium, const std::vector<std::optional<ProjectedProfile>>& profiles,
+SeparableChoice choose_separable_kernel(const Medium& medium,
+                                        const std::vector<std::optional<ProjectedProfile>>& profiles,
                                         const RealtimeJudge& judge, double tolerance) {
   // The band's half-width per band, once (each kernel would search it again).
   std::vector<double> range(kSeparableBands.size(), 0.0);
@@ -85,11 +87,15 @@ SeparableChoice choose_separable_kernel(const Medium& medium, const std::vector<
   return best;
 }
 
-double preintegrated_table_error(const PreintegratedTable& table, const PreintegratedTable& finer, const std::vector<double>& albedo) {
-  const std::size_t W = table.options.width, H = table.options.height, FW = finer.options.width, FH = finer.options.height;
+double preintegrated_table_error(const PreintegratedTable& table, const PreintegratedTable& finer,
+                                 const std::vector<double>& albedo) {
+  const std::size_t W = table.options.width, H = table.options.height, FW = finer.options.width,
+                    FH = finer.options.height;
   // Texel-centre coordinates of the finer table in the coarser one's texel index, clamped (a
   // clamp-to-edge bilinear fetch).
-  const auto coordinate = [](double u01, std::size_t n) { return std::clamp(u01 * static_cast<double>(n) - 0.5, 0.0, static_cast<double>(n - 1)); };
+  const auto coordinate = [](double u01, std::size_t n) {
+    return std::clamp(u01 * static_cast<double>(n) - 0.5, 0.0, static_cast<double>(n - 1));
+  };
   double worst = 0;
   for (std::size_t c = 0; c < table.value.size(); ++c)
     for (std::size_t j = 0; j < FH; ++j) {
@@ -102,7 +108,8 @@ double preintegrated_table_error(const PreintegratedTable& table, const Preinteg
         const auto i0 = std::min(static_cast<std::size_t>(x), W - 2);
         const double tx = x - static_cast<double>(i0);
         const auto& v = table.value[c];
-        const double bottom = (1 - tx) * v[j0 * W + i0] + tx * v[j0 * W + i0 + 1], top = (1 - tx) * v[j1 * W + i0] + tx * v[j1 * W + i0 + 1];
+        const double bottom = (1 - tx) * v[j0 * W + i0] + tx * v[j0 * W + i0 + 1],
+                     top = (1 - tx) * v[j1 * W + i0] + tx * v[j1 * W + i0 + 1];
         const double D = (1 - ty) * bottom + ty * top, exact = finer.value[c][j * FW + i];
         worst = std::max(worst, 255 * std::abs(srgb_encode(albedo[c] * D) - srgb_encode(albedo[c] * exact)));
       }
@@ -129,7 +136,8 @@ ImageError preintegrated_image(const RealtimeJudge& judge, const PreintegratedTa
 
 }  // namespace
 
-PreintegratedChoice choose_preintegrated_table(const Medium& medium, const std::vector<std::optional<ProjectedProfile>>& profiles,
+PreintegratedChoice choose_preintegrated_table(const Medium& medium,
+                                               const std::vector<std::optional<ProjectedProfile>>& profiles,
                                                const RealtimeJudge& judge, double tolerance, bool stop_at_flat_error) {
   const auto build = [&](std::size_t n, double curvature_max) {
     PreintegratedOptions options;
@@ -151,7 +159,8 @@ PreintegratedChoice choose_preintegrated_table(const Medium& medium, const std::
     choice.meets_tolerance = choice.image.error <= tolerance;
     // A larger table cannot help once its interpolation is within the tolerance or below the flat
     // patterns' error (which no table size changes: the LUT does not carry light across the edge).
-    if (choice.table_error <= (stop_at_flat_error ? std::max(tolerance, choice.image.error) : tolerance) || n == kPreintegratedSizes.back())
+    if (choice.table_error <= (stop_at_flat_error ? std::max(tolerance, choice.image.error) : tolerance) ||
+        n == kPreintegratedSizes.back())
       return choice;
     if (choice.image.error < best.image.error) best = choice;
     table = std::move(finer);
@@ -159,11 +168,13 @@ PreintegratedChoice choose_preintegrated_table(const Medium& medium, const std::
   return best;
 }
 
-std::vector<AnnularProfile> gaussian_sum_profiles(const Medium& medium, const Model& model, int count, const std::vector<double>& edges) {
+std::vector<AnnularProfile> gaussian_sum_profiles(const Medium& medium, const Model& model, int count,
+                                                  const std::vector<double>& edges) {
   return gaussian_annuli(fitted_mixture_table(medium, model, count, kGaussianFitSamples), edges);
 }
 
-std::vector<AnnularProfile> radial_table_profiles(const Medium& medium, const Model& model, std::size_t radii, const std::vector<double>& edges) {
+std::vector<AnnularProfile> radial_table_profiles(const Medium& medium, const Model& model, std::size_t radii,
+                                                  const std::vector<double>& edges) {
   std::vector<AnnularProfile> profiles;
   for (std::size_t c = 0; c < medium.channels(); ++c) {
     const auto table = radial_table(model, medium.reduced(c), radii);
@@ -177,7 +188,8 @@ namespace {
 // stop_early: give up once a size no longer cuts the error by 10 % (for the Gaussian fits, whose
 // cost grows fast with the count, and whose error then is the fitted model's own).
 template <class Sizes, class Profiles>
-CountChoice smallest_within(const Sizes& sizes, const RealtimeJudge& judge, double tolerance, bool stop_early, const Profiles& profiles) {
+CountChoice smallest_within(const Sizes& sizes, const RealtimeJudge& judge, double tolerance, bool stop_early,
+                            const Profiles& profiles) {
   CountChoice best;
   best.image.error = INFINITY;
   for (auto n : sizes) {
@@ -191,16 +203,21 @@ CountChoice smallest_within(const Sizes& sizes, const RealtimeJudge& judge, doub
 
 }  // namespace
 
-CountChoice choose_gaussian_count(const Medium& medium, const Model& model, const RealtimeJudge& judge, double tolerance) {
-  return smallest_within(kGaussianCounts, judge, tolerance, true, [&](int k) { return gaussian_sum_profiles(medium, model, k, judge.meter.edges()); });
+CountChoice choose_gaussian_count(const Medium& medium, const Model& model, const RealtimeJudge& judge,
+                                  double tolerance) {
+  return smallest_within(kGaussianCounts, judge, tolerance, true,
+                         [&](int k) { return gaussian_sum_profiles(medium, model, k, judge.meter.edges()); });
 }
 
-CountChoice choose_radial_table_size(const Medium& medium, const Model& model, const RealtimeJudge& judge, double tolerance) {
+CountChoice choose_radial_table_size(const Medium& medium, const Model& model, const RealtimeJudge& judge,
+                                     double tolerance) {
   return smallest_within(kRadialTableSizes, judge, tolerance, false,
                          [&](std::size_t n) { return radial_table_profiles(medium, model, n, judge.meter.edges()); });
 }
 
-ImageError image_error_of(const RealtimeJudge& judge, const SeparableKernel& kernel) { return judge.error(render_separable(judge.meter, kernel)); }
+ImageError image_error_of(const RealtimeJudge& judge, const SeparableKernel& kernel) {
+  return judge.error(render_separable(judge.meter, kernel));
+}
 
 ImageError image_error_of(const RealtimeJudge& judge, const GaussianMixtureTable& table) {
   return judge.error(gaussian_annuli(table, judge.meter.edges()));
@@ -209,7 +226,8 @@ ImageError image_error_of(const RealtimeJudge& judge, const GaussianMixtureTable
 ImageError image_error_of(const RealtimeJudge& judge, const RadialTable& table) {
   std::vector<AnnularProfile> profiles;
   for (std::size_t c = 0; c < table.channel_names.size(); ++c)
-    profiles.push_back(annuli_of(judge.meter.edges(), [&](double r) { return table.interpolate(c, r); }, 0));
+    profiles.push_back(annuli_of(
+        judge.meter.edges(), [&](double r) { return table.interpolate(c, r); }, 0));
   return judge.error(profiles);
 }
 
@@ -218,11 +236,12 @@ ImageError image_error_of(const RealtimeJudge& judge, const PreintegratedTable& 
   PreintegratedOptions finer = table.options;
   finer.width = std::min<std::size_t>(2 * finer.width, 8192);
   finer.height = std::min<std::size_t>(2 * finer.height, 8192);
-  return preintegrated_image(judge, table, preintegrated_table_error(table, build_preintegrated_table(medium, profiles, finer), judge.albedo));
+  return preintegrated_image(
+      judge, table, preintegrated_table_error(table, build_preintegrated_table(medium, profiles, finer), judge.albedo));
 }
 
-RadialToleranceChoice choose_radial_tolerance(const Medium& medium, const Model& model, const RealtimeJudge& judge, double tolerance,
-                                              RadialTableOptions options) {
+RadialToleranceChoice choose_radial_tolerance(const Medium& medium, const Model& model, const RealtimeJudge& judge,
+                                              double tolerance, RadialTableOptions options) {
   RadialToleranceChoice best;
   best.image.error = INFINITY;
   for (double relative : {1e-1, 3e-2, 1e-2, 3e-3, 1e-3, 3e-4, 1e-4}) {

@@ -34,7 +34,8 @@ std::vector<double> reference_annuli(const Medium& medium, std::size_t bins_per_
   const double r_min = 1e-3 * transport_mfp_range(medium).min;
   double r_max = 0;
   for (std::size_t c = 0; c < medium.channels(); ++c) r_max = std::max(r_max, profile_extent(medium.reduced(c)));
-  const auto geometric = static_cast<std::size_t>(std::ceil(std::log10(r_max / r_min) * static_cast<double>(bins_per_decade)));
+  const auto geometric =
+      static_cast<std::size_t>(std::ceil(std::log10(r_max / r_min) * static_cast<double>(bins_per_decade)));
   std::vector<double> edges{0.0};
   for (std::size_t j = 0; j <= geometric; ++j)
     edges.push_back(r_min * std::pow(r_max / r_min, static_cast<double>(j) / static_cast<double>(geometric)));
@@ -67,7 +68,8 @@ ReferenceProfiles MonteCarloReference::profiles(const Medium& medium) const {
     p.energy_stderr.push_back(0.0);  // tiny (30 ell); its error is in the total's
     out.channels.push_back(std::move(p));
   }
-  out.description = "Monte Carlo, " + std::to_string(options_.photons) + " photons per channel, seed " + std::to_string(options_.seed);
+  out.description = "Monte Carlo, " + std::to_string(options_.photons) + " photons per channel, seed " +
+                    std::to_string(options_.seed);
   out.seconds = seconds_since(start);
   return out;
 }
@@ -78,7 +80,8 @@ ReferenceProfiles ModelReference::profiles(const Medium& medium) const {
   ReferenceProfiles out;
   for (std::size_t c = 0; c < medium.channels(); ++c) {
     const auto m = medium.reduced(c);
-    out.channels.push_back(annuli_of(edges, [&](double r) { return model_->reflectance(m, r); }, model_->total_reflectance(m)));
+    out.channels.push_back(annuli_of(
+        edges, [&](double r) { return model_->reflectance(m, r); }, model_->total_reflectance(m)));
   }
   out.description = "model " + model_->name();
   out.seconds = seconds_since(start);

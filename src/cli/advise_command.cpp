@@ -32,7 +32,8 @@ double parse_length(const std::string& text, const std::string& field, LengthUni
     }
   }
   const double value = parse_number(number, field);
-  if (!(value > 0) || !std::isfinite(value)) throw InvalidInput(field, text, "a length > 0 with an optional unit um, mm, cm or m (e.g. 0.1mm)");
+  if (!(value > 0) || !std::isfinite(value))
+    throw InvalidInput(field, text, "a length > 0 with an optional unit um, mm, cm or m (e.g. 0.1mm)");
   return to_mm(value, unit);
 }
 
@@ -47,17 +48,21 @@ Action register_advise(CLI::App& app) {
     unsigned threads = 0;
   };
   auto options = std::make_shared<Options>();
-  auto* sub = app.add_subcommand("advise",
-                                 "The cheapest representation that looks right at a pixel size: every candidate's image-space "
-                                 "error (8-bit sRGB code values at a shadow edge and a one-pixel light line) against the reference");
+  auto* sub = app.add_subcommand(
+      "advise",
+      "The cheapest representation that looks right at a pixel size: every candidate's image-space "
+      "error (8-bit sRGB code values at a shadow edge and a one-pixel light line) against the reference");
   options->medium.add_to(*sub);
-  sub->add_option("--pixel", options->pixel, "Pixel footprint on the surface, with an optional unit (0.1mm, 20um); bare: --unit")
+  sub->add_option("--pixel", options->pixel,
+                  "Pixel footprint on the surface, with an optional unit (0.1mm, 20um); bare: --unit")
       ->required();
   sub->add_option("--tolerance", options->tolerance, "Largest acceptable image error, 8-bit sRGB code values [1]");
   sub->add_option("--target", options->target, "realtime, offline or any [any]");
-  sub->add_option("--object-size", options->object_size, "Size of the object, with an optional unit: flags profiles wider than it");
+  sub->add_option("--object-size", options->object_size,
+                  "Size of the object, with an optional unit: flags profiles wider than it");
   sub->add_flag("--all", options->all, "Every material of the database, one line each");
-  sub->add_option("--write", options->write, "Write the chosen representation's table into this directory (bssrdf-lut JSON)")
+  sub->add_option("--write", options->write,
+                  "Write the chosen representation's table into this directory (bssrdf-lut JSON)")
       ->check(file_name("--write"));
   sub->add_option("--reference", options->reference,
                   "What candidates are judged against: exact (the tabulated transport solution), montecarlo (a run per "
@@ -66,7 +71,8 @@ Action register_advise(CLI::App& app) {
   add_count_option(*sub, "--photons,-n", options->photons, 1000, kMaxPhotons,
                    "Monte Carlo reference: photons per channel [200000]");
   add_count_option(*sub, "--seed", options->seed, 0, kMaxSeed, "Monte Carlo reference: random seed [1]");
-  add_count_option(*sub, "--threads,-j", options->threads, 0, kMaxThreads, "Worker threads, 0 = all cores; never changes the result [0]");
+  add_count_option(*sub, "--threads,-j", options->threads, 0, kMaxThreads,
+                   "Worker threads, 0 = all cores; never changes the result [0]");
   sub->add_option("--format,-f", options->format, "table or json [table]")->check(CLI::IsMember({"table", "json"}));
 
   return [options] {
@@ -75,7 +81,8 @@ Action register_advise(CLI::App& app) {
     AdviseOptions a;
     a.pixel = parse_length(o.pixel, "--pixel", unit);
     a.tolerance = parse_number(o.tolerance, "--tolerance");
-    if (!(a.tolerance > 0) || !std::isfinite(a.tolerance)) throw InvalidInput("--tolerance", o.tolerance, "> 0 (8-bit sRGB code values)");
+    if (!(a.tolerance > 0) || !std::isfinite(a.tolerance))
+      throw InvalidInput("--tolerance", o.tolerance, "> 0 (8-bit sRGB code values)");
     a.target = parse_advise_target(o.target);
     if (!o.object_size.empty()) a.object_size = parse_length(o.object_size, "--object-size", unit);
     const MonteCarloReference monte_carlo({o.photons, o.seed, o.threads});
@@ -88,8 +95,9 @@ Action register_advise(CLI::App& app) {
       for (std::size_t c = 0; c < medium.channels(); ++c)
         if (const auto report = exact_model->validity(medium.reduced(c)); worst(report) == Severity::invalid) {
           if (o.reference == "exact")
-            throw InvalidInput("--reference", "exact", "media inside the exact table (channel " + medium.channel_names[c] +
-                                                           ": " + report.front().message + "); use --reference montecarlo");
+            throw InvalidInput("--reference", "exact",
+                               "media inside the exact table (channel " + medium.channel_names[c] + ": " +
+                                   report.front().message + "); use --reference montecarlo");
           return monte_carlo;
         }
       return exact;
@@ -102,10 +110,12 @@ Action register_advise(CLI::App& app) {
         throw InvalidInput("--all", "with a medium", "alone (it advises on every material of the database)");
       const auto database = MaterialDatabase::load_with_user(o.medium.db);
       std::ostringstream out;
-      if (json) out << "[\n";
+      if (json)
+        out << "[\n";
       else
-        out << std::left << std::setw(28) << "material" << std::setw(36) << "choice" << std::right << std::setw(8) << "error"
-            << std::setw(9) << "cost_ns" << std::setw(8) << "noise" << std::setw(8) << "ref_s" << "\n";
+        out << std::left << std::setw(28) << "material" << std::setw(36) << "choice" << std::right << std::setw(8)
+            << "error" << std::setw(9) << "cost_ns" << std::setw(8) << "noise" << std::setw(8) << "ref_s"
+            << "\n";
       bool first = true;
       for (const auto& material : database.all()) {
         const Advice advice = advise(material.medium, reference_for(material.medium), a);
@@ -113,10 +123,10 @@ Action register_advise(CLI::App& app) {
           out << (first ? "" : ",\n") << to_json(advice, material.name);
         } else {
           const auto* c = advice.choice ? &advice.candidates[*advice.choice] : nullptr;
-          out << std::left << std::setw(28) << material.name << std::setw(36) << (c ? c->representation : "(none)") << std::right
-              << std::fixed << std::setprecision(3) << std::setw(8) << (c ? c->image.error : 0.0) << std::setprecision(0) << std::setw(9)
-              << (c ? c->cost : 0.0) << std::setprecision(3) << std::setw(8) << advice.reference_noise << std::setprecision(2)
-              << std::setw(8) << advice.reference_seconds << "\n";
+          out << std::left << std::setw(28) << material.name << std::setw(36) << (c ? c->representation : "(none)")
+              << std::right << std::fixed << std::setprecision(3) << std::setw(8) << (c ? c->image.error : 0.0)
+              << std::setprecision(0) << std::setw(9) << (c ? c->cost : 0.0) << std::setprecision(3) << std::setw(8)
+              << advice.reference_noise << std::setprecision(2) << std::setw(8) << advice.reference_seconds << "\n";
         }
         first = false;
       }
@@ -129,7 +139,9 @@ Action register_advise(CLI::App& app) {
     const Advice advice = advise(resolved.medium, reference_for(resolved.medium), a);
     std::string written;
     if (!o.write.empty())  // before printing, so a failure prints nothing
-      written = write_advised_file(o.write, name, resolved.medium, resolved.material, advice, {o.photons, o.seed, o.threads}).string();
+      written =
+          write_advised_file(o.write, name, resolved.medium, resolved.material, advice, {o.photons, o.seed, o.threads})
+              .string();
     std::cout << (json ? to_json(advice, name) : to_table(advice, name));
     if (!written.empty() && !json) std::cout << "wrote: " << written << "\n";
   };

@@ -2,10 +2,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <optional>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "bssrdf/advise/validity_map.hpp"
 #include "bssrdf/error.hpp"
@@ -30,26 +30,39 @@ void print_estimates(const MediumOptions& options, const std::string& accuracy_t
   const auto estimates = estimate_model_errors(resolved.medium);  // outside the measured ranges: the error says why
   const std::string chosen = cheapest_within(estimates, accuracy).value_or("");  // what --model auto picks
   if (json) {
-    nlohmann::json doc = {{"accuracy", accuracy}, {"chosen", chosen.empty() ? nlohmann::json(nullptr) : nlohmann::json(chosen)}};
+    nlohmann::json doc = {{"accuracy", accuracy},
+                          {"chosen", chosen.empty() ? nlohmann::json(nullptr) : nlohmann::json(chosen)}};
     for (const auto& e : estimates)
-      doc["models"].push_back({{"name", e.model}, {"cost_ns", e.cost_ns}, {"total_error", e.total_error}, {"profile_l2_error", e.profile_error},
-                                  {"near_l2_error", e.near_error}, {"far_l2_error", e.far_error}, {"measured_against", e.source},
-                                  {"invalid", e.invalid.empty() ? nlohmann::json(nullptr) : nlohmann::json(e.invalid)}});
+      doc["models"].push_back({{"name", e.model},
+                               {"cost_ns", e.cost_ns},
+                               {"total_error", e.total_error},
+                               {"profile_l2_error", e.profile_error},
+                               {"near_l2_error", e.near_error},
+                               {"far_l2_error", e.far_error},
+                               {"measured_against", e.source},
+                               {"invalid", e.invalid.empty() ? nlohmann::json(nullptr) : nlohmann::json(e.invalid)}});
     std::cout << doc.dump(2) << '\n';
     return;
   }
   const std::string source = estimates.front().source;
-  std::cout << (source == "exact"   ? "measured live against the exact model at this medium (worst channel; exact: its own accuracy against "
-                                      "Monte Carlo), R(r) L2 = the larger of near and far field, cheapest first:\n"
-                : source == "table" ? "measured against Monte Carlo at the cases bracketing this medium (worst channel), cheapest first:\n"
-                                    : "measured against the exact model where a channel is inside its domain, else against Monte Carlo at the "
-                                      "cases bracketing it (worst channel), cheapest first:\n")
-            << "  model               ns/eval   total   R(r) L2\n";
+  std::cout
+      << (source == "exact"
+              ? "measured live against the exact model at this medium (worst channel; exact: its own accuracy against "
+                "Monte Carlo), R(r) L2 = the larger of near and far field, cheapest first:\n"
+          : source == "table"
+              ? "measured against Monte Carlo at the cases bracketing this medium (worst channel), cheapest first:\n"
+              : "measured against the exact model where a channel is inside its domain, else against Monte Carlo at "
+                "the "
+                "cases bracketing it (worst channel), cheapest first:\n")
+      << "  model               ns/eval   total   R(r) L2\n";
   for (const auto& e : estimates) {
     char line[160];
-    std::snprintf(line, sizeof line, "  %-18s %8.0f  %5.1f %%  %6.1f %%", e.model.c_str(), e.cost_ns, 100 * e.total_error, 100 * e.profile_error);
+    std::snprintf(line, sizeof line, "  %-18s %8.0f  %5.1f %%  %6.1f %%", e.model.c_str(), e.cost_ns,
+                  100 * e.total_error, 100 * e.profile_error);
     std::cout << line << (e.model == chosen ? "   <- cheapest within " + format_number(100 * accuracy) + " %" : "")
-              << (e.invalid.empty() ? "" : "   invalid here (" + e.invalid.substr(0, e.invalid.find(": ", e.invalid.find(": ") + 2)) + ")")
+              << (e.invalid.empty()
+                      ? ""
+                      : "   invalid here (" + e.invalid.substr(0, e.invalid.find(": ", e.invalid.find(": ") + 2)) + ")")
               << '\n';
   }
   if (chosen.empty()) std::cout << "no model is measured within " << format_number(100 * accuracy) << " % here\n";
@@ -82,7 +95,8 @@ Chart speed_accuracy_chart(const std::optional<MediumOptions::Resolved>& medium)
     chart.title = "Speed against accuracy of the profile models";
     chart.notes = {"markers: medians over " + std::to_string(measured_models().front().profile_error.size()) +
                        " Monte Carlo cases (alpha' 0.5-0.999, eta 1-1.5, g 0, 0.9, 0.95, 2M photons each);",
-                   "bars: best to worst case of R(r)'s L2 error; errors below 0.1 % drawn at 0.1 % (models_vs_montecarlo_extended.tsv)"};
+                   "bars: best to worst case of R(r)'s L2 error; errors below 0.1 % drawn at 0.1 % "
+                   "(models_vs_montecarlo_extended.tsv)"};
     const auto median = [](std::vector<double> v) {
       std::sort(v.begin(), v.end());
       return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
@@ -105,29 +119,36 @@ Action register_models(CLI::App& app) {
   auto json = std::make_shared<bool>(false);
   auto medium = std::make_shared<MediumOptions>();
   auto accuracy = std::make_shared<std::string>();
-  auto* sub = app.add_subcommand("models", "List the profile models: what each includes and where it holds; with a medium, "
-                                           "each one's measured error there and the cheapest within --accuracy");
+  auto* sub = app.add_subcommand("models",
+                                 "List the profile models: what each includes and where it holds; with a medium, "
+                                 "each one's measured error there and the cheapest within --accuracy");
   sub->add_flag("--json", *json, "Print JSON");
   medium->add_to(*sub);
   sub->add_option("--accuracy", *accuracy, "With a medium: relative error allowed (total and R(r) L2) [0.1]");
   auto chart = std::make_shared<std::string>();
-  sub->add_option("--chart", *chart, "Write an SVG chart of cost against measured error (over all measured cases, or for the medium)");
+  sub->add_option("--chart", *chart,
+                  "Write an SVG chart of cost against measured error (over all measured cases, or for the medium)");
   auto map = std::make_shared<ValidityMapOptions>();
   auto map_file = std::make_shared<std::string>();
-  sub->add_option("--map", *map_file, "Write validity maps (FILE.svg or FILE.png): each model's error over a parameter plane and the cheapest within the tolerance, materials marked");
+  sub->add_option("--map", *map_file,
+                  "Write validity maps (FILE.svg or FILE.png): each model's error over a parameter plane and the "
+                  "cheapest within the tolerance, materials marked");
   sub->add_option("--over", map->over, "--map: the plane, albedo,eta (g = 0) or albedo,g (eta = 1.3) [albedo,eta]");
-  sub->add_option("--metric", map->metric,
-                  "--map: total or profile (measured relative errors against Monte Carlo; cheapest within --accuracy), or image "
-                  "(8-bit sRGB code values against a Monte Carlo run per cell; cheapest within --tolerance) [profile]");
+  sub->add_option(
+      "--metric", map->metric,
+      "--map: total or profile (measured relative errors against Monte Carlo; cheapest within --accuracy), or image "
+      "(8-bit sRGB code values against a Monte Carlo run per cell; cheapest within --tolerance) [profile]");
   auto tolerance = std::make_shared<std::string>("1");
   sub->add_option("--tolerance", *tolerance, "--map --metric image: largest acceptable image error, code values [1]");
   sub->add_option("--pixel", map->pixel, "--map --metric image: pixel size in transport mean free paths [1]");
   auto photons = std::make_shared<std::uint64_t>(20'000);
-  add_count_option(*sub, "--photons,-n", *photons, 1000, kMaxPhotons, "--map --metric image: Monte Carlo photons per cell [20000]");
+  add_count_option(*sub, "--photons,-n", *photons, 1000, kMaxPhotons,
+                   "--map --metric image: Monte Carlo photons per cell [20000]");
   return [json, medium, accuracy, chart, map, map_file, tolerance, photons] {
     if (!map_file->empty()) {  // validity maps (advise/validity_map.hpp)
       map->extension = std::filesystem::path(*map_file).extension().string();
-      if (map->extension != ".svg" && map->extension != ".png") throw InvalidInput("--map", "'" + *map_file + "'", "a file ending in .svg or .png");
+      if (map->extension != ".svg" && map->extension != ".png")
+        throw InvalidInput("--map", "'" + *map_file + "'", "a file ending in .svg or .png");
       map->tolerance = map->metric == "image" ? parse_number(*tolerance, "--tolerance") : parse_accuracy(*accuracy);
       const auto database = MaterialDatabase::load_with_user(medium->db);
       const MonteCarloReference reference({*photons, 1, 0});
@@ -136,7 +157,8 @@ Action register_models(CLI::App& app) {
       return;
     }
     if (!chart->empty()) {
-      if (std::filesystem::path(*chart).extension() != ".svg") throw InvalidInput("--chart", "'" + *chart + "'", "a file ending in .svg");
+      if (std::filesystem::path(*chart).extension() != ".svg")
+        throw InvalidInput("--chart", "'" + *chart + "'", "a file ending in .svg");
       std::optional<MediumOptions::Resolved> resolved;
       if (!medium->material.empty() || !medium->sigma_a.empty()) resolved = medium->resolve();
       write_file_atomically(*chart, render_svg(speed_accuracy_chart(resolved)));
@@ -154,15 +176,17 @@ Action register_models(CLI::App& app) {
       const auto within = [&](const std::vector<AccuracyBand>& bands, double tolerance) {
         double lowest = 1;
         for (const auto& band : bands)
-          if (band.worst_error <= tolerance) lowest = band.min_albedo_prime;
-          else break;
+          if (band.worst_error <= tolerance)
+            lowest = band.min_albedo_prime;
+          else
+            break;
         return lowest;
       };
       std::string domain = "total not measured against adding-doubling";
       if (const auto& limits = entry.limits) {
         const double iso = within(limits->isotropic_bands, 0.05), fwd = within(limits->forward_bands, 0.05);
-        domain = "total within 5 % of adding-doubling for alpha' >= " + format_number(iso) + " (g = 0), >= " +
-                 format_number(fwd) + " (g = 0.9); eta 1-1.4";
+        domain = "total within 5 % of adding-doubling for alpha' >= " + format_number(iso) +
+                 " (g = 0), >= " + format_number(fwd) + " (g = 0.9); eta 1-1.4";
         if (iso == 1 && fwd == 1) domain = "total not within 5 % of adding-doubling anywhere measured";
       }
       if (*json) {

@@ -1,13 +1,13 @@
 #include "cli_common.hpp"
 
+#include <unistd.h>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <filesystem>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
-#include <unistd.h>
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/io/atomic_file.hpp"
@@ -48,7 +48,8 @@ double parse_number(const std::string& text, const std::string& field) {
 double parse_length(const std::string& text, const std::string& field) {
   const double v = parse_number(text, field);
   if (!(std::abs(v) <= kMaxLength))
-    throw InvalidInput(field, format_number(v), "at most " + format_number(kMaxLength) + " (in the length unit; omit it for the default)");
+    throw InvalidInput(field, format_number(v),
+                       "at most " + format_number(kMaxLength) + " (in the length unit; omit it for the default)");
   return v;
 }
 
@@ -56,15 +57,20 @@ std::vector<double> parse_length_list(const std::string& text, const std::string
   auto values = parse_number_list(text, field);
   for (double v : values)
     if (!(std::abs(v) <= kMaxLength))
-      throw InvalidInput(field, format_number(v), "at most " + format_number(kMaxLength) + " each (in the length unit)");
+      throw InvalidInput(field, format_number(v),
+                         "at most " + format_number(kMaxLength) + " each (in the length unit)");
   return values;
 }
 
-std::string count_range(std::int64_t min, std::int64_t max) { return std::to_string(min) + " to " + std::to_string(max); }
+std::string count_range(std::int64_t min, std::int64_t max) {
+  return std::to_string(min) + " to " + std::to_string(max);
+}
 
 std::int64_t parse_count(const std::string& text, const std::string& field, std::int64_t min, std::int64_t max) {
   const std::string t = trim(text);
-  const auto refuse = [&] { return InvalidInput(field, "'" + text + "'", "a whole number from " + count_range(min, max)); };
+  const auto refuse = [&] {
+    return InvalidInput(field, "'" + text + "'", "a whole number from " + count_range(min, max));
+  };
   std::int64_t value = 0;
   const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
   if (!t.empty() && ec == std::errc() && ptr == t.data() + t.size()) {
@@ -123,7 +129,8 @@ MediumOptions::Resolved MediumOptions::resolve() const {
     const std::size_t n = a.size();
     out.medium.sigma_a = a;
     out.medium.sigma_s = per_channel(parse_number_list(sigma_s, "--sigma-s"), n, "--sigma-s", "--sigma-a");
-    out.medium.g = g.empty() ? std::vector<double>(n, 0.0) : per_channel(parse_number_list(g, "--g"), n, "--g", "--sigma-a");
+    out.medium.g =
+        g.empty() ? std::vector<double>(n, 0.0) : per_channel(parse_number_list(g, "--g"), n, "--g", "--sigma-a");
     if (channels.empty()) {
       out.medium.channel_names = default_channel_names(n);
     } else {
@@ -155,7 +162,8 @@ MediumOptions::Resolved MediumOptions::resolve() const {
       if (next != '[' && next != ' ') continue;
       std::string option = "--" + field;
       std::replace(option.begin(), option.end(), '_', '-');
-      message = (out.material ? "material " + out.material->name + ": " + field : option) + message.substr(field.size());
+      message =
+          (out.material ? "material " + out.material->name + ": " + field : option) + message.substr(field.size());
       if (!out.material) {
         const auto plus = message.find(" + sigma_s[");
         if (plus != std::string::npos) message.replace(plus, 11, " + --sigma-s[");
@@ -172,8 +180,8 @@ MediumOptions::Resolved MediumOptions::resolve() const {
   return out;
 }
 
-std::vector<double> slab_thicknesses(const std::string& list, const std::string& d_min, const std::string& d_max, int samples,
-                                     LengthUnit unit, const SlabThicknessRange& defaults) {
+std::vector<double> slab_thicknesses(const std::string& list, const std::string& d_min, const std::string& d_max,
+                                     int samples, LengthUnit unit, const SlabThicknessRange& defaults) {
   if (!list.empty()) {
     if (!d_min.empty() || !d_max.empty()) throw InvalidInput("--thickness: give either --thickness or --d-min/--d-max");
     auto thickness = parse_length_list(list, "--thickness");
@@ -249,7 +257,8 @@ std::function<void(std::uint64_t, std::uint64_t)> progress_bar(const std::string
 
 double parse_accuracy(const std::string& text) {
   const double a = text.empty() ? 0.1 : parse_number(text, "--accuracy");
-  if (!(a > 0 && a < 10)) throw InvalidInput("--accuracy", format_number(a), "0 < accuracy < 10 (relative error, e.g. 0.05)");
+  if (!(a > 0 && a < 10))
+    throw InvalidInput("--accuracy", format_number(a), "0 < accuracy < 10 (relative error, e.g. 0.05)");
   return a;
 }
 
@@ -266,7 +275,8 @@ ChosenModel resolve_model(const std::string& name, const std::string& accuracy, 
     rejected += (rejected.empty() ? "" : ", ") + e.model + " " +
                 (e.invalid.empty() ? format_number(std::round(e.error() * 1000) / 10) + " %" : "invalid here");
   }
-  const auto& chosen = *std::find_if(choice.estimates.begin(), choice.estimates.end(), [&](const auto& e) { return e.model == choice.model; });
+  const auto& chosen = *std::find_if(choice.estimates.begin(), choice.estimates.end(),
+                                     [&](const auto& e) { return e.model == choice.model; });
   return {choice.model, "auto: " + choice.model + ", the cheapest measured within " + format_number(a * 100) +
                             " % of Monte Carlo for this medium (worst channel: total " +
                             format_number(std::round(chosen.total_error * 1000) / 10) + " %, profile L2 " +

@@ -44,13 +44,17 @@ std::int64_t parse_count(const std::string& text, const std::string& field, std:
 // A count option (photons, bins, samples, seed, threads) bound to `value` through parse_count; the
 // accepted range is appended to the help text and quoted by the error.
 template <class Integer>
-CLI::Option* add_count_option(CLI::App& app, const std::string& names, Integer& value, std::int64_t min, std::int64_t max,
-                              const std::string& help) {
+CLI::Option* add_count_option(CLI::App& app, const std::string& names, Integer& value, std::int64_t min,
+                              std::int64_t max, const std::string& help) {
   const auto long_name = names.find("--");  // errors quote the long name when there is one
-  const std::string field = long_name == std::string::npos ? names.substr(0, names.find(','))
-                                                           : names.substr(long_name, names.find(',', long_name) - long_name);
+  const std::string field = long_name == std::string::npos
+                                ? names.substr(0, names.find(','))
+                                : names.substr(long_name, names.find(',', long_name) - long_name);
   return app.add_option_function<std::string>(
-      names, [&value, field, min, max](const std::string& text) { value = static_cast<Integer>(parse_count(text, field, min, max)); },
+      names,
+      [&value, field, min, max](const std::string& text) {
+        value = static_cast<Integer>(parse_count(text, field, min, max));
+      },
       help + " (" + count_range(min, max) + ")");
 }
 
@@ -82,13 +86,14 @@ double parse_accuracy(const std::string& text);
 // Slab thicknesses in --unit: `list` (--thickness, comma-separated), else `samples` thicknesses
 // log-spaced from --d-min to --d-max, each empty one taken from `defaults` (mm, the library's rule:
 // default_thickness_range). Throws InvalidInput naming the option.
-std::vector<double> slab_thicknesses(const std::string& list, const std::string& d_min, const std::string& d_max, int samples,
-                                     LengthUnit unit, const SlabThicknessRange& defaults);
+std::vector<double> slab_thicknesses(const std::string& list, const std::string& d_min, const std::string& d_max,
+                                     int samples, LengthUnit unit, const SlabThicknessRange& defaults);
 
 // The library's errors name its own fields ("radii", "to", "format"), never a flag: runs f, and an
 // InvalidInput naming a field of `flags` is rethrown naming the command line's flag instead.
 template <class F>
-auto with_flag_names(std::initializer_list<std::pair<std::string_view, std::string_view>> flags, F&& f) -> decltype(f()) {
+auto with_flag_names(std::initializer_list<std::pair<std::string_view, std::string_view>> flags, F&& f)
+    -> decltype(f()) {
   try {
     return f();
   } catch (const InvalidInput& e) {

@@ -28,7 +28,9 @@ std::string encode(const Built& built, const std::string& format, bool half) {
   if (format == "exr") return encode_exr(built.table, half ? ExrPixelType::half : ExrPixelType::float32);
   if (format == "json") return to_json(built.table);
   if (format == "csv") return to_csv(built.table);
-  if (format == "glsl" || format == "hlsl") throw InvalidInput("--format", "'" + format + "'", "exr, json or csv for --kind " + built.table.kind + " (glsl and hlsl: --kind separable)");
+  if (format == "glsl" || format == "hlsl")
+    throw InvalidInput("--format", "'" + format + "'",
+                       "exr, json or csv for --kind " + built.table.kind + " (glsl and hlsl: --kind separable)");
   throw InvalidInput("--format", "'" + format + "'", "exr, json, csv, or glsl/hlsl for --kind separable");
 }
 
@@ -46,7 +48,8 @@ std::string format_for(const LutOptions& o, const std::string& path) {
 // A material's name as a file-name stem: lower case, anything but letters and digits as '-'.
 std::string file_stem(const std::string& material) {
   std::string name;
-  for (char ch : material) name += std::isalnum(static_cast<unsigned char>(ch)) ? static_cast<char>(std::tolower(ch)) : '-';
+  for (char ch : material)
+    name += std::isalnum(static_cast<unsigned char>(ch)) ? static_cast<char>(std::tolower(ch)) : '-';
   return name;
 }
 
@@ -59,14 +62,18 @@ std::string file_name(const std::string& material, const std::string& kind, cons
 // depend on the thread count. A material this kind cannot tabulate (e.g. a channel that does not
 // scatter) is skipped with its reason, one line each on stderr; the others are still written.
 void tabulate_all(const LutOptions& o, const TableKind& kind) {
-  if (!o.medium.material.empty() || !o.medium.sigma_a.empty()) throw InvalidInput("--all: give no --material or coefficients with --all");
+  if (!o.medium.material.empty() || !o.medium.sigma_a.empty())
+    throw InvalidInput("--all: give no --material or coefficients with --all");
   const std::string format = o.format.empty() ? "exr" : o.format;
   const std::filesystem::path dir = o.output_dir.empty() ? "." : o.output_dir;
-  if (!std::filesystem::is_directory(dir)) throw InvalidInput("--output-dir", "'" + dir.string() + "'", "an existing directory");
+  if (!std::filesystem::is_directory(dir))
+    throw InvalidInput("--output-dir", "'" + dir.string() + "'", "an existing directory");
   // With --preview NAME.png each material also gets <material>-NAME.png beside its table.
   if (!o.preview.empty() && std::filesystem::path(o.preview).extension() != ".png")
-    throw InvalidInput("--preview", "'" + o.preview + "'", "a file name ending in .png (with --all: <material>-NAME.png each)");
-  const auto database = MaterialDatabase::load(o.medium.db.empty() ? default_materials_dir() : std::filesystem::path(o.medium.db));
+    throw InvalidInput("--preview", "'" + o.preview + "'",
+                       "a file name ending in .png (with --all: <material>-NAME.png each)");
+  const auto database =
+      MaterialDatabase::load(o.medium.db.empty() ? default_materials_dir() : std::filesystem::path(o.medium.db));
   const auto& materials = database.all();
   const auto progress = progress_bar("lut --all");
   const auto start = std::chrono::steady_clock::now();
@@ -106,7 +113,8 @@ void tabulate_all(const LutOptions& o, const TableKind& kind) {
   for (const auto& line : skipped) std::cerr << "bssrdf: skipped " << line << '\n';
   if (!o.quiet)
     std::cout << written << " " << o.kind << " tables in " << format_number(std::round(seconds * 1000) / 1000) << " s"
-              << (skipped.empty() ? "" : ", " + std::to_string(skipped.size()) + " materials skipped (see stderr)") << "\n";
+              << (skipped.empty() ? "" : ", " + std::to_string(skipped.size()) + " materials skipped (see stderr)")
+              << "\n";
 }
 
 // "[value]" of a library default, for the help texts.
@@ -116,31 +124,46 @@ std::string default_of(double value) { return " [" + format_number(value) + "]";
 
 Action register_lut(CLI::App& app) {
   auto o = std::make_shared<LutOptions>();
-  auto* sub = app.add_subcommand("lut", "Lookup tables for renderers: OpenEXR, JSON or CSV with their conventions recorded");
+  auto* sub =
+      app.add_subcommand("lut", "Lookup tables for renderers: OpenEXR, JSON or CSV with their conventions recorded");
   o->medium.add_to(*sub);
   std::string kinds_help = "Table:";
-  for (const auto& kind : table_kinds()) kinds_help += "\n  " + std::string(kind.name) + ": " + std::string(kind.summary);
+  for (const auto& kind : table_kinds())
+    kinds_help += "\n  " + std::string(kind.name) + ": " + std::string(kind.summary);
   sub->add_option("--kind,-k", o->kind, kinds_help + "\n[radial]");
-  sub->add_option("--layout", o->layout,
-                  "albedo-radius: pbrt (100 x 64, pbrt's spacing), family (--size) or adaptive (--table-tolerance) [pbrt]");
+  sub->add_option(
+      "--layout", o->layout,
+      "albedo-radius: pbrt (100 x 64, pbrt's spacing), family (--size) or adaptive (--table-tolerance) [pbrt]");
   sub->add_option("--table-tolerance", o->table_tolerance,
-                  "albedo-radius --layout adaptive: interpolation error allowed, relative to each row's peak" + default_of(kAdaptiveTableTolerance) +
-                      "; cost grows as 1/tolerance (each axis refined up to 2048 points; minutes at 1e-3, progress shown on a terminal)");
-  sub->add_option("--size", o->size, "albedo-radius with --layout family: ALBEDOSxRADII, e.g. 64x48; preintegrated: N.LxCURVATURES; penumbra: SHADOWSxWIDTHS [256x256]");
+                  "albedo-radius --layout adaptive: interpolation error allowed, relative to each row's peak" +
+                      default_of(kAdaptiveTableTolerance) +
+                      "; cost grows as 1/tolerance (each axis refined up to 2048 points; minutes at 1e-3, progress "
+                      "shown on a terminal)");
+  sub->add_option("--size", o->size,
+                  "albedo-radius with --layout family: ALBEDOSxRADII, e.g. 64x48; preintegrated: N.LxCURVATURES; "
+                  "penumbra: SHADOWSxWIDTHS [256x256]");
   auto* model_option = sub->add_option("--model", o->model,
-                                       "Profile model (see 'bssrdf models'), or auto: the cheapest measured within --accuracy of Monte Carlo here [pbd]");
-  sub->add_option("--accuracy", o->accuracy, "With --model auto: relative error allowed in the total and in R(r) (L2) [0.1]");
+                                       "Profile model (see 'bssrdf models'), or auto: the cheapest measured within "
+                                       "--accuracy of Monte Carlo here [pbd]");
+  sub->add_option("--accuracy", o->accuracy,
+                  "With --model auto: relative error allowed in the total and in R(r) (L2) [0.1]");
   sub->add_option("--tolerance", o->tolerance,
                   "radial: relative interpolation error bound" + default_of(RadialTableOptions{}.tolerance) +
-                      "; albedo-radius: beam-integral quadrature tolerance" + default_of(AlbedoRadiusOptions{}.tolerance) +
-                      "; with --pixel (radial, separable, preintegrated, gaussians): the largest image error, 8-bit sRGB code values, "
-                  "that sizes the table (--taps/--range, --size, --count override)");
-  sub->add_option("--pixel", o->pixel,
-                  "radial, separable, preintegrated, gaussians: pixel size in --unit; the table records how wrong it looks there "
-                  "(bssrdf:image_error, code values against the model it tabulates)");
-  sub->add_option("--energy", o->energy, "Fraction of each channel's total inside the checked radius range" + default_of(RadialTableOptions{}.energy));
+                      "; albedo-radius: beam-integral quadrature tolerance" +
+                      default_of(AlbedoRadiusOptions{}.tolerance) +
+                      "; with --pixel (radial, separable, preintegrated, gaussians): the largest image error, 8-bit "
+                      "sRGB code values, "
+                      "that sizes the table (--taps/--range, --size, --count override)");
+  sub->add_option(
+      "--pixel", o->pixel,
+      "radial, separable, preintegrated, gaussians: pixel size in --unit; the table records how wrong it looks there "
+      "(bssrdf:image_error, code values against the model it tabulates)");
+  sub->add_option(
+      "--energy", o->energy,
+      "Fraction of each channel's total inside the checked radius range" + default_of(RadialTableOptions{}.energy));
   sub->add_option("--interpolation", o->interpolation,
-                  "How the consumer interpolates: catmull-rom or linear [" + std::string(to_string(RadialTableOptions{}.interpolation)) + "]");
+                  "How the consumer interpolates: catmull-rom or linear [" +
+                      std::string(to_string(RadialTableOptions{}.interpolation)) + "]");
   sub->add_option("-o,--output", o->output, "Output file: .exr, .json or .csv")->check(file_name("-o"));
   sub->add_option("--format,-f", o->format, "exr, json, csv; glsl or hlsl for separable [from the file's extension]");
   sub->add_flag("--half", o->half, "OpenEXR: half-float channels instead of float32");
@@ -150,30 +173,46 @@ Action register_lut(CLI::App& app) {
   sub->add_flag("-q,--quiet", o->quiet, "Print nothing on stdout");
   sub->add_option("--thickness", o->thickness, "transmission: slab thicknesses in --unit, comma-separated");
   sub->add_option("--d-min", o->d_min,
-                  "transmission: smallest thickness [0.1 of the shortest transport mfp over the channels; --model multipole alone: 2 of the longest]");
-  sub->add_option("--d-max", o->d_max, "transmission: largest thickness [40 of the longest transport mfp over the channels]");
-  add_count_option(*sub, "--samples", o->samples, 2, kMaxThicknessSamples,
-                   "transmission: thicknesses, log-spaced from --d-min to --d-max [" + std::to_string(kThicknessSamples) + "]");
+                  "transmission: smallest thickness [0.1 of the shortest transport mfp over the channels; --model "
+                  "multipole alone: 2 of the longest]");
+  sub->add_option("--d-max", o->d_max,
+                  "transmission: largest thickness [40 of the longest transport mfp over the channels]");
+  add_count_option(
+      *sub, "--samples", o->samples, 2, kMaxThicknessSamples,
+      "transmission: thicknesses, log-spaced from --d-min to --d-max [" + std::to_string(kThicknessSamples) + "]");
   sub->add_flag("--reference", o->reference,
-                "radial: tabulate the Monte Carlo reference instead of a model (bins with standard errors; --photons, default 1e6); "
+                "radial: tabulate the Monte Carlo reference instead of a model (bins with standard errors; --photons, "
+                "default 1e6); "
                 "transmission: Monte Carlo where the multipole is invalid (else omitted)");
-  sub->add_option("--layers", o->layers, "radial --reference: a layer stack file (bssrdf-layers JSON, as for 'bssrdf reference --layers')");
-  sub->add_flag("--reference-everywhere", o->reference_everywhere, "transmission: Monte Carlo reference at every thickness");
-  auto* photons_option = add_count_option(
-      *sub, "--photons", o->photons, 1, kMaxPhotons,
-      "Monte Carlo photons per channel: per thickness for transmission [" + std::to_string(TransmissionTableOptions{}.photons) +
-          "], for radial --reference [" + std::to_string(ReferenceRadialOptions{}.photons) + "]");
-  add_count_option(*sub, "--seed", o->seed, 0, kMaxSeed, "Monte Carlo seed (transmission --reference, radial --reference) [1]");
-  sub->add_option("--preview", o->preview, "Also (or, without -o, only) write a PNG preview of the material: shadow-edge swatch + colour falloff")
+  sub->add_option("--layers", o->layers,
+                  "radial --reference: a layer stack file (bssrdf-layers JSON, as for 'bssrdf reference --layers')");
+  sub->add_flag("--reference-everywhere", o->reference_everywhere,
+                "transmission: Monte Carlo reference at every thickness");
+  auto* photons_option =
+      add_count_option(*sub, "--photons", o->photons, 1, kMaxPhotons,
+                       "Monte Carlo photons per channel: per thickness for transmission [" +
+                           std::to_string(TransmissionTableOptions{}.photons) + "], for radial --reference [" +
+                           std::to_string(ReferenceRadialOptions{}.photons) + "]");
+  add_count_option(*sub, "--seed", o->seed, 0, kMaxSeed,
+                   "Monte Carlo seed (transmission --reference, radial --reference) [1]");
+  sub->add_option(
+         "--preview", o->preview,
+         "Also (or, without -o, only) write a PNG preview of the material: shadow-edge swatch + colour falloff")
       ->check(file_name("--preview"));
   add_count_option(*sub, "--taps", o->taps, 3, 255,
-                   "separable: number of taps, odd, >= 3 (Jimenez: 11, 17, 25) [" + std::to_string(SeparableKernelOptions{}.taps) + "]");
+                   "separable: number of taps, odd, >= 3 (Jimenez: 11, 17, 25) [" +
+                       std::to_string(SeparableKernelOptions{}.taps) + "]");
   sub->add_option("--range", o->range,
-                  "separable: kernel half-width in --unit, or jimenez (3 mm if taps > 20 else 2 mm) [the band holding --band of the widest channel's light]");
+                  "separable: kernel half-width in --unit, or jimenez (3 mm if taps > 20 else 2 mm) [the band holding "
+                  "--band of the widest channel's light]");
   sub->add_option("--band", o->band,
-                  "separable: fraction of the widest channel's light inside +-range when --range is not given" + default_of(SeparableKernelOptions{}.band));
-  add_count_option(*sub, "--count,-n", o->count, 1, 32, "gaussians: number of shared-variance Gaussians fitted [6; with --model quantized and no --count: its own mixture]");
-  sub->add_option("--curvature-max", o->curvature_max, "preintegrated: largest curvature 1/r, in 1/--unit [1/r_50 of the widest channel]");
+                  "separable: fraction of the widest channel's light inside +-range when --range is not given" +
+                      default_of(SeparableKernelOptions{}.band));
+  add_count_option(*sub, "--count,-n", o->count, 1, 32,
+                   "gaussians: number of shared-variance Gaussians fitted [6; with --model quantized and no --count: "
+                   "its own mixture]");
+  sub->add_option("--curvature-max", o->curvature_max,
+                  "preintegrated: largest curvature 1/r, in 1/--unit [1/r_50 of the widest channel]");
   sub->add_option("--width-max", o->width_max, "penumbra: widest penumbra, in --unit [8 r_50 of the widest channel]");
 
   return [o, model_option, photons_option, sub] {
@@ -201,7 +240,8 @@ Action register_lut(CLI::App& app) {
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     write_file_atomically(o->output, encode(built, format, o->half));
     if (!o->quiet)
-      std::cout << built.summary << "built in " << format_number(std::round(ms * 100) / 100) << " ms\nwritten: " << o->output << '\n';
+      std::cout << built.summary << "built in " << format_number(std::round(ms * 100) / 100)
+                << " ms\nwritten: " << o->output << '\n';
   };
 }
 

@@ -44,7 +44,8 @@ Built with_model(const LutOptions& o, Tabulate&& tabulate) {
 // --kind radial --reference: the Monte Carlo reference tabulated, for a medium or a layer stack.
 Built build_reference_radial(const LutOptions& o) {
   if (o.model_given || !o.accuracy.empty())
-    throw InvalidInput("--reference: the table is the Monte Carlo reference, not a model (give no --model or --accuracy)");
+    throw InvalidInput(
+        "--reference: the table is the Monte Carlo reference, not a model (give no --model or --accuracy)");
   ReferenceRadialOptions options;
   if (o.photons_given) options.photons = o.photons;
   options.seed = o.seed;
@@ -56,9 +57,11 @@ Built build_reference_radial(const LutOptions& o) {
     const auto t = build_reference_radial_table(LayerStack::half_space(resolved.medium), options);
     return {to_lookup_table(t, context), summary(t, context), {}};
   }
-  if (!o.medium.material.empty() || !o.medium.sigma_a.empty()) throw InvalidInput("--layers: give no --material or coefficients with it");
+  if (!o.medium.material.empty() || !o.medium.sigma_a.empty())
+    throw InvalidInput("--layers: give no --material or coefficients with it");
   const auto file = read_layers_json(o.layers);
-  const auto unit = o.medium.unit.empty() || o.medium.unit == "mm" ? file.unit : parse_length_unit(o.medium.unit, "--unit");
+  const auto unit =
+      o.medium.unit.empty() || o.medium.unit == "mm" ? file.unit : parse_length_unit(o.medium.unit, "--unit");
   const TableContext context{std::nullopt, nullptr, nullptr, unit};
   const auto t = build_reference_radial_table(file.stack, options);
   auto table = to_lookup_table(t, context);
@@ -67,7 +70,8 @@ Built build_reference_radial(const LutOptions& o) {
 }
 
 Built build_radial(const LutOptions& o) {
-  if (!o.layers.empty() && !o.reference) throw InvalidInput("--layers: only with --kind radial --reference (Monte Carlo)");
+  if (!o.layers.empty() && !o.reference)
+    throw InvalidInput("--layers: only with --kind radial --reference (Monte Carlo)");
   if (o.reference) return build_reference_radial(o);
   return with_model(o, [&](const MediumOptions::Resolved& resolved, const Model& model, const TableContext& context) {
     RadialTableOptions options;
@@ -82,7 +86,8 @@ Built build_radial(const LutOptions& o) {
     if (judge && judge->tolerance) {
       const auto choice = choose_radial_tolerance(resolved.medium, model, judge->judge, *judge->tolerance, options);
       options.tolerance = choice.relative_tolerance;
-      sized = sized_note(judge->tolerance, choice.meets_tolerance, "relative interpolation tolerance " + format_number(choice.relative_tolerance));
+      sized = sized_note(judge->tolerance, choice.meets_tolerance,
+                         "relative interpolation tolerance " + format_number(choice.relative_tolerance));
     }
     const auto t = build_radial_table(resolved.medium, model, options);
     Built b{to_lookup_table(t, context), summary(t, context), {}};
@@ -105,7 +110,8 @@ Built build_albedo_radius(const LutOptions& o) {
     if (!o.medium.g.empty()) g = parse_number(o.medium.g, "--g");
     if (!o.medium.eta.empty()) eta = parse_number(o.medium.eta, "--eta");
   }
-  if (o.model != "pbd") throw InvalidInput("--model", "'" + o.model + "'", "pbd for --kind albedo-radius (photon beam diffusion, as pbrt)");
+  if (o.model != "pbd")
+    throw InvalidInput("--model", "'" + o.model + "'", "pbd for --kind albedo-radius (photon beam diffusion, as pbrt)");
   AlbedoRadiusOptions options;
   if (!o.tolerance.empty()) options.tolerance = positive_fraction(o.tolerance, "--tolerance");
   options.threads = o.threads;
@@ -126,7 +132,8 @@ Built build_albedo_radius(const LutOptions& o) {
     layout = adaptive.layout;
     adaptive_note = summary(adaptive, table_tolerance);
   } else {
-    throw InvalidInput("--layout", "'" + o.layout + "'", "pbrt, family (with --size AxR) or adaptive (with --table-tolerance)");
+    throw InvalidInput("--layout", "'" + o.layout + "'",
+                       "pbrt, family (with --size AxR) or adaptive (with --table-tolerance)");
   }
   const auto t = build_albedo_radius_table(layout, g, eta, options);
   const auto model = make_model("pbd");
@@ -140,14 +147,19 @@ Built build_albedo_radius(const LutOptions& o) {
 }
 
 Built build_transmission(const LutOptions& o) {
-  if (!o.accuracy.empty()) throw InvalidInput("--accuracy: only with --model auto (transmission tables use adding-doubling or the multipole)");
+  if (!o.accuracy.empty())
+    throw InvalidInput("--accuracy: only with --model auto (transmission tables use adding-doubling or the multipole)");
   const auto resolved = o.medium.resolve();
   if (o.model_given && o.model != "multipole" && o.model != "adding-doubling")
-    throw InvalidInput("--model", "'" + o.model + "'", "adding-doubling (default) or multipole for --kind transmission (or --reference for Monte Carlo)");
+    throw InvalidInput(
+        "--model", "'" + o.model + "'",
+        "adding-doubling (default) or multipole for --kind transmission (or --reference for Monte Carlo)");
   TransmissionTableOptions options;
   options.model = o.model_given ? o.model : "adding-doubling";
   if (options.model == "adding-doubling" && o.reference && !o.reference_everywhere)
-    throw InvalidInput("--reference", "given", "--model multipole (adding-doubling is exact at every thickness; --reference-everywhere runs Monte Carlo)");
+    throw InvalidInput(
+        "--reference", "given",
+        "--model multipole (adding-doubling is exact at every thickness; --reference-everywhere runs Monte Carlo)");
   options.reference = o.reference;
   options.reference_everywhere = o.reference_everywhere;
   if (o.photons_given) options.photons = o.photons;
@@ -174,7 +186,8 @@ Built build_preintegrated(const LutOptions& o) {
     parse_size(o.size, options.width, options.height);
     if (!o.curvature_max.empty()) {
       const double c = parse_number(o.curvature_max, "--curvature-max");
-      if (!(c > 0)) throw InvalidInput("--curvature-max", format_number(c), "> 0 (1/" + std::string(symbol(resolved.unit)) + ")");
+      if (!(c > 0))
+        throw InvalidInput("--curvature-max", format_number(c), "> 0 (1/" + std::string(symbol(resolved.unit)) + ")");
       options.curvature_max = c / millimetres_per(resolved.unit);
     }
     options.threads = o.threads;
@@ -182,14 +195,17 @@ Built build_preintegrated(const LutOptions& o) {
     const auto projections = project_channels(resolved.medium, model);
     std::string sized;
     if (judge && judge->tolerance && !o.size_given) {  // --size overrides
-      const auto choice = choose_preintegrated_table(resolved.medium, projections, judge->judge, *judge->tolerance, false);
+      const auto choice =
+          choose_preintegrated_table(resolved.medium, projections, judge->judge, *judge->tolerance, false);
       options.width = options.height = choice.size;
       if (o.curvature_max.empty()) options.curvature_max = choice.curvature_max;
-      sized = sized_note(judge->tolerance, choice.meets_tolerance, "size " + std::to_string(choice.size) + "x" + std::to_string(choice.size));
+      sized = sized_note(judge->tolerance, choice.meets_tolerance,
+                         "size " + std::to_string(choice.size) + "x" + std::to_string(choice.size));
     }
     const auto t = build_preintegrated_table(resolved.medium, projections, options);
     Built b{to_lookup_table(t, context), summary(t, context), {}};
-    if (judge) record_image_error(b, *judge, image_error_of(judge->judge, t, resolved.medium, projections), model, sized);
+    if (judge)
+      record_image_error(b, *judge, image_error_of(judge->judge, t, resolved.medium, projections), model, sized);
     return b;
   });
 }
@@ -223,8 +239,9 @@ Built build_separable(const LutOptions& o) {
     if (judge && judge->tolerance && !o.taps_given && !o.range_given) {  // --taps or --range override
       const auto choice = choose_separable_kernel(resolved.medium, projections, judge->judge, *judge->tolerance);
       options = choice.options;
-      sized = sized_note(judge->tolerance, choice.meets_tolerance, std::to_string(options.taps) + " taps and the range holding " +
-                                                                       short_number(100 * options.band) + " % of the light");
+      sized = sized_note(judge->tolerance, choice.meets_tolerance,
+                         std::to_string(options.taps) + " taps and the range holding " +
+                             short_number(100 * options.band) + " % of the light");
     }
     const auto k = build_separable_kernel(resolved.medium, projections, options);
     Built b{to_lookup_table(k, context), summary(k, context), {}};
@@ -248,7 +265,8 @@ Built build_gaussians(const LutOptions& o) {
     std::string sized;
     if (judge && judge->tolerance && !o.count_given) {  // --count overrides
       const auto choice = choose_gaussian_count(resolved.medium, model, judge->judge, *judge->tolerance);
-      t = fitted_mixture_table(resolved.medium, model, static_cast<int>(choice.count), kGaussianFitSamples);  // as judged
+      t = fitted_mixture_table(resolved.medium, model, static_cast<int>(choice.count),
+                               kGaussianFitSamples);  // as judged
       sized = sized_note(judge->tolerance, choice.meets_tolerance, std::to_string(choice.count) + " Gaussians");
     } else if (o.count == 0 && model_entry(model.name()).own_gaussians) {
       t = own_mixture_table(resolved.medium, model);

@@ -40,7 +40,7 @@ struct LutOptions {
   int taps = 0;  // 0: the library's
   std::string range, band;
   // gaussians
-  int count = 0;  // 0: quantized diffusion's own mixture with --model quantized, else 6
+  int count = 0;        // 0: quantized diffusion's own mixture with --model quantized, else 6
   std::string preview;  // PNG file
   // --pixel: how wrong the table looks at that pixel size (with --tolerance: sized by it)
   std::string pixel;
@@ -86,7 +86,8 @@ struct PixelJudge {
 };
 std::optional<PixelJudge> pixel_judge(const LutOptions& o, const MediumOptions::Resolved& resolved, const Model& model);
 // Records the table's image error (metadata and a summary line).
-void record_image_error(Built& b, const PixelJudge& j, const ImageError& e, const Model& model, const std::string& sized);
+void record_image_error(Built& b, const PixelJudge& j, const ImageError& e, const Model& model,
+                        const std::string& sized);
 // What sized a table by --tolerance, for its metadata and summary.
 std::string sized_note(const std::optional<double>& tolerance, bool meets, const std::string& what);
 

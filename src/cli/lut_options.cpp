@@ -16,8 +16,8 @@ namespace bssrdf::cli {
 std::pair<std::size_t, std::size_t> parse_grid(const std::string& text, std::int64_t min_w, std::int64_t max_w,
                                                std::int64_t min_h, std::int64_t max_h, const std::string& example) {
   const auto x = text.find('x');
-  const std::string accepted = "WIDTHxHEIGHT, width " + count_range(min_w, max_w) + ", height " + count_range(min_h, max_h) +
-                               ", e.g. " + example;
+  const std::string accepted = "WIDTHxHEIGHT, width " + count_range(min_w, max_w) + ", height " +
+                               count_range(min_h, max_h) + ", e.g. " + example;
   if (x == std::string::npos) throw InvalidInput("--size", "'" + text + "'", accepted);
   try {
     return {static_cast<std::size_t>(parse_count(text.substr(0, x), "--size", min_w, max_w)),
@@ -44,10 +44,13 @@ double positive_length_mm(const std::string& text, const std::string& field, Len
   return v * millimetres_per(unit);
 }
 
-std::optional<PixelJudge> pixel_judge(const LutOptions& o, const MediumOptions::Resolved& resolved, const Model& model) {
+std::optional<PixelJudge> pixel_judge(const LutOptions& o, const MediumOptions::Resolved& resolved,
+                                      const Model& model) {
   if (o.pixel.empty()) {
     if (!o.tolerance.empty() && (o.kind == "separable" || o.kind == "preintegrated" || o.kind == "gaussians"))
-      throw InvalidInput("--tolerance", o.tolerance, "a value only with --pixel for --kind " + o.kind + " (an image error, 8-bit sRGB code values)");
+      throw InvalidInput(
+          "--tolerance", o.tolerance,
+          "a value only with --pixel for --kind " + o.kind + " (an image error, 8-bit sRGB code values)");
     return std::nullopt;
   }
   const double pixel = parse_length(o.pixel, "--pixel") * millimetres_per(resolved.unit);
@@ -55,27 +58,31 @@ std::optional<PixelJudge> pixel_judge(const LutOptions& o, const MediumOptions::
   std::optional<double> tolerance;
   if (!o.tolerance.empty()) {
     tolerance = parse_number(o.tolerance, "--tolerance");
-    if (!(*tolerance > 0) || !std::isfinite(*tolerance)) throw InvalidInput("--tolerance", o.tolerance, "> 0 (8-bit sRGB code values, with --pixel)");
+    if (!(*tolerance > 0) || !std::isfinite(*tolerance))
+      throw InvalidInput("--tolerance", o.tolerance, "> 0 (8-bit sRGB code values, with --pixel)");
   }
   return PixelJudge{judge_against(resolved.medium, ModelReference(make_model(model.name())), pixel), pixel, tolerance};
 }
 
 // Records the table's image error (metadata and a summary line).
-void record_image_error(Built& b, const PixelJudge& j, const ImageError& e, const Model& model, const std::string& sized) {
+void record_image_error(Built& b, const PixelJudge& j, const ImageError& e, const Model& model,
+                        const std::string& sized) {
   b.table.set("bssrdf:image_error", e.error);
   b.table.set("bssrdf:image_error_pixel_mm", j.pixel);
   b.table.set("bssrdf:image_error_definition",
               "largest 8-bit sRGB code-value difference between this table and the model " + model.name() +
-                  " it tabulates at a shadow edge, a one-pixel light line and a flat lit region, pixels of " + format_number(j.pixel) +
+                  " it tabulates at a shadow edge, a one-pixel light line and a flat lit region, pixels of " +
+                  format_number(j.pixel) +
                   " mm (bssrdf advise; the model's own error against the truth is not included)");
   if (!sized.empty()) b.table.set("bssrdf:sized_by", sized);
-  b.summary += "  image error at " + format_number(j.pixel) + " mm pixels: " + format_number(std::round(e.error * 1000) / 1000) +
-               " code values against " + model.name() + " (worst at the " + e.pattern + ")" + (sized.empty() ? "" : "; " + sized) + "\n";
+  b.summary += "  image error at " + format_number(j.pixel) +
+               " mm pixels: " + format_number(std::round(e.error * 1000) / 1000) + " code values against " +
+               model.name() + " (worst at the " + e.pattern + ")" + (sized.empty() ? "" : "; " + sized) + "\n";
 }
 
 std::string sized_note(const std::optional<double>& tolerance, bool meets, const std::string& what) {
-  return what + (meets ? " chosen for" : " (the most accurate tried: none meets") + " --tolerance " + format_number(*tolerance) +
-         " code values" + (meets ? "" : ")");
+  return what + (meets ? " chosen for" : " (the most accurate tried: none meets") + " --tolerance " +
+         format_number(*tolerance) + " code values" + (meets ? "" : ")");
 }
 
 RenderedPreview render_preview(const LutOptions& o, const MediumOptions::Resolved& resolved) {
@@ -88,10 +95,11 @@ RenderedPreview render_preview(const LutOptions& o, const MediumOptions::Resolve
   options.label = (resolved.material ? resolved.material->name : std::string("custom medium")) + ", " + model->name();
   const auto preview = render_material_preview(resolved.medium, *model, options);
   const std::string u(symbol(resolved.unit));
-  return {encode_png(preview.image), std::to_string(preview.image.width) + " x " + std::to_string(preview.image.height) +
-                                         " px; shadow edge at the centre, +-" + short_number(from_mm(preview.half_width, resolved.unit)) +
-                                         ' ' + u + ", ticks every " + short_number(from_mm(preview.tick, resolved.unit)) + ' ' + u +
-                                         "; " + model->name()};
+  return {encode_png(preview.image), std::to_string(preview.image.width) + " x " +
+                                         std::to_string(preview.image.height) + " px; shadow edge at the centre, +-" +
+                                         short_number(from_mm(preview.half_width, resolved.unit)) + ' ' + u +
+                                         ", ticks every " + short_number(from_mm(preview.tick, resolved.unit)) + ' ' +
+                                         u + "; " + model->name()};
 }
 
 }  // namespace bssrdf::cli

@@ -1,13 +1,13 @@
 // bssrdf: diffusion profiles, Monte Carlo references, fits and lookup tables for subsurface
 // scattering. A thin shell over the library: parse, validate at the edge, call, print.
-#include <CLI/CLI.hpp>
 #include <glog/logging.h>
+#include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <exception>
-#include <string>
 #include <iostream>
-#include <algorithm>
 #include <map>
+#include <string>
 
 #include "bssrdf/error.hpp"
 #include "commands.hpp"
@@ -45,10 +45,10 @@ int main(int argc, char** argv) {
   app.fallthrough(false);
 
   std::map<CLI::App*, bssrdf::cli::Action> actions;
-  for (auto* register_command : {&bssrdf::cli::register_profile, &bssrdf::cli::register_models,
-                                 &bssrdf::cli::register_materials, &bssrdf::cli::register_reference, &bssrdf::cli::register_fit,
-                                 &bssrdf::cli::register_transmission, &bssrdf::cli::register_lut, &bssrdf::cli::register_slab,
-                                 &bssrdf::cli::register_advise}) {
+  for (auto* register_command :
+       {&bssrdf::cli::register_profile, &bssrdf::cli::register_models, &bssrdf::cli::register_materials,
+        &bssrdf::cli::register_reference, &bssrdf::cli::register_fit, &bssrdf::cli::register_transmission,
+        &bssrdf::cli::register_lut, &bssrdf::cli::register_slab, &bssrdf::cli::register_advise}) {
     const auto before = app.get_subcommands({});
     auto action = (*register_command)(app);
     for (auto* sub : app.get_subcommands({}))

@@ -1,6 +1,7 @@
 // bssrdf materials list | show | export | import: the measured-media database, what each entry
 // implies (derived quantities, diffusion validity), renderer exports, and fitted materials saved
 // in the database's own format.
+#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,14 +10,13 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <unistd.h>
 
+#include "../io/data_file.hpp"
 #include "bssrdf/derived_quantities.hpp"
 #include "bssrdf/error.hpp"
-#include "bssrdf/io/atomic_file.hpp"
 #include "bssrdf/fit/fit_import.hpp"
+#include "bssrdf/io/atomic_file.hpp"
 #include "bssrdf/io/renderer_export.hpp"
-#include "../io/data_file.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -34,22 +34,29 @@ json value(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 json show_json(const Material& m, const DerivedQuantities& q, LengthUnit unit) {
   const std::string u(symbol(unit)), per = "1/" + u;
-  json doc = {{"name", m.name},       {"source", m.source}, {"citation", m.citation}, {"file", m.file},
-              {"eta", m.medium.eta},  {"unit", u},
-              {"reduced_scattering_only", m.reduced_scattering_only},
-              {"physical_model", q.physical_model},
-              {"object_size", from_mm(q.object_size_mm, unit)},
-              {"conventions",
-               {{"mfp", "1/sigma_t (unreduced), " + u},
-                {"transport_mfp", "ell = 1/sigma_t', " + u},
-                {"diffuse_mfp", "ell_d = 1/sigma_tr, sigma_tr = sqrt(3 sigma_a sigma_t'), " + u + "; null without absorption"},
-                {"burley_d", "d of R(r) = A (e^{-r/d} + e^{-r/3d})/(8 pi d r), A = surface_albedo, least-squares fitted to the " +
-                                 q.physical_model + " profile, " + u + "; burley_fit_error = sqrt(int r (fit - R)^2 dr / int r R^2 dr)"},
-                {"surface_albedo", "total diffuse reflectance of the " + q.physical_model +
-                                       " profile per entered flux; where that exceeds 1 (the model creates energy), the exact total by "
-                                       "adding-doubling, and the channel's reason says so"},
-                {"coefficients", per}}},
-              {"notes", m.notes}};
+  json doc = {
+      {"name", m.name},
+      {"source", m.source},
+      {"citation", m.citation},
+      {"file", m.file},
+      {"eta", m.medium.eta},
+      {"unit", u},
+      {"reduced_scattering_only", m.reduced_scattering_only},
+      {"physical_model", q.physical_model},
+      {"object_size", from_mm(q.object_size_mm, unit)},
+      {"conventions",
+       {{"mfp", "1/sigma_t (unreduced), " + u},
+        {"transport_mfp", "ell = 1/sigma_t', " + u},
+        {"diffuse_mfp", "ell_d = 1/sigma_tr, sigma_tr = sqrt(3 sigma_a sigma_t'), " + u + "; null without absorption"},
+        {"burley_d",
+         "d of R(r) = A (e^{-r/d} + e^{-r/3d})/(8 pi d r), A = surface_albedo, least-squares fitted to the " +
+             q.physical_model + " profile, " + u + "; burley_fit_error = sqrt(int r (fit - R)^2 dr / int r R^2 dr)"},
+        {"surface_albedo",
+         "total diffuse reflectance of the " + q.physical_model +
+             " profile per entered flux; where that exceeds 1 (the model creates energy), the exact total by "
+             "adding-doubling, and the channel's reason says so"},
+        {"coefficients", per}}},
+      {"notes", m.notes}};
   doc["channels"] = json::array();
   for (const auto& c : q.channels) {
     doc["channels"].push_back({{"name", c.name},
@@ -109,9 +116,11 @@ std::string show_table(const Material& m, const DerivedQuantities& q, LengthUnit
   row("Burley d [" + u + "]", [&](const DerivedChannel& c) { return c.burley_d / mm; });
   row("Burley fit error", [](const DerivedChannel& c) { return c.burley_error; });
   row("surface albedo", [](const DerivedChannel& c) { return c.surface_albedo; });
-  out << "physical profile: " << q.physical_model << "; object size " << from_mm(q.object_size_mm, unit) << " " << u << "\n";
+  out << "physical profile: " << q.physical_model << "; object size " << from_mm(q.object_size_mm, unit) << " " << u
+      << "\n";
   for (const auto& c : q.channels)
-    out << "  " << c.name << ": " << (c.diffusion_valid ? "diffusion valid" : "diffusion NOT valid: " + c.reason) << "\n";
+    out << "  " << c.name << ": " << (c.diffusion_valid ? "diffusion valid" : "diffusion NOT valid: " + c.reason)
+        << "\n";
   return out.str();
 }
 
@@ -122,17 +131,18 @@ double object_size_mm(const std::string& text) {
   return v;
 }
 
-
 }  // namespace
 
 Action register_materials(CLI::App& app) {
   struct Options {
-    std::string db, source, format = "table", name, to, unit, output, object_size = "10", fit_file, eta, import_source = "fit";
+    std::string db, source, format = "table", name, to, unit, output, object_size = "10", fit_file, eta,
+                            import_source = "fit";
     std::string blender_method = "fixed-radius", blender_version = "auto";
     bool all = false;
   };
   auto o = std::make_shared<Options>();
-  auto* sub = app.add_subcommand("materials", "The measured-media database: list, show, export to renderers, import fits");
+  auto* sub =
+      app.add_subcommand("materials", "The measured-media database: list, show, export to renderers, import fits");
   sub->require_subcommand(1);
   const auto add_db = [o](CLI::App* c) {
     c->add_option("--db", o->db, "Your own materials directory or file, added to the bundled database");
@@ -154,11 +164,14 @@ Action register_materials(CLI::App& app) {
   show->add_option("--format,-f", o->format, "table or json [table]")->check(CLI::IsMember({"table", "json"}));
   show->add_option("--unit", o->unit, "Unit of distances and coefficients: um, mm, cm, m [mm]");
 
-  auto* exp = sub->add_subcommand("export", "Write materials in a renderer's form (units and conventions stated in the file)");
+  auto* exp =
+      sub->add_subcommand("export", "Write materials in a renderer's form (units and conventions stated in the file)");
   auto* exp_name = exp->add_option("name", o->name, "Material name (case-insensitive)");
   auto* exp_all = exp->add_flag("--all", o->all, "Every material (with --source: every one from that source)");
   exp_name->excludes(exp_all);
-  exp->add_option("--to", o->to, "json, pbrt-v4, mitsuba3, blender, unity-hdrp, unity-hdrp-editor, unreal, unreal-python")->required();
+  exp->add_option("--to", o->to,
+                  "json, pbrt-v4, mitsuba3, blender, unity-hdrp, unity-hdrp-editor, unreal, unreal-python")
+      ->required();
   exp->add_option("--unit", o->unit,
                   "Scene unit lengths and coefficients are written in: um, mm, cm, m [m; json: mm; unreal: always cm]");
   exp->add_option("--source", o->source, "With --all: only materials from this source");
@@ -187,11 +200,14 @@ Action register_materials(CLI::App& app) {
       for (const auto& m : db.all()) {
         if (!o->source.empty() && m.source != o->source) continue;
         if (o->format == "json") {
-          out.push_back({{"name", m.name}, {"source", m.source}, {"eta", m.medium.eta}, {"channels", m.medium.channel_names},
+          out.push_back({{"name", m.name},
+                         {"source", m.source},
+                         {"eta", m.medium.eta},
+                         {"channels", m.medium.channel_names},
                          {"file", m.file}});
         } else {
-          std::cout << m.name << std::string(width + 2 - m.name.size(), ' ') << m.source
-                    << "  eta " << m.medium.eta << '\n';
+          std::cout << m.name << std::string(width + 2 - m.name.size(), ' ') << m.source << "  eta " << m.medium.eta
+                    << '\n';
         }
       }
       if (o->format == "json") std::cout << out.dump(2) << '\n';
@@ -206,14 +222,15 @@ Action register_materials(CLI::App& app) {
     } else if (exp->parsed()) {
       const auto target = with_flag_names({{"to", "--to"}}, [&] { return parse_renderer_target(o->to); });
       if (o->name.empty() && !o->all) throw InvalidInput("materials export: give a material NAME or --all");
-      const auto unit = parse_length_unit(
-          o->unit.empty() ? (target == RendererTarget::json ? "mm" : "m") : o->unit, "--unit");
+      const auto unit =
+          parse_length_unit(o->unit.empty() ? (target == RendererTarget::json ? "mm" : "m") : o->unit, "--unit");
       DerivationOptions options;
       options.object_size_mm = object_size_mm(o->object_size);
       const auto db = MaterialDatabase::load_with_user(o->db);
       std::vector<ExportEntry> entries;
       const auto add = [&](const Material& m) {
-        entries.push_back({m, target == RendererTarget::json ? DerivedQuantities{} : derive_quantities(m.medium, options)});
+        entries.push_back(
+            {m, target == RendererTarget::json ? DerivedQuantities{} : derive_quantities(m.medium, options)});
       };
       if (o->all) {
         for (const auto& m : db.all())
@@ -230,12 +247,15 @@ Action register_materials(CLI::App& app) {
         export_options.blender_version = std::stoi(o->blender_version);
       }
       const std::string text = export_materials(target, entries, unit, export_options);
-      if (o->output.empty()) std::cout << text;
-      else write_file_atomically(o->output, text);
+      if (o->output.empty())
+        std::cout << text;
+      else
+        write_file_atomically(o->output, text);
     } else if (imp->parsed()) {
-      const std::optional<double> eta = o->eta.empty() ? std::nullopt : std::optional<double>(parse_number(o->eta, "--eta"));
-      const std::string text = materials_file_from_fit(read_data_file(o->fit_file, "the fit result"), o->fit_file, o->name, eta,
-                                                       o->import_source);
+      const std::optional<double> eta =
+          o->eta.empty() ? std::nullopt : std::optional<double>(parse_number(o->eta, "--eta"));
+      const std::string text = materials_file_from_fit(read_data_file(o->fit_file, "the fit result"), o->fit_file,
+                                                       o->name, eta, o->import_source);
       MaterialDatabase().add_text(text, o->output);  // validate it as the file it becomes, before anything is written
       write_file_atomically(o->output, text);
       std::cout << "written: " << o->output << " (load it with --db " << o->output << ")\n";

@@ -71,9 +71,10 @@ Action register_profile(CLI::App& app) {
                   "(slabs: needs --thickness or --layers); 'bssrdf models' lists them [better-dipole; multipole "
                   "with --thickness or --layers]; auto: the cheapest measured within --accuracy of Monte Carlo here");
   auto* model_option = sub->get_option("--model");
-  sub->add_option("--accuracy", options->accuracy,
-                  "With --model auto: relative error allowed in the total and in R(r) (area-weighted L2) against the Monte Carlo "
-                  "reference, as measured for each model [0.1]");
+  sub->add_option(
+      "--accuracy", options->accuracy,
+      "With --model auto: relative error allowed in the total and in R(r) (area-weighted L2) against the Monte Carlo "
+      "reference, as measured for each model [0.1]");
   auto* thickness = sub->add_option("--thickness", options->thickness,
                                     "Slab thickness in --unit: R(r) and T(r) of a slab under the multipole "
                                     "(ambient index 1 on both sides)");
@@ -85,8 +86,9 @@ Action register_profile(CLI::App& app) {
   layers->excludes(thickness);
   sub->add_flag("--single-scattering", options->single_scattering,
                 "Add exact single scattering to a model that omits it (same as --model NAME+ss)");
-  sub->add_option("--surface-albedo", options->surface_albedo,
-                  "Burley models: the surface albedo A, given directly (0 < A < 1) [from the most accurate physical model]");
+  sub->add_option(
+      "--surface-albedo", options->surface_albedo,
+      "Burley models: the surface albedo A, given directly (0 < A < 1) [from the most accurate physical model]");
   auto* radii = sub->add_option("--radii", options->radii, "Explicit radii in --unit, comma-separated, increasing");
   auto* rmin = sub->add_option("--r-min", options->r_min, "Smallest radius [1e-3 of the smallest transport mfp]");
   auto* rmax = sub->add_option("--r-max", options->r_max, "Largest radius [the largest 99.9 %-energy radius]");
@@ -99,7 +101,8 @@ Action register_profile(CLI::App& app) {
   auto* unit_option = sub->get_option("--unit");
   return [options, model_option, unit_option] {
     const bool slab = !options->thickness.empty() || !options->layers.empty();
-    if (slab && !options->accuracy.empty()) throw InvalidInput("--accuracy: only with --model auto, not for slabs or layer stacks");
+    if (slab && !options->accuracy.empty())
+      throw InvalidInput("--accuracy: only with --model auto, not for slabs or layer stacks");
     if (slab && model_option->count() && options->model != "multipole")
       throw InvalidInput("--model", "'" + options->model + "'",
                          "multipole with " + std::string(options->layers.empty() ? "--thickness" : "--layers"));
@@ -114,7 +117,8 @@ Action register_profile(CLI::App& app) {
     if (!options->layers.empty()) {
       const auto& o = options->medium;
       if (!o.material.empty() || !o.sigma_a.empty() || !o.sigma_s.empty() || !o.g.empty() || !o.eta.empty())
-        throw InvalidInput("--layers describes the medium: do not combine it with --material, --sigma-a, --sigma-s, --g or --eta");
+        throw InvalidInput(
+            "--layers describes the medium: do not combine it with --material, --sigma-a, --sigma-s, --g or --eta");
       stack_file = read_layers_json(options->layers);
       resolved.unit = unit_option->count() ? parse_length_unit(o.unit, "--unit") : stack_file->unit;
     } else {
@@ -126,9 +130,10 @@ Action register_profile(CLI::App& app) {
     if (stack_file) {
       for (std::size_t c = 0; c < stack_file->stack.channels(); ++c)
         if (const auto report = layered::Stack(stack_file->stack, c).validity(); const auto* note = breakdown(report))
-          throw InvalidInput("--layers " + options->layers + ": channel " + stack_file->stack.channel_names[c] + ": " +
-                             note->message + "; use 'bssrdf reference --layers " + options->layers +
-                             "' (Monte Carlo) for thin layers, or 'bssrdf lut --layers FILE --kind radial --reference' for a table");
+          throw InvalidInput(
+              "--layers " + options->layers + ": channel " + stack_file->stack.channel_names[c] + ": " + note->message +
+              "; use 'bssrdf reference --layers " + options->layers +
+              "' (Monte Carlo) for thin layers, or 'bssrdf lut --layers FILE --kind radial --reference' for a table");
     } else if (slab) {
       const double d = parse_length(options->thickness, "--thickness");
       if (!(d > 0)) throw InvalidInput("--thickness", options->thickness, "> 0");
@@ -178,7 +183,8 @@ Action register_profile(CLI::App& app) {
       if (options->samples < 2 || options->samples > 1000000)
         throw InvalidInput("--samples", std::to_string(options->samples), "2 to 1000000");
       const auto n = static_cast<std::size_t>(options->samples);
-      const auto defaults = stack_file ? default_stack_radii_mm(stack_file->stack, n) : default_radii_mm(resolved.medium, *model, n);
+      const auto defaults =
+          stack_file ? default_stack_radii_mm(stack_file->stack, n) : default_radii_mm(resolved.medium, *model, n);
       double lo = options->r_min.empty() ? defaults.front() : parse_length(options->r_min, "--r-min") * mm;
       double hi = options->r_max.empty() ? defaults.back() : parse_length(options->r_max, "--r-max") * mm;
       if (options->spacing == "linear" && options->r_min.empty()) lo = 0;
@@ -195,9 +201,15 @@ Action register_profile(CLI::App& app) {
     report.model_choice = auto_note;
     std::string content;
     switch (options->output.file_format()) {
-      case Format::json: content = to_json(report); break;
-      case Format::csv: content = to_csv(report); break;
-      case Format::table: content = to_table(report); break;
+      case Format::json:
+        content = to_json(report);
+        break;
+      case Format::csv:
+        content = to_csv(report);
+        break;
+      case Format::table:
+        content = to_table(report);
+        break;
     }
     emit(options->output, content, to_table(report));
   };

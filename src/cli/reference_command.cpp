@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include "bssrdf/error.hpp"
-#include "bssrdf/io/layers_json.hpp"
 #include "bssrdf/io/atomic_file.hpp"
+#include "bssrdf/io/layers_json.hpp"
 #include "bssrdf/io/mci.hpp"
 #include "bssrdf/io/mco.hpp"
 #include "bssrdf/montecarlo.hpp"
@@ -28,7 +28,8 @@ Action register_reference(CLI::App& app) {
   };
   auto options = std::make_shared<Options>();
   auto* sub = app.add_subcommand(
-      "reference", "Monte Carlo reference: R_d, T_t, R(r), T(r) with standard errors (radiative transfer, exact phase function)");
+      "reference",
+      "Monte Carlo reference: R_d, T_t, R(r), T(r) with standard errors (radiative transfer, exact phase function)");
   options->medium.add_to(*sub);
   auto* thickness = sub->add_option("--thickness", options->thickness, "Slab thickness in --unit [semi-infinite]");
   auto* layers = sub->add_option("--layers", options->layers, "Layer stack file (JSON, format bssrdf-layers)");
@@ -36,24 +37,31 @@ Action register_reference(CLI::App& app) {
   sub->add_option("--mco-dir", options->mco_dir,
                   "--mci: directory for each run's MCML output file (.mco, the name in the .mci) [., as MCML]");
   add_count_option(*sub, "--photons,-n", options->photons, 1, kMaxPhotons,
-                   "Photons per channel (per run with --mci: default the file's) [1000000]; cost grows linearly, and as 1/sigma_a' for near-conservative media");
-  add_count_option(*sub, "--seed", options->seed, 0, kMaxSeed, "Random seed; the result depends only on inputs and seed [1]");
-  add_count_option(*sub, "--threads,-j", options->threads, 0, kMaxThreads, "Worker threads, 0 = all cores; never changes the result [0]");
+                   "Photons per channel (per run with --mci: default the file's) [1000000]; cost grows linearly, and "
+                   "as 1/sigma_a' for near-conservative media");
+  add_count_option(*sub, "--seed", options->seed, 0, kMaxSeed,
+                   "Random seed; the result depends only on inputs and seed [1]");
+  add_count_option(*sub, "--threads,-j", options->threads, 0, kMaxThreads,
+                   "Worker threads, 0 = all cores; never changes the result [0]");
   sub->add_option("--r-max", options->r_max, "Largest radius of R(r) in --unit [10 transport mfp; --mci: nr*dr]");
   sub->add_option("--r-min", options->r_min, "Log spacing: outer radius of the first bin [r_max/1000]");
   add_count_option(*sub, "--bins", options->bins, 2, kMaxBins, "Radial bins [100; --mci: nr]");
   sub->add_option("--bin-spacing", options->spacing, "Radial bins: linear or log [linear]")
       ->check(CLI::IsMember({"linear", "log"}));
-  add_count_option(*sub, "--depth-bins", options->depth_bins, 0, kMaxBins, "Absorbed fraction by depth in this many bins [0: off; --mci: nz]");
-  sub->add_option("--absorption", options->absorption, "Absorption estimator: implicit (weights + roulette) or analog [implicit]")
+  add_count_option(*sub, "--depth-bins", options->depth_bins, 0, kMaxBins,
+                   "Absorbed fraction by depth in this many bins [0: off; --mci: nz]");
+  sub->add_option("--absorption", options->absorption,
+                  "Absorption estimator: implicit (weights + roulette) or analog [implicit]")
       ->check(CLI::IsMember({"implicit", "analog"}));
-  auto* threshold_option = sub->add_option("--roulette-threshold", options->roulette_threshold,
-                  "Implicit capture: Russian roulette below this weight, 1e-12 to < 1 (unbiased for any value; cost grows as "
-                  "its logarithm falls; MCML: 1e-4) [" +
-                      format_number(MonteCarloOptions{}.roulette_threshold) + "]");
-  auto* survival_option = sub->add_option("--roulette-survival", options->roulette_survival,
-                  "Implicit capture: probability of surviving the roulette, 0 < p <= 1 (MCML: 0.1) [" +
-                      format_number(MonteCarloOptions{}.roulette_survival) + "]");
+  auto* threshold_option = sub->add_option(
+      "--roulette-threshold", options->roulette_threshold,
+      "Implicit capture: Russian roulette below this weight, 1e-12 to < 1 (unbiased for any value; cost grows as "
+      "its logarithm falls; MCML: 1e-4) [" +
+          format_number(MonteCarloOptions{}.roulette_threshold) + "]");
+  auto* survival_option =
+      sub->add_option("--roulette-survival", options->roulette_survival,
+                      "Implicit capture: probability of surviving the roulette, 0 < p <= 1 (MCML: 0.1) [" +
+                          format_number(MonteCarloOptions{}.roulette_survival) + "]");
   options->output.add_to(*sub);
   layers->excludes(thickness)->excludes(mci);
   mci->excludes(thickness);
@@ -67,8 +75,9 @@ Action register_reference(CLI::App& app) {
     if (!o.layers.empty() || !o.mci.empty()) {
       if (!o.medium.material.empty() || !o.medium.sigma_a.empty() || !o.medium.sigma_s.empty() || !o.medium.g.empty() ||
           !o.medium.eta.empty())
-        throw InvalidInput(std::string(o.mci.empty() ? "--layers" : "--mci") +
-                           " describes the medium: do not combine it with --material, --sigma-a, --sigma-s, --g or --eta");
+        throw InvalidInput(
+            std::string(o.mci.empty() ? "--layers" : "--mci") +
+            " describes the medium: do not combine it with --material, --sigma-a, --sigma-s, --g or --eta");
     }
     MonteCarloOptions base;
     base.photons = o.photons;
@@ -128,7 +137,8 @@ Action register_reference(CLI::App& app) {
           mc.z_max = run.dz * run.nz;
         }
         lengths(mc, unit);
-        cases.push_back({"run " + std::to_string(k + 1) + " (" + run.output_file + ")", run.stack, mc, run.output_file, run.na});
+        cases.push_back(
+            {"run " + std::to_string(k + 1) + " (" + run.output_file + ")", run.stack, mc, run.output_file, run.na});
       }
     } else if (!o.layers.empty()) {
       const LayersFile file = read_layers_json(o.layers);
@@ -187,7 +197,9 @@ Action register_reference(CLI::App& app) {
           content += to_csv(results[k], unit);
         }
         break;
-      case Format::table: content = table; break;
+      case Format::table:
+        content = table;
+        break;
     }
     // Every run is formatted before any file is written, so a refusal leaves none behind.
     std::vector<std::pair<std::filesystem::path, std::string>> mco_files;

@@ -23,8 +23,11 @@ std::string rxt_fit_json(const RxtFit& fit) {
   doc["model"] = "adding-doubling";
   doc["unit"] = "mm";
   auto sphere = [](const RxtSphere& s) {
-    return nlohmann::json{{"diameter", s.diameter}, {"sample_port", s.sample_port}, {"third_port", s.third_port},
-                          {"detector_port", s.detector_port}, {"wall_reflectance", s.wall_reflectance}};
+    return nlohmann::json{{"diameter", s.diameter},
+                          {"sample_port", s.sample_port},
+                          {"third_port", s.third_port},
+                          {"detector_port", s.detector_port},
+                          {"wall_reflectance", s.wall_reflectance}};
   };
   doc["header"] = {{"sample_index", f.sample_n},
                    {"slide_index", f.slide_n},
@@ -36,7 +39,8 @@ std::string rxt_fit_json(const RxtFit& fit) {
                    {"reflection_sphere", sphere(f.reflection)},
                    {"transmission_sphere", sphere(f.transmission)},
                    {"measurements", f.measurements}};
-  doc["measurement_stderr"] = {{"m_r", fit.options.reflectance_stderr}, {"m_t", fit.options.transmittance_stderr},
+  doc["measurement_stderr"] = {{"m_r", fit.options.reflectance_stderr},
+                               {"m_t", fit.options.transmittance_stderr},
                                {"m_u", fit.options.unscattered_stderr}};
   doc["g_held"] = f.measurements == 3 ? nlohmann::json(nullptr) : nlohmann::json(fit.options.g);
   doc["lost_light_correction"] = fit.options.lost_light;
@@ -63,15 +67,18 @@ std::string rxt_fit_json(const RxtFit& fit) {
 
 std::string rxt_fit_csv(const RxtFit& fit) {
   std::ostringstream out;
-  out << "wavelength,mu_a_per_mm,mu_a_stderr,mu_s_prime_per_mm,mu_s_prime_stderr,g,g_stderr,m_r,m_r_fitted,m_t,m_t_fitted,m_u,"
+  out << "wavelength,mu_a_per_mm,mu_a_stderr,mu_s_prime_per_mm,mu_s_prime_stderr,g,g_stderr,m_r,m_r_fitted,m_t,m_t_"
+         "fitted,m_u,"
          "m_u_fitted,chi2,status\n";
   for (const auto& r : fit.rows) {
     out << format_number(r.row.wavelength) << ',' << format_number(r.mu_a) << ',' << format_number(r.mu_a_stderr) << ','
         << format_number(r.mu_s_prime) << ',' << format_number(r.mu_s_prime_stderr) << ',' << format_number(r.g) << ','
         << format_number(r.g_stderr) << ',' << format_number(r.row.m_r) << ',' << format_number(r.fitted_m_r) << ','
         << format_number(r.row.m_t) << ',' << format_number(r.fitted_m_t) << ',';
-    if (r.fitted_m_u >= 0) out << format_number(r.row.m_u) << ',' << format_number(r.fitted_m_u);
-    else out << ',';
+    if (r.fitted_m_u >= 0)
+      out << format_number(r.row.m_u) << ',' << format_number(r.fitted_m_u);
+    else
+      out << ',';
     out << ',' << format_number(r.chi2) << ",\"" << r.status << "\"\n";
   }
   return out.str();
@@ -83,23 +90,26 @@ std::string rxt_fit_table(const RxtFit& fit) {
   char line[512];
   out << "inverse adding-doubling of " << f.name << "\n";
   std::snprintf(line, sizeof line,
-                "sample n %.3f, %.3f mm; slides n %.3f, %.3f mm%s; %d sphere(s); standard %.3f; g %s; %s\n",
-                f.sample_n, f.sample_thickness, f.slide_n, f.slide_thickness, f.has_slides() ? "" : " (none)", f.spheres,
-                f.standard_reflectance, f.measurements == 3 ? "fitted (M_U given)" : ("held at " + format_number(fit.options.g)).c_str(),
-                fit.options.lost_light ? ("LOST LIGHT CORRECTED by Monte Carlo (" + std::to_string(fit.options.lost_light_photons) +
-                                          " photons, pencil beam)").c_str()
+                "sample n %.3f, %.3f mm; slides n %.3f, %.3f mm%s; %d sphere(s); standard %.3f; g %s; %s\n", f.sample_n,
+                f.sample_thickness, f.slide_n, f.slide_thickness, f.has_slides() ? "" : " (none)", f.spheres,
+                f.standard_reflectance,
+                f.measurements == 3 ? "fitted (M_U given)" : ("held at " + format_number(fit.options.g)).c_str(),
+                fit.options.lost_light ? ("LOST LIGHT CORRECTED by Monte Carlo (" +
+                                          std::to_string(fit.options.lost_light_photons) + " photons, pencil beam)")
+                                             .c_str()
                                        : "lost light not corrected");
   out << line;
   out << (f.has_wavelength ? "  lambda" : "     row")
       << "   mu_a (1/mm)          mu_s' (1/mm)         g               M_R meas/fit     M_T meas/fit     status\n";
   for (const auto& r : fit.rows) {
-    std::snprintf(line, sizeof line, "%8g  %8.4f +- %-8.2g %8.4f +- %-8.2g %6.3f +- %-5.2g %.4f/%.4f    %.4f/%.4f    %s\n", r.row.wavelength,
-                  r.mu_a, r.mu_a_stderr, r.mu_s_prime, r.mu_s_prime_stderr, r.g, r.g_stderr, r.row.m_r, r.fitted_m_r, r.row.m_t,
-                  r.fitted_m_t, r.status.c_str());
+    std::snprintf(line, sizeof line,
+                  "%8g  %8.4f +- %-8.2g %8.4f +- %-8.2g %6.3f +- %-5.2g %.4f/%.4f    %.4f/%.4f    %s\n",
+                  r.row.wavelength, r.mu_a, r.mu_a_stderr, r.mu_s_prime, r.mu_s_prime_stderr, r.g, r.g_stderr,
+                  r.row.m_r, r.fitted_m_r, r.row.m_t, r.fitted_m_t, r.status.c_str());
     out << line;
   }
-  std::snprintf(line, sizeof line, "%zu rows in %.3f s; errors: 1 sigma from M_R +- %g, M_T +- %g%s\n", fit.rows.size(), fit.seconds,
-                fit.options.reflectance_stderr, fit.options.transmittance_stderr,
+  std::snprintf(line, sizeof line, "%zu rows in %.3f s; errors: 1 sigma from M_R +- %g, M_T +- %g%s\n", fit.rows.size(),
+                fit.seconds, fit.options.reflectance_stderr, fit.options.transmittance_stderr,
                 f.measurements == 3 ? (", M_U +- " + format_number(fit.options.unscattered_stderr)).c_str() : "");
   out << line;
   return out.str();

@@ -25,17 +25,20 @@ Action register_transmission(CLI::App& app) {
     int samples = 0;  // 0: kThicknessSamples
   };
   auto options = std::make_shared<Options>();
-  auto* sub = app.add_subcommand("transmission",
-                                 "Total transmittance and reflectance of a slab against its thickness (adding-doubling or "
-                                 "multipole, per unit entered flux, diffuse light only: the ballistic part is excluded)");
+  auto* sub =
+      app.add_subcommand("transmission",
+                         "Total transmittance and reflectance of a slab against its thickness (adding-doubling or "
+                         "multipole, per unit entered flux, diffuse light only: the ballistic part is excluded)");
   options->medium.add_to(*sub);
   auto* list = sub->add_option("--thickness", options->thickness, "Thicknesses in --unit, comma-separated");
   sub->add_option("--model", options->model, "adding-doubling (exact) or multipole (for comparison) [adding-doubling]")
       ->check(CLI::IsMember({"adding-doubling", "multipole"}));
   // The default range is the library's rule (default_thickness_range), shared with lut --kind transmission.
-  auto* lo = sub->add_option("--d-min", options->d_min,
-                             "Smallest thickness [0.1 of the shortest transport mfp over the channels; multipole: 2 of the longest]");
-  auto* hi = sub->add_option("--d-max", options->d_max, "Largest thickness [40 of the longest transport mfp over the channels]");
+  auto* lo = sub->add_option(
+      "--d-min", options->d_min,
+      "Smallest thickness [0.1 of the shortest transport mfp over the channels; multipole: 2 of the longest]");
+  auto* hi = sub->add_option("--d-max", options->d_max,
+                             "Largest thickness [40 of the longest transport mfp over the channels]");
   auto* n = add_count_option(*sub, "--samples", options->samples, 2, kMaxThicknessSamples,
                              "Number of thicknesses, log-spaced [" + std::to_string(kThicknessSamples) + "]");
   list->excludes(lo)->excludes(hi)->excludes(n);
@@ -47,8 +50,8 @@ Action register_transmission(CLI::App& app) {
     const bool ad = options->model == "adding-doubling";
     TransmissionTableOptions rule;
     rule.model = options->model;
-    const auto thickness = slab_thicknesses(options->thickness, options->d_min, options->d_max, options->samples, resolved.unit,
-                                            default_thickness_range(medium, rule));  // in unit
+    const auto thickness = slab_thicknesses(options->thickness, options->d_min, options->d_max, options->samples,
+                                            resolved.unit, default_thickness_range(medium, rule));  // in unit
     struct Cell {
       double R, T;
       std::string invalid;  // the first invalid code, empty when valid
@@ -60,7 +63,8 @@ Action register_transmission(CLI::App& app) {
       if (ad) {  // per entered flux, ballistic beam removed from T, as the multipole reports it
         const auto stack = LayerStack::slab(medium, d * mm);
         for (std::size_t c = 0; c < medium.channels(); ++c) {
-          const auto t = adding_doubling::solve(adding_doubling::slab_of(stack, c), adding_doubling::Incidence::collimated);
+          const auto t =
+              adding_doubling::solve(adding_doubling::slab_of(stack, c), adding_doubling::Incidence::collimated);
           row.push_back({t.diffuse_reflectance * t.entered_scale(),
                          (t.total_transmittance - t.unscattered_transmittance) * t.entered_scale(), ""});
         }
@@ -80,8 +84,8 @@ Action register_transmission(CLI::App& app) {
     }
     const std::string u(symbol(resolved.unit));
     std::ostringstream table, csv;
-    table << (ad ? "adding-doubling slab (exact)" : "multipole slab (Donner & Jensen 2005)") << ", eta " << format_number(medium.eta)
-          << ", per unit entered flux, diffuse light only (no ballistic part)\n"
+    table << (ad ? "adding-doubling slab (exact)" : "multipole slab (Donner & Jensen 2005)") << ", eta "
+          << format_number(medium.eta) << ", per unit entered flux, diffuse light only (no ballistic part)\n"
           << "thickness (" << u << ")";
     csv << "thickness_" << u;
     for (const auto& name : medium.channel_names) {
@@ -126,13 +130,20 @@ Action register_transmission(CLI::App& app) {
       csv << '\n';
       doc["rows"].push_back(row);
     }
-    if (!ad) table << "invalid: the multipole does not hold (thinner than 2 transport mean free paths, or negative "
-             "transmittance); use 'bssrdf reference --thickness D' (Monte Carlo) there\n";
+    if (!ad)
+      table << "invalid: the multipole does not hold (thinner than 2 transport mean free paths, or negative "
+               "transmittance); use 'bssrdf reference --thickness D' (Monte Carlo) there\n";
     std::string content;
     switch (options->output.file_format()) {
-      case Format::json: content = doc.dump(2) + "\n"; break;
-      case Format::csv: content = csv.str(); break;
-      case Format::table: content = table.str(); break;
+      case Format::json:
+        content = doc.dump(2) + "\n";
+        break;
+      case Format::csv:
+        content = csv.str();
+        break;
+      case Format::table:
+        content = table.str();
+        break;
     }
     emit(options->output, content, table.str());
   };

@@ -14,20 +14,24 @@ DistanceConvention parse_distance_convention(const std::string& text) {
   if (text == "mfp") return DistanceConvention::mfp;
   if (text == "transport-mfp" || text == "transport_mfp") return DistanceConvention::transport_mfp;
   if (text == "dmfp") return DistanceConvention::dmfp;
-  throw InvalidInput("distance convention", "'" + text + "'", "mfp (1/sigma_t), transport-mfp (1/sigma_t') or dmfp (1/sigma_tr)");
+  throw InvalidInput("distance convention", "'" + text + "'",
+                     "mfp (1/sigma_t), transport-mfp (1/sigma_t') or dmfp (1/sigma_tr)");
 }
 
 std::string_view to_string(DistanceConvention convention) {
   switch (convention) {
-    case DistanceConvention::mfp: return "mfp";
-    case DistanceConvention::transport_mfp: return "transport-mfp";
-    case DistanceConvention::dmfp: return "dmfp";
+    case DistanceConvention::mfp:
+      return "mfp";
+    case DistanceConvention::transport_mfp:
+      return "transport-mfp";
+    case DistanceConvention::dmfp:
+      return "dmfp";
   }
   return "mfp";
 }
 
-AlbedoInversion invert_albedo(const std::string& model_name, double total, double distance, DistanceConvention convention,
-                              double eta, double g) {
+AlbedoInversion invert_albedo(const std::string& model_name, double total, double distance,
+                              DistanceConvention convention, double eta, double g) {
   if (!(distance > 0) || !std::isfinite(distance)) throw InvalidInput("distance", format_number(distance), "> 0");
   thread_local std::string cached_name;
   thread_local std::unique_ptr<Model> model;
@@ -38,7 +42,9 @@ AlbedoInversion invert_albedo(const std::string& model_name, double total, doubl
   const double a = albedo_prime_for_total(*model, total, eta, g);
   double sigma_t_prime = 0;
   switch (convention) {
-    case DistanceConvention::transport_mfp: sigma_t_prime = 1 / distance; break;
+    case DistanceConvention::transport_mfp:
+      sigma_t_prime = 1 / distance;
+      break;
     case DistanceConvention::mfp:  // sigma_t = sigma_a + sigma_s'/(1 - g) = sigma_t' (1 - a + a/(1 - g))
       sigma_t_prime = 1 / (distance * (1 - a + a / (1 - g)));
       break;
@@ -76,8 +82,9 @@ FitReport fit_albedo(const std::vector<ChannelInput>& channels, DistanceConventi
     const double back = m->total_reflectance(reduce(x.sigma_a, x.sigma_s_prime / (1 - c.g), c.g, eta));
     report.residuals.push_back({c.name, 0, c.value, back, 0});
   }
-  report.warnings.push_back("two numbers per channel determine sigma_a and sigma_s' exactly: no uncertainty can be "
-                            "estimated from them (the errors of the model itself are in 'bssrdf models')");
+  report.warnings.push_back(
+      "two numbers per channel determine sigma_a and sigma_s' exactly: no uncertainty can be "
+      "estimated from them (the errors of the model itself are in 'bssrdf models')");
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
 }

@@ -73,14 +73,16 @@ DerivedQuantities derive_quantities(const Medium& medium, const DerivationOption
         // solution, <= 1), whatever the physical model's.
         ch.surface_albedo = exact_total(table, m.albedo_prime, m.g, m.eta);
         if (model_total > 1)
-          reasons.push_back("surface albedo and Burley A are the exact model's total " + format_number(std::round(ch.surface_albedo * 1e5) / 1e5) +
-                            ", not " + out.physical_model + "'s " + format_number(std::round(model_total * 1e5) / 1e5));
+          reasons.push_back("surface albedo and Burley A are the exact model's total " +
+                            format_number(std::round(ch.surface_albedo * 1e5) / 1e5) + ", not " + out.physical_model +
+                            "'s " + format_number(std::round(model_total * 1e5) / 1e5));
       } else if (model_total > 1) {
         // The physical model creates energy here (its validity says so above): the surface albedo
         // is the exact radiative-transfer total instead, which conserves it.
         ch.surface_albedo = exact_total_reflectance(m);
-        reasons.push_back("surface albedo and Burley A are the exact total " + format_number(std::round(ch.surface_albedo * 1e5) / 1e5) +
-                          " (adding-doubling), not " + out.physical_model + "'s " + format_number(std::round(model_total * 1e5) / 1e5));
+        reasons.push_back("surface albedo and Burley A are the exact total " +
+                          format_number(std::round(ch.surface_albedo * 1e5) / 1e5) + " (adding-doubling), not " +
+                          out.physical_model + "'s " + format_number(std::round(model_total * 1e5) / 1e5));
       }
       // Burley's d fitted to the physical profile, his A held at the surface albedo: the fitted
       // profile carries exactly the surface albedo's energy (its error includes any excess of the

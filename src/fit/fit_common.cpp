@@ -49,8 +49,8 @@ double albedo_prime_for_total(const Model& model, double total, double eta, doub
   double f_lo = total_at(lo) - total, f_hi = total_at(hi) - total;
   if (!(f_lo <= 0 && f_hi >= 0) || !std::isfinite(total))
     throw InvalidInput("total reflectance", format_number(total),
-                       "[" + format_number(f_lo + total) + ", " + format_number(f_hi + total) + "] for the " + model.name() +
-                           " model at eta = " + format_number(eta) + ", g = " + format_number(g));
+                       "[" + format_number(f_lo + total) + ", " + format_number(f_hi + total) + "] for the " +
+                           model.name() + " model at eta = " + format_number(eta) + ", g = " + format_number(g));
   // Illinois regula falsi: superlinear, never leaves the bracket.
   int side = 0;
   for (int iter = 0; iter < 100 && hi - lo > 1e-15; ++iter) {

@@ -20,9 +20,12 @@ std::string from_fit(const nlohmann::json& fit, const std::string& fit_file, con
   if (!fit.contains("channels") || !fit.at("channels").is_array() || fit.at("channels").empty())
     throw FileError(fit_file, 0, "$.channels: expected a non-empty array");
   double eta = 0;
-  if (eta_given) eta = *eta_given;
-  else if (fit.contains("shared") && fit.at("shared").contains("eta")) eta = fit.at("shared").at("eta").at("value").get<double>();
-  else throw InvalidInput("eta: the fit result has no eta; give the one the fit assumed");
+  if (eta_given)
+    eta = *eta_given;
+  else if (fit.contains("shared") && fit.at("shared").contains("eta"))
+    eta = fit.at("shared").at("eta").at("value").get<double>();
+  else
+    throw InvalidInput("eta: the fit result has no eta; give the one the fit assumed");
   std::vector<std::string> channels;
   std::vector<double> sigma_a, sigma_s_prime;
   std::string unit;
@@ -31,8 +34,10 @@ std::string from_fit(const nlohmann::json& fit, const std::string& fit_file, con
     const std::string where = "$.channels[" + std::to_string(i) + "]";
     for (const char* key : {"sigma_a", "sigma_s_prime"})
       if (!c.contains(key) || !c.at(key).contains("value") || !c.at(key).at("value").is_number())
-        throw FileError(fit_file, 0, where + "." + key + ": missing (only fits of sigma_a and sigma_s' - profile, albedo, "
-                                                          "slab - give a material)");
+        throw FileError(fit_file, 0,
+                        where + "." + key +
+                            ": missing (only fits of sigma_a and sigma_s' - profile, albedo, "
+                            "slab - give a material)");
     // std::string("c") + ...: "c" + std::string&& trips GCC 12's -Wrestrict false positive (GCC bug 105329).
     channels.push_back(c.value("name", std::string("c") + std::to_string(i)));
     sigma_a.push_back(c.at("sigma_a").at("value").get<double>());
@@ -41,16 +46,19 @@ std::string from_fit(const nlohmann::json& fit, const std::string& fit_file, con
     if (u.rfind("1/", 0) != 0) throw FileError(fit_file, 0, where + ".sigma_a.unit: '" + u + "' is not 1/LENGTH");
     unit = u.substr(2);
   }
-  json doc = {{"format", "bssrdf-materials"},
-              {"version", 1},
-              {"source", source},
-              {"citation", "bssrdf fit " + fit.value("kind", std::string("?")) + " (" + fit.value("model", std::string("?")) +
-                               ") of " + fit.value("data", std::string("?")) + ", " + fit.value("tool", std::string(""))},
-              {"unit", unit},
-              {"channels", channels},
-              {"notes", {"Imported from " + fit_file + " by 'bssrdf materials import'; g was not fitted, so the entry "
-                         "gives sigma_s_prime (used with g = 0)."}},
-              {"materials", {{{"name", name}, {"eta", eta}, {"sigma_a", sigma_a}, {"sigma_s_prime", sigma_s_prime}}}}};
+  json doc = {
+      {"format", "bssrdf-materials"},
+      {"version", 1},
+      {"source", source},
+      {"citation", "bssrdf fit " + fit.value("kind", std::string("?")) + " (" + fit.value("model", std::string("?")) +
+                       ") of " + fit.value("data", std::string("?")) + ", " + fit.value("tool", std::string(""))},
+      {"unit", unit},
+      {"channels", channels},
+      {"notes",
+       {"Imported from " + fit_file +
+        " by 'bssrdf materials import'; g was not fitted, so the entry "
+        "gives sigma_s_prime (used with g = 0)."}},
+      {"materials", {{{"name", name}, {"eta", eta}, {"sigma_a", sigma_a}, {"sigma_s_prime", sigma_s_prime}}}}};
   return doc.dump(2) + "\n";
 }
 

@@ -19,7 +19,8 @@ const FitParameter* FitReport::find(const std::string& name, const std::string& 
 namespace {
 nlohmann::json estimate(const FitParameter& p) {
   nlohmann::json e = {{"value", p.value}};
-  e["stderr"] = std::isfinite(p.standard_error) && p.standard_error > 0 ? nlohmann::json(p.standard_error) : nlohmann::json(nullptr);
+  e["stderr"] = std::isfinite(p.standard_error) && p.standard_error > 0 ? nlohmann::json(p.standard_error)
+                                                                        : nlohmann::json(nullptr);
   if (!p.unit.empty()) e["unit"] = p.unit;
   return e;
 }
@@ -67,18 +68,20 @@ std::string FitReport::full_report() const {
   std::ostringstream out;
   out << "bssrdf fit " << kind << " — model " << model << "\n";
   out << "data      " << data_source << "\n";
-  out << "solver    " << termination << (converged ? "" : " (NOT converged)") << ", " << iterations
-      << " iterations, " << format_number(std::round(seconds * 1e6) / 1e3) << " ms\n";
-  out << "residuals " << residuals.size() << " points, weighted RMS " << format_number(std::round(residual_rms * 1e4) / 1e4)
-      << ", relative RMS " << format_number(std::round(relative_rms * 1e6) / 1e4) << " %\n\n";
+  out << "solver    " << termination << (converged ? "" : " (NOT converged)") << ", " << iterations << " iterations, "
+      << format_number(std::round(seconds * 1e6) / 1e3) << " ms\n";
+  out << "residuals " << residuals.size() << " points, weighted RMS "
+      << format_number(std::round(residual_rms * 1e4) / 1e4) << ", relative RMS "
+      << format_number(std::round(relative_rms * 1e6) / 1e4) << " %\n\n";
   out << "parameter          channel   value          1-sigma        unit\n";
   for (const auto& p : parameters) {
     // An uncertainty that could not be computed (or an exact inversion) is "n/a", never nan or 0.
     char sigma[32] = "n/a";
-    if (std::isfinite(p.standard_error) && p.standard_error > 0) std::snprintf(sigma, sizeof sigma, "%.3g", p.standard_error);
+    if (std::isfinite(p.standard_error) && p.standard_error > 0)
+      std::snprintf(sigma, sizeof sigma, "%.3g", p.standard_error);
     char line[160];
-    std::snprintf(line, sizeof line, "%-18s %-9s %-14.6g %-14s %s\n", p.name.c_str(), p.channel.empty() ? "-" : p.channel.c_str(),
-                  p.value, sigma, p.unit.c_str());
+    std::snprintf(line, sizeof line, "%-18s %-9s %-14.6g %-14s %s\n", p.name.c_str(),
+                  p.channel.empty() ? "-" : p.channel.c_str(), p.value, sigma, p.unit.c_str());
     out << line;
   }
   if (!warnings.empty()) {

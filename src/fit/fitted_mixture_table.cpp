@@ -25,7 +25,8 @@ GaussianMixtureTable fitted_mixture_table(const Medium& medium, const Model& mod
   // From 0.05 transport mfp out (not 1e-3 as default_radii_mm): profiles singular at 0 (single
   // scattering, Burley's 1/r) make int r R^2 dr diverge there, and the fit would spend every
   // Gaussian on the first micrometres and lose the tail's energy.
-  const auto radii = log_spaced(kFitInner * transport_mfp_range(medium).min, default_radii_mm(medium, model, 2).back(), samples);
+  const auto radii =
+      log_spaced(kFitInner * transport_mfp_range(medium).min, default_radii_mm(medium, model, 2).back(), samples);
   // Channels without scattering (sigma_s = 0) reflect nothing: weight 0 for every Gaussian, out of the fit.
   std::vector<NamedProfile> profiles;
   std::vector<double> totals;
@@ -38,8 +39,10 @@ GaussianMixtureTable fitted_mixture_table(const Medium& medium, const Model& mod
     throw InvalidInput("profile", "0 in every channel", "a medium that scatters (sigma_s > 0) in at least one channel");
   const auto report = fit_gaussians(profiles, count, LengthUnit::millimetre, model.name() + " profile", totals);
   GaussianMixtureTable t;
-  t.method = "least-squares fit of " + std::to_string(count) + " shared-variance Gaussians to the " + model.name() +
-             " profile on " + std::to_string(samples) + " radii (min int r (R - sum w G2)^2 dr, weights >= 0, weights held to the model's total; bssrdf fit gaussians)";
+  t.method =
+      "least-squares fit of " + std::to_string(count) + " shared-variance Gaussians to the " + model.name() +
+      " profile on " + std::to_string(samples) +
+      " radii (min int r (R - sum w G2)^2 dr, weights >= 0, weights held to the model's total; bssrdf fit gaussians)";
   t.shared_variance = true;
   t.channel_names = medium.channel_names;
   std::vector<double> variance;

@@ -112,10 +112,13 @@ void check_profiles(const std::vector<NamedProfile>& channels) {
     } catch (const InvalidInput& e) {
       throw InvalidInput("channel " + c.name + ": " + e.what());
     }
-    if (c.profile.size() < 8) throw InvalidInput("channel " + c.name + ": radii", std::to_string(c.profile.size()), ">= 8 samples");
+    if (c.profile.size() < 8)
+      throw InvalidInput("channel " + c.name + ": radii", std::to_string(c.profile.size()), ">= 8 samples");
     double peak = 0;
     for (double v : c.profile.value) peak = std::max(peak, v);
-    if (!(peak > 0)) throw InvalidInput("channel " + c.name + ": profile", "0 everywhere", "a profile with some reflectance (the channel does not scatter)");
+    if (!(peak > 0))
+      throw InvalidInput("channel " + c.name + ": profile", "0 everywhere",
+                         "a profile with some reflectance (the channel does not scatter)");
   }
 }
 
@@ -133,12 +136,13 @@ double relative_l2(const SampledProfile& p, const std::function<double(double)>&
 
 }  // namespace
 
-FitReport fit_gaussians(const std::vector<NamedProfile>& channels, int count, LengthUnit unit, const std::string& source,
-                        const std::vector<double>& totals) {
+FitReport fit_gaussians(const std::vector<NamedProfile>& channels, int count, LengthUnit unit,
+                        const std::string& source, const std::vector<double>& totals) {
   const auto start = std::chrono::steady_clock::now();
   check_profiles(channels);
   if (!totals.empty() && totals.size() != channels.size())
-    throw InvalidInput("gaussians: " + std::to_string(totals.size()) + " totals for " + std::to_string(channels.size()) + " channels");
+    throw InvalidInput("gaussians: " + std::to_string(totals.size()) + " totals for " +
+                       std::to_string(channels.size()) + " channels");
   if (count < 1 || count > 32) throw InvalidInput("gaussians", std::to_string(count), "1 to 32");
   // Start: standard deviations spread geometrically over the profiles' energy range.
   double r_lo = INFINITY, r_hi = 0;
@@ -201,7 +205,7 @@ FitReport fit_gaussians(const std::vector<NamedProfile>& channels, int count, Le
     const double saved_cost = summary.final_cost;
     log_variance[dead] = seed;
     for (auto& w : weight) w[dead] = 0.05 * total / static_cast<double>(weight.size());
-      ceres::Solver::Summary retry;
+    ceres::Solver::Summary retry;
     ceres::Solve(options, &problem, &retry);
     if (retry.final_cost < saved_cost) {
       summary = retry;
@@ -226,7 +230,8 @@ FitReport fit_gaussians(const std::vector<NamedProfile>& channels, int count, Le
   std::sort(order.begin(), order.end(), [&](int a, int b) { return log_variance[a] < log_variance[b]; });
   const std::string u(symbol(unit));
   for (int k = 0; k < count; ++k)
-    report.parameters.push_back({"variance_" + std::to_string(k + 1), "", std::exp(log_variance[order[k]]), NAN, u + "^2"});
+    report.parameters.push_back(
+        {"variance_" + std::to_string(k + 1), "", std::exp(log_variance[order[k]]), NAN, u + "^2"});
   double worst = 0;
   for (std::size_t c = 0; c < channels.size(); ++c) {
     double sum = 0;
@@ -248,8 +253,9 @@ FitReport fit_gaussians(const std::vector<NamedProfile>& channels, int count, Le
   }
   report.relative_rms = worst;
   report.residual_rms = std::sqrt(2 * summary.final_cost / channels.size());
-  report.warnings.push_back("uncertainties are not estimated: this is an approximation of a known profile, not a "
-                            "measurement; relative_l2_error is its quality");
+  report.warnings.push_back(
+      "uncertainties are not estimated: this is an approximation of a known profile, not a "
+      "measurement; relative_l2_error is its quality");
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
 }
@@ -259,9 +265,11 @@ FitReport fit_burley(const std::vector<NamedProfile>& channels, LengthUnit unit,
   const auto start = std::chrono::steady_clock::now();
   check_profiles(channels);
   if (!totals.empty() && totals.size() != channels.size())
-    throw InvalidInput("totals: " + std::to_string(totals.size()) + " values for " + std::to_string(channels.size()) + " channels");
+    throw InvalidInput("totals: " + std::to_string(totals.size()) + " values for " + std::to_string(channels.size()) +
+                       " channels");
   for (double t : totals)
-    if (!(t > 0 && t <= 1)) throw InvalidInput("total reflectance", format_number(t), "0 < total <= 1 (energy is conserved)");
+    if (!(t > 0 && t <= 1))
+      throw InvalidInput("total reflectance", format_number(t), "0 < total <= 1 (energy is conserved)");
   FitReport report;
   report.kind = "burley";
   report.model = "normalized diffusion (Christensen & Burley 2015): d and A by least squares";
@@ -272,20 +280,22 @@ FitReport fit_burley(const std::vector<NamedProfile>& channels, LengthUnit unit,
   for (std::size_t k = 0; k < channels.size(); ++k) {
     const auto& c = channels[k];
     // Start from the profile's integral and half-energy radius (Burley's r_50 = 1.5436 d).
-    std::array<double, 2> x = {std::log(c.profile.radius_for_fraction(0.5) / normalized_diffusion::inverse_cdf(1.0, 0.5)),
-                               std::log(totals.empty() ? c.profile.integrate() : totals[k])};
+    std::array<double, 2> x = {
+        std::log(c.profile.radius_for_fraction(0.5) / normalized_diffusion::inverse_cdf(1.0, 0.5)),
+        std::log(totals.empty() ? c.profile.integrate() : totals[k])};
     ceres::Problem problem;
     // A given total is Burley's A itself (his surface albedo, the profile's energy): only d is
     // fitted. Free, A absorbs the misfit of the shape and can exceed 1.
     if (totals.empty())
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<BurleyResidual, ceres::DYNAMIC, 2>(
-                                   new BurleyResidual{&c.profile, root_weights(c.profile)}, static_cast<int>(c.profile.size())),
-                               nullptr, x.data());
+      problem.AddResidualBlock(
+          new ceres::AutoDiffCostFunction<BurleyResidual, ceres::DYNAMIC, 2>(
+              new BurleyResidual{&c.profile, root_weights(c.profile)}, static_cast<int>(c.profile.size())),
+          nullptr, x.data());
     else
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<BurleyShapeResidual, ceres::DYNAMIC, 1>(
-                                   new BurleyShapeResidual{{&c.profile, root_weights(c.profile)}, x[1]},
-                                   static_cast<int>(c.profile.size())),
-                               nullptr, x.data());
+      problem.AddResidualBlock(
+          new ceres::AutoDiffCostFunction<BurleyShapeResidual, ceres::DYNAMIC, 1>(
+              new BurleyShapeResidual{{&c.profile, root_weights(c.profile)}, x[1]}, static_cast<int>(c.profile.size())),
+          nullptr, x.data());
     ceres::Solver::Options options;
     options.linear_solver_type = ceres::DENSE_QR;
     options.function_tolerance = 1e-14;
@@ -294,7 +304,8 @@ FitReport fit_burley(const std::vector<NamedProfile>& channels, LengthUnit unit,
     report.iterations += static_cast<int>(summary.iterations.size()) - 1;
     report.converged &= summary.termination_type == ceres::CONVERGENCE;
     const double d = std::exp(x[0]), A = std::exp(x[1]);
-    const double error = relative_l2(c.profile, [&](double r) { return normalized_diffusion::profile(A, d, std::max(r, 1e-300)); });
+    const double error =
+        relative_l2(c.profile, [&](double r) { return normalized_diffusion::profile(A, d, std::max(r, 1e-300)); });
     worst = std::max(worst, error);
     report.parameters.push_back({"burley_d", c.name, d, NAN, u});
     report.parameters.push_back({"surface_albedo", c.name, A, NAN, ""});

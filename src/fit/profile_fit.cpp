@@ -68,12 +68,14 @@ void ProfileFitOptions::validate(std::size_t channels) const {
   make_model(model);
   if (!(eta > 0) || !std::isfinite(eta)) throw InvalidInput("eta", format_number(eta), "> 0");
   if (fit_eta && !(eta_min < eta_max && eta >= eta_min && eta <= eta_max))
-    throw InvalidInput("eta", format_number(eta), "[" + format_number(eta_min) + ", " + format_number(eta_max) + "] when fitting eta");
+    throw InvalidInput("eta", format_number(eta),
+                       "[" + format_number(eta_min) + ", " + format_number(eta_max) + "] when fitting eta");
   if (!g.empty() && g.size() != 1 && g.size() != channels)
     throw InvalidInput("g: " + std::to_string(g.size()) + " values for " + std::to_string(channels) + " channels");
   for (double v : g)
     if (!(v > -1 && v < 1)) throw InvalidInput("g", format_number(v), "-1 < g < 1");
-  if (loss != "none" && loss != "huber" && loss != "cauchy") throw InvalidInput("loss", "'" + loss + "'", "none, huber or cauchy");
+  if (loss != "none" && loss != "huber" && loss != "cauchy")
+    throw InvalidInput("loss", "'" + loss + "'", "none, huber or cauchy");
   if (!(loss_scale > 0)) throw InvalidInput("loss scale", format_number(loss_scale), "> 0");
 }
 
@@ -132,7 +134,8 @@ FitReport fit_profile(const MeasuredProfile& data, const ProfileFitOptions& opti
       cost = new ceres::AutoDiffCostFunction<AutoResidual, ceres::DYNAMIC, 2, 1, 1>(
           new AutoResidual{&channels[c], &forward}, n);
     }
-    ceres::LossFunction* loss = options.loss == "huber"    ? static_cast<ceres::LossFunction*>(new ceres::HuberLoss(options.loss_scale))
+    ceres::LossFunction* loss = options.loss == "huber"
+                                    ? static_cast<ceres::LossFunction*>(new ceres::HuberLoss(options.loss_scale))
                                 : options.loss == "cauchy" ? new ceres::CauchyLoss(options.loss_scale)
                                                            : nullptr;
     problem.AddResidualBlock(cost, loss, x[c].data(), &eta, &log_scale);
@@ -141,7 +144,8 @@ FitReport fit_profile(const MeasuredProfile& data, const ProfileFitOptions& opti
       problem.SetParameterUpperBound(x[c].data(), i, 25);
     }
   }
-  if (!options.fit_eta) problem.SetParameterBlockConstant(&eta);
+  if (!options.fit_eta)
+    problem.SetParameterBlockConstant(&eta);
   else {
     problem.SetParameterLowerBound(&eta, 0, options.eta_min);
     problem.SetParameterUpperBound(&eta, 0, options.eta_max);
@@ -195,8 +199,9 @@ FitReport fit_profile(const MeasuredProfile& data, const ProfileFitOptions& opti
       rho = cov(2 * c, 2 * c + 1) / std::sqrt(cov(2 * c, 2 * c) * cov(2 * c + 1, 2 * c + 1));
       // alpha' = s / (a + s) in the fitted logs: d alpha' / d ln s = -d alpha' / d ln a = a s / (a + s)^2.
       const double slope = sa * ssp / ((sa + ssp) * (sa + ssp));
-      se_albedo = slope * std::sqrt(std::max(0.0, cov(2 * c, 2 * c) + cov(2 * c + 1, 2 * c + 1) - 2 * cov(2 * c, 2 * c + 1)) *
-                                    variance_scale);
+      se_albedo =
+          slope * std::sqrt(std::max(0.0, cov(2 * c, 2 * c) + cov(2 * c + 1, 2 * c + 1) - 2 * cov(2 * c, 2 * c + 1)) *
+                            variance_scale);
     }
     report.parameters.push_back({"sigma_a", name, sa * mm, se_a * mm, per_unit});
     report.parameters.push_back({"sigma_s_prime", name, ssp * mm, se_s * mm, per_unit});
@@ -207,12 +212,12 @@ FitReport fit_profile(const MeasuredProfile& data, const ProfileFitOptions& opti
     if (const auto estimates = estimate_model_errors(reduce(sa, ssp / (1 - channels[c].g), channels[c].g, eta)))
       for (const auto& e : *estimates)
         if (e.model == options.model && e.profile_error > 0.01)
-          report.warnings.push_back("channel " + name + ": the 1-sigma are statistical only; " + e.model +
-                                    " itself differs from radiative transfer by " +
-                                    format_number(std::round(e.profile_error * 1000) / 10) + " % in R(r) (L2) and " +
-                                    format_number(std::round(e.total_error * 1000) / 10) +
-                                    " % in the total at these coefficients (measured against Monte Carlo), which biases "
-                                    "the fitted coefficients beyond them");
+          report.warnings.push_back(
+              "channel " + name + ": the 1-sigma are statistical only; " + e.model +
+              " itself differs from radiative transfer by " + format_number(std::round(e.profile_error * 1000) / 10) +
+              " % in R(r) (L2) and " + format_number(std::round(e.total_error * 1000) / 10) +
+              " % in the total at these coefficients (measured against Monte Carlo), which biases "
+              "the fitted coefficients beyond them");
     if (std::abs(rho) > 0.99)
       report.warnings.push_back("channel " + name + ": sigma_a and sigma_s' are strongly correlated (rho = " +
                                 format_number(std::round(rho * 1000) / 1000) +
@@ -220,21 +225,24 @@ FitReport fit_profile(const MeasuredProfile& data, const ProfileFitOptions& opti
   }
   std::size_t k = 2 * channels.size();
   if (options.fit_eta) {
-    report.parameters.push_back({"eta", "", eta, covariance ? std::sqrt((*covariance)(k, k) * variance_scale) : NAN, ""});
+    report.parameters.push_back(
+        {"eta", "", eta, covariance ? std::sqrt((*covariance)(k, k) * variance_scale) : NAN, ""});
     ++k;
   }
   if (options.fit_scale) {
     const double s = std::exp(log_scale);
-    report.parameters.push_back({"scale", "", s, covariance ? s * std::sqrt((*covariance)(k, k) * variance_scale) : NAN, ""});
+    report.parameters.push_back(
+        {"scale", "", s, covariance ? s * std::sqrt((*covariance)(k, k) * variance_scale) : NAN, ""});
   }
   if (!covariance)
-    report.warnings.push_back("the covariance could not be computed (rank-deficient Jacobian): the parameters are not "
-                              "all identifiable from these data");
+    report.warnings.push_back(
+        "the covariance could not be computed (rank-deficient Jacobian): the parameters are not "
+        "all identifiable from these data");
   if (have_errors && chi2_dof > 1)
-    report.warnings.push_back("chi-square per degree of freedom " + format_number(std::round(chi2_dof * 100) / 100) +
-                              (chi2_dof > 4 ? ": the model does not explain the data within their standard errors" : "") +
-                              "; the 1-sigma are widened by sqrt(chi^2/dof) = " +
-                              format_number(std::round(std::sqrt(chi2_dof) * 100) / 100));
+    report.warnings.push_back(
+        "chi-square per degree of freedom " + format_number(std::round(chi2_dof * 100) / 100) +
+        (chi2_dof > 4 ? ": the model does not explain the data within their standard errors" : "") +
+        "; the 1-sigma are widened by sqrt(chi^2/dof) = " + format_number(std::round(std::sqrt(chi2_dof) * 100) / 100));
   if (!report.converged) report.warnings.push_back("the solver did not converge: " + summary.message);
 
   // Residuals per point.
@@ -243,11 +251,14 @@ FitReport fit_profile(const MeasuredProfile& data, const ProfileFitOptions& opti
     const auto& ch = channels[c];
     std::vector<double> r(ch.radius.size());
     const double lscale = log_scale;
-    if (forward.form.numeric()) NumericResidual{&ch, &forward}(x[c].data(), &eta, &lscale, r.data());
-    else AutoResidual{&ch, &forward}(x[c].data(), &eta, &lscale, r.data());
+    if (forward.form.numeric())
+      NumericResidual{&ch, &forward}(x[c].data(), &eta, &lscale, r.data());
+    else
+      AutoResidual{&ch, &forward}(x[c].data(), &eta, &lscale, r.data());
     for (std::size_t i = 0; i < r.size(); ++i) {
       const double model_value = ch.value[i] + r[i] * ch.sigma[i];
-      report.residuals.push_back({data.channels[c].name, ch.radius[i] / mm, ch.value[i] * mm * mm, model_value * mm * mm, r[i]});
+      report.residuals.push_back(
+          {data.channels[c].name, ch.radius[i] / mm, ch.value[i] * mm * mm, model_value * mm * mm, r[i]});
       sum_w += r[i] * r[i];
       if (ch.value[i] > 0) sum_rel += std::pow(model_value / ch.value[i] - 1, 2);
     }

@@ -25,7 +25,8 @@ std::array<double, 3> predicted_measurements(const RxtFile& f, const SlabParamet
   ad.points = points;
   using adding_doubling::Incidence;
   const auto both = adding_doubling::solve(
-      slab, f.spheres > 0 ? std::vector{Incidence::collimated, Incidence::diffuse} : std::vector{Incidence::collimated}, ad);
+      slab, f.spheres > 0 ? std::vector{Incidence::collimated, Incidence::diffuse} : std::vector{Incidence::collimated},
+      ad);
   const auto& c = both[0];
   SampleTotals t{c.specular_reflectance + c.diffuse_reflectance - ur1_lost, c.total_transmittance - ut1_lost, 0, 0};
   if (f.spheres > 0) {
@@ -89,13 +90,19 @@ RxtFit fit_rxt(const RxtFile& file, const RxtFitOptions& options) {
   const bool with_u = file.measurements == 3;
   for (const auto& row : file.rows) {
     double ur1_lost = 0, ut1_lost = 0;
-    const SlabForward forward = [&](const SlabParameters& p) { return predicted_measurements(file, p, 32, ur1_lost, ut1_lost); };
-    const SlabForward coarse = [&](const SlabParameters& p) { return predicted_measurements(file, p, 8, ur1_lost, ut1_lost); };
-    const SlabForward search = [&](const SlabParameters& p) { return predicted_measurements(file, p, 16, ur1_lost, ut1_lost); };
+    const SlabForward forward = [&](const SlabParameters& p) {
+      return predicted_measurements(file, p, 32, ur1_lost, ut1_lost);
+    };
+    const SlabForward coarse = [&](const SlabParameters& p) {
+      return predicted_measurements(file, p, 8, ur1_lost, ut1_lost);
+    };
+    const SlabForward search = [&](const SlabParameters& p) {
+      return predicted_measurements(file, p, 16, ur1_lost, ut1_lost);
+    };
     auto invert = [&] {
       return invert_slab({row.m_r, row.m_t, with_u ? row.m_u : 0.0},
-                         {options.reflectance_stderr, options.transmittance_stderr, options.unscattered_stderr}, with_u ? 3 : 2, with_u,
-                         options.g, file.sample_thickness, forward, coarse, &search);
+                         {options.reflectance_stderr, options.transmittance_stderr, options.unscattered_stderr},
+                         with_u ? 3 : 2, with_u, options.g, file.sample_thickness, forward, coarse, &search);
     };
     auto r = invert();
     // Losses at the estimate, refit, until they settle: a fixed-point iteration L = F(L) that
@@ -133,7 +140,8 @@ RxtFit fit_rxt(const RxtFile& file, const RxtFitOptions& options) {
     if (!r.converged)
       fit.status = "not converged (" + r.termination + ")";
     else if (r.chi2 > 4)
-      fit.status = "no parameters reproduce M_R, M_T within their errors (chi^2 " + format_number(std::round(r.chi2 * 10) / 10) + ")";
+      fit.status = "no parameters reproduce M_R, M_T within their errors (chi^2 " +
+                   format_number(std::round(r.chi2 * 10) / 10) + ")";
     else if (!r.determined)
       fit.status = "not unique: the measurements do not separate absorption from scattering";
     else

@@ -50,8 +50,10 @@ FitReport fit_slab(const std::vector<SlabMeasurement>& channels, double thicknes
   if (!multipole && options.model != "adding-doubling")
     throw InvalidInput("model", options.model, "adding-doubling or multipole");
   if (options.slide_n != 0) {
-    if (multipole) throw InvalidInput("slides", format_number(options.slide_n), "none with the multipole (use adding-doubling)");
-    if (!(options.slide_n >= 1 && options.slide_n <= 4)) throw InvalidInput("slide index", format_number(options.slide_n), "1 to 4");
+    if (multipole)
+      throw InvalidInput("slides", format_number(options.slide_n), "none with the multipole (use adding-doubling)");
+    if (!(options.slide_n >= 1 && options.slide_n <= 4))
+      throw InvalidInput("slide index", format_number(options.slide_n), "1 to 4");
     if (!(options.slide_thickness > 0 && std::isfinite(options.slide_thickness)))
       throw InvalidInput("slide thickness", format_number(options.slide_thickness), "> 0 and finite");
   }
@@ -60,16 +62,18 @@ FitReport fit_slab(const std::vector<SlabMeasurement>& channels, double thicknes
   FitReport report;
   report.kind = "slab";
   report.model = options.model;
-  report.data_source = "slab of " + format_number(thickness) + " " + std::string(symbol(unit)) + ", eta " + format_number(eta) +
-                       (options.slide_n > 0 ? ", slides n " + format_number(options.slide_n) + " x " +
-                                                  format_number(options.slide_thickness) + " " + std::string(symbol(unit))
-                                            : std::string());
+  report.data_source =
+      "slab of " + format_number(thickness) + " " + std::string(symbol(unit)) + ", eta " + format_number(eta) +
+      (options.slide_n > 0 ? ", slides n " + format_number(options.slide_n) + " x " +
+                                 format_number(options.slide_thickness) + " " + std::string(symbol(unit))
+                           : std::string());
   report.converged = true;
   const std::string per_unit = "1/" + std::string(symbol(unit));
   const char* const measurement_names[] = {"R", "T", "U"};
   for (const auto& c : channels) {
     const std::string where = "channel " + c.name + ": ";
-    if (!(c.reflectance >= 0 && c.reflectance <= 1)) throw InvalidInput(where + "reflectance", format_number(c.reflectance), "[0, 1]");
+    if (!(c.reflectance >= 0 && c.reflectance <= 1))
+      throw InvalidInput(where + "reflectance", format_number(c.reflectance), "[0, 1]");
     if (!(c.transmittance >= 0 && c.transmittance <= 1))
       throw InvalidInput(where + "transmittance", format_number(c.transmittance), "[0, 1]");
     if (c.reflectance + c.transmittance > 1)
@@ -81,7 +85,9 @@ FitReport fit_slab(const std::vector<SlabMeasurement>& channels, double thicknes
     if (!(c.g > -1 && c.g < 1)) throw InvalidInput(where + "g", format_number(c.g), "-1 < g < 1");
     const bool with_u = c.unscattered >= 0;
     if (with_u) {
-      if (multipole) throw InvalidInput(where + "unscattered transmittance", format_number(c.unscattered), "not used by the multipole");
+      if (multipole)
+        throw InvalidInput(where + "unscattered transmittance", format_number(c.unscattered),
+                           "not used by the multipole");
       if (!(c.unscattered <= c.transmittance))
         throw InvalidInput(where + "unscattered transmittance", format_number(c.unscattered),
                            "<= total transmittance " + format_number(c.transmittance));
@@ -103,7 +109,8 @@ FitReport fit_slab(const std::vector<SlabMeasurement>& channels, double thicknes
         return [&, d, points](const SlabParameters& p) -> std::array<double, 3> {
           adding_doubling::Options ad;
           ad.points = points;
-          const auto t = adding_doubling::solve(ad_slab(p, eta, d, options, mm), adding_doubling::Incidence::collimated, ad);
+          const auto t =
+              adding_doubling::solve(ad_slab(p, eta, d, options, mm), adding_doubling::Incidence::collimated, ad);
           return {t.diffuse_reflectance, t.total_transmittance, t.unscattered_transmittance};
         };
       };
@@ -112,17 +119,20 @@ FitReport fit_slab(const std::vector<SlabMeasurement>& channels, double thicknes
       search = with_points(16);
     }
     const auto result = invert_slab({c.reflectance, c.transmittance, with_u ? c.unscattered : 0.0},
-                                    {c.reflectance_stderr, c.transmittance_stderr, with_u ? c.unscattered_stderr : 1.0}, count,
-                                    with_u, c.g, d, forward, coarse, search ? &search : nullptr);
+                                    {c.reflectance_stderr, c.transmittance_stderr, with_u ? c.unscattered_stderr : 1.0},
+                                    count, with_u, c.g, d, forward, coarse, search ? &search : nullptr);
     const auto& p = result.parameters;
     report.parameters.push_back({"sigma_a", c.name, p.sigma_a * mm, result.standard_error[0] * mm, per_unit});
-    report.parameters.push_back({"sigma_s_prime", c.name, p.sigma_s_prime * mm, result.standard_error[1] * mm, per_unit});
+    report.parameters.push_back(
+        {"sigma_s_prime", c.name, p.sigma_s_prime * mm, result.standard_error[1] * mm, per_unit});
     report.parameters.push_back({"g", c.name, p.g, with_u ? result.standard_error[2] : 0.0, ""});
-    report.parameters.push_back({"albedo_prime", c.name, p.sigma_s_prime / (p.sigma_a + p.sigma_s_prime), result.albedo_prime_stderr, ""});
+    report.parameters.push_back(
+        {"albedo_prime", c.name, p.sigma_s_prime / (p.sigma_a + p.sigma_s_prime), result.albedo_prime_stderr, ""});
     const double measured[] = {c.reflectance, c.transmittance, c.unscattered};
     const double sigma[] = {c.reflectance_stderr, c.transmittance_stderr, c.unscattered_stderr};
     for (int m = 0; m < count; ++m)
-      report.residuals.push_back({c.name, double(m), measured[m], result.predicted[m], (result.predicted[m] - measured[m]) / sigma[m]});
+      report.residuals.push_back(
+          {c.name, double(m), measured[m], result.predicted[m], (result.predicted[m] - measured[m]) / sigma[m]});
     report.iterations += result.iterations;
     report.converged &= result.converged;
     // Which measurement constrains which parameter: each one's share of the parameter's variance.
@@ -132,20 +142,28 @@ FitReport fit_slab(const std::vector<SlabMeasurement>& channels, double thicknes
       if (j) shares.append("; ");
       shares.append(parameter_names[j]).append(":");
       for (int m = 0; m < count; ++m)
-        shares.append(" ").append(measurement_names[m]).append(" ").append(std::to_string(std::lround(100 * result.share[j][m]))).append("%");
+        shares.append(" ")
+            .append(measurement_names[m])
+            .append(" ")
+            .append(std::to_string(std::lround(100 * result.share[j][m])))
+            .append("%");
     }
     report.warnings.push_back(where + "note: share of each parameter's variance from each measurement: " + shares);
-    report.warnings.push_back(where + "note: chi^2 = " + format_number(std::round(result.chi2 * 1000) / 1000) + " for " +
-                              std::to_string(count) + " measurements and " + std::to_string(with_u ? 3 : 2) + " parameters" +
+    report.warnings.push_back(where + "note: chi^2 = " + format_number(std::round(result.chi2 * 1000) / 1000) +
+                              " for " + std::to_string(count) + " measurements and " + std::to_string(with_u ? 3 : 2) +
+                              " parameters" +
                               (result.chi2 <= 4 ? " (the data are explained within their errors)" : ""));
     if (result.chi2 > 4)
-      report.warnings.push_back(where + "no sigma_a, sigma_s'" + (with_u ? ", g" : "") + " of " + options.model + " reproduce the data within their errors " +
-                                "(closest R, T = " + format_number(result.predicted[0]) + ", " + format_number(result.predicted[1]) +
+      report.warnings.push_back(where + "no sigma_a, sigma_s'" + (with_u ? ", g" : "") + " of " + options.model +
+                                " reproduce the data within their errors " + "(closest R, T = " +
+                                format_number(result.predicted[0]) + ", " + format_number(result.predicted[1]) +
                                 ", chi^2 = " + format_number(result.chi2) + "): the data are out of the model's reach");
     if (!result.determined)
-      report.warnings.push_back(where + "the solution is not unique here (singular Jacobian): the measurements do not separate "
+      report.warnings.push_back(where +
+                                "the solution is not unique here (singular Jacobian): the measurements do not separate "
                                 "absorption from scattering; the standard errors are floored pseudo-inverse values");
-    if (!result.converged) report.warnings.push_back(where + "the solver did not converge (" + result.termination + ")");
+    if (!result.converged)
+      report.warnings.push_back(where + "the solver did not converge (" + result.termination + ")");
     if (multipole) {
       const multipole::Model slab(d);
       for (const auto& note : slab.validity(reduce(p.sigma_a, p.sigma_s_prime / (1 - c.g), c.g, eta)))

@@ -38,8 +38,9 @@ ceres::CostFunction* numeric_cost(const Residual& residual, int parameters, int 
 
 }  // namespace
 
-SlabInversion invert_slab(const std::array<double, 3>& measured, const std::array<double, 3>& stderr_, int count, bool fit_g,
-                          double g, double d, const SlabForward& forward, const SlabForward& coarse, const SlabForward* search) {
+SlabInversion invert_slab(const std::array<double, 3>& measured, const std::array<double, 3>& stderr_, int count,
+                          bool fit_g, double g, double d, const SlabForward& forward, const SlabForward& coarse,
+                          const SlabForward* search) {
   const int p = fit_g ? 3 : 2;
   // Starting point: the best of a coarse grid of reduced albedo and reduced optical thickness.
   double best_cost = INFINITY;
@@ -62,7 +63,8 @@ SlabInversion invert_slab(const std::array<double, 3>& measured, const std::arra
     Residual stage_residual{search ? search : &forward, measured, stderr_, count, fit_g, g};
     // Forward differences when a polish follows (they cost p solves per Jacobian instead of 2p,
     // and the search only has to come close); central ones when this is the final solve.
-    auto* cost = search ? numeric_cost<ceres::FORWARD>(stage_residual, p, count) : numeric_cost<ceres::CENTRAL>(stage_residual, p, count);
+    auto* cost = search ? numeric_cost<ceres::FORWARD>(stage_residual, p, count)
+                        : numeric_cost<ceres::CENTRAL>(stage_residual, p, count);
     ceres::Problem problem;
     problem.AddResidualBlock(cost, nullptr, x.data());
     for (int i = 0; i < 2; ++i) {  // 1e-11 to 1e11 per mm
@@ -167,7 +169,9 @@ SlabInversion invert_slab(const std::array<double, 3>& measured, const std::arra
   const Eigen::MatrixXd K = svd.matrixV() * inverse.asDiagonal() * svd.matrixU().transpose();  // p x count
   for (int j = 0; j < p; ++j) {
     const double variance = K.row(j).squaredNorm();
-    const double scale = j == 0 ? out.parameters.sigma_a : j == 1 ? out.parameters.sigma_s_prime : 1 - out.parameters.g * out.parameters.g;
+    const double scale = j == 0   ? out.parameters.sigma_a
+                         : j == 1 ? out.parameters.sigma_s_prime
+                                  : 1 - out.parameters.g * out.parameters.g;
     out.standard_error[j] = scale * std::sqrt(variance);  // d exp(x) = exp(x) dx, d tanh(x) = (1 - tanh^2) dx
     for (int m = 0; m < count; ++m) out.share[j][m] = variance > 0 ? K(j, m) * K(j, m) / variance : 0;
   }

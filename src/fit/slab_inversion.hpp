@@ -20,10 +20,10 @@ using SlabForward = std::function<std::array<double, 3>(const SlabParameters&)>;
 
 struct SlabInversion {
   SlabParameters parameters{};
-  std::array<double, 3> standard_error{};   // of sigma_a, sigma_s' (1/mm) and g; finite always
-  double albedo_prime_stderr = 0;           // of sigma_s'/(sigma_a + sigma_s')
+  std::array<double, 3> standard_error{};        // of sigma_a, sigma_s' (1/mm) and g; finite always
+  double albedo_prime_stderr = 0;                // of sigma_s'/(sigma_a + sigma_s')
   std::array<std::array<double, 3>, 3> share{};  // share[p][m]: fraction of parameter p's variance from measurement m
-  bool determined = true;                   // false: the Jacobian was (numerically) singular
+  bool determined = true;                        // false: the Jacobian was (numerically) singular
   std::array<double, 3> predicted{};
   double chi2 = 0;
   int iterations = 0;
@@ -35,8 +35,8 @@ struct SlabInversion {
 // `forward` is evaluated at fixed accuracy; `coarse` (a cheaper forward) picks the starting point
 // on a grid and, when `search` is given, a first least-squares solve runs on it (cheaper still)
 // before the final one on `forward` polishes the result.
-SlabInversion invert_slab(const std::array<double, 3>& measured, const std::array<double, 3>& stderr_, int count, bool fit_g,
-                          double g, double thickness_mm, const SlabForward& forward, const SlabForward& coarse,
-                          const SlabForward* search = nullptr);
+SlabInversion invert_slab(const std::array<double, 3>& measured, const std::array<double, 3>& stderr_, int count,
+                          bool fit_g, double g, double thickness_mm, const SlabForward& forward,
+                          const SlabForward& coarse, const SlabForward* search = nullptr);
 
 }  // namespace bssrdf

@@ -1,8 +1,8 @@
 #include "bssrdf/io/atomic_file.hpp"
 
+#include <unistd.h>
 #include <cstdio>
 #include <fstream>
-#include <unistd.h>
 
 #include "bssrdf/error.hpp"
 
@@ -32,7 +32,8 @@ void write_file_atomically(const std::filesystem::path& requested, std::string_v
   }
   const auto status = std::filesystem::status(path, ec);
   if (std::filesystem::is_directory(status)) throw FileError(requested.string(), 0, "cannot write: it is a directory");
-  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) return write_directly(path, content);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    return write_directly(path, content);
 
   const auto directory = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
   if (!std::filesystem::is_directory(directory, ec))

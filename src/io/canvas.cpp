@@ -26,16 +26,19 @@ class SvgCanvas : public Canvas {
          << "\" font-family=\"sans-serif\" font-size=\"10\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   }
   void rect(double x, double y, double w, double h, const std::string& fill, bool outline) override {
-    svg_ << "<rect x=\"" << x << "\" y=\"" << y << "\" width=\"" << w << "\" height=\"" << h << "\" fill=\"" << fill << "\""
-         << (outline ? " stroke=\"white\"" : "") << "/>\n";
+    svg_ << "<rect x=\"" << x << "\" y=\"" << y << "\" width=\"" << w << "\" height=\"" << h << "\" fill=\"" << fill
+         << "\"" << (outline ? " stroke=\"white\"" : "") << "/>\n";
   }
   void disc(double cx, double cy, double r, const std::string& fill, double opacity) override {
-    svg_ << "<circle cx=\"" << cx << "\" cy=\"" << cy << "\" r=\"" << r << "\" fill=\"" << fill << "\" fill-opacity=\"" << opacity << "\"/>\n";
+    svg_ << "<circle cx=\"" << cx << "\" cy=\"" << cy << "\" r=\"" << r << "\" fill=\"" << fill << "\" fill-opacity=\""
+         << opacity << "\"/>\n";
   }
   void text(double x, double y, const std::string& s, double size, Anchor anchor) override {
     svg_ << "<text x=\"" << x << "\" y=\"" << y << "\" font-size=\"" << size << "\""
-         << (anchor == Anchor::middle ? " text-anchor=\"middle\"" : anchor == Anchor::end ? " text-anchor=\"end\"" : "") << ">"
-         << escaped(s) << "</text>\n";
+         << (anchor == Anchor::middle ? " text-anchor=\"middle\""
+             : anchor == Anchor::end  ? " text-anchor=\"end\""
+                                      : "")
+         << ">" << escaped(s) << "</text>\n";
   }
   std::string encode() const override { return svg_.str() + "</svg>\n"; }
 
@@ -44,7 +47,9 @@ class SvgCanvas : public Canvas {
 };
 
 std::array<std::uint8_t, 3> parse_colour(const std::string& hex) {
-  const auto byte = [&](std::size_t at) { return static_cast<std::uint8_t>(std::stoi(hex.substr(at, 2), nullptr, 16)); };
+  const auto byte = [&](std::size_t at) {
+    return static_cast<std::uint8_t>(std::stoi(hex.substr(at, 2), nullptr, 16));
+  };
   return {byte(1), byte(3), byte(5)};
 }
 
@@ -60,7 +65,8 @@ class PngCanvas : public Canvas {
     const int inset = outline ? 1 : 0;
     const int x0 = px(x) + inset, y0 = px(y) + inset, x1 = px(x + w) - inset, y1 = px(y + h) - inset;
     for (int j = std::max(0, y0); j < std::min(image_.height, y1); ++j)
-      for (int i = std::max(0, x0); i < std::min(image_.width, x1); ++i) std::copy(colour.begin(), colour.end(), image_.at(i, j));
+      for (int i = std::max(0, x0); i < std::min(image_.width, x1); ++i)
+        std::copy(colour.begin(), colour.end(), image_.at(i, j));
   }
   void disc(double cx, double cy, double r, const std::string& fill, double opacity) override {
     const auto colour = parse_colour(fill);
@@ -70,7 +76,8 @@ class PngCanvas : public Canvas {
         if (i < 0 || j < 0 || i >= image_.width || j >= image_.height) continue;
         if ((i + 0.5 - X) * (i + 0.5 - X) + (j + 0.5 - Y) * (j + 0.5 - Y) > R * R) continue;
         auto* p = image_.at(i, j);
-        for (int c = 0; c < 3; ++c) p[c] = static_cast<std::uint8_t>(std::lround((1 - opacity) * p[c] + opacity * colour[c]));
+        for (int c = 0; c < 3; ++c)
+          p[c] = static_cast<std::uint8_t>(std::lround((1 - opacity) * p[c] + opacity * colour[c]));
       }
   }
   void text(double x, double y, const std::string& s, double size, Anchor anchor) override {

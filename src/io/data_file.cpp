@@ -27,8 +27,10 @@ std::size_t too_deep_at(const std::string& text) {
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
     if (in_string) {
-      if (c == '\\') ++i;
-      else if (c == '"') in_string = false;
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
     } else if (c == '"') {
       in_string = true;
     } else if (c == '[' || c == '{') {
@@ -46,7 +48,8 @@ std::string read_data_file(const std::filesystem::path& path, const std::string&
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   if (!std::filesystem::exists(status)) throw FileError(path.string(), 0, "cannot open " + what + ": no such file");
-  if (std::filesystem::is_directory(status)) throw FileError(path.string(), 0, "cannot read " + what + ": it is a directory");
+  if (std::filesystem::is_directory(status))
+    throw FileError(path.string(), 0, "cannot read " + what + ": it is a directory");
   if (std::filesystem::is_regular_file(status) && std::filesystem::file_size(path, ec) > kMaxInputFileBytes)
     throw FileError(path.string(), 0, what + " is larger than " + std::to_string(kMaxInputFileBytes >> 20) + " MB");
   std::ifstream in(path, std::ios::binary);

@@ -180,8 +180,9 @@ LayersFile parse_layers_json(const std::string& text, const std::string& name) {
   const Parser parser(text, name);
   const json& doc = parser.doc();
   if (!doc.is_object()) parser.fail("", "expected a JSON object with \"format\": \"bssrdf-layers\"");
-  parser.check_keys(doc, "", {"format", "version", "unit", "ambient_above", "ambient_below", "channels", "layers",
-                              "description", "notes"});
+  parser.check_keys(
+      doc, "",
+      {"format", "version", "unit", "ambient_above", "ambient_below", "channels", "layers", "description", "notes"});
   if (!doc.contains("format") || doc["format"] != "bssrdf-layers")
     parser.fail(doc.contains("format") ? "/format" : "", "format: expected \"bssrdf-layers\"");
   if (!doc.contains("version") || !doc["version"].is_number() || doc["version"].get<double>() != 1)
@@ -200,7 +201,8 @@ LayersFile parse_layers_json(const std::string& text, const std::string& name) {
   const auto positive_index = [&](const char* key, double fallback) {
     if (!doc.contains(key)) return fallback;
     const double v = parser.number(doc[key], std::string("/") + key);
-    if (!(v > 0)) parser.fail(std::string("/") + key, std::string(key) + " = " + format_number(v) + ": accepted range is > 0");
+    if (!(v > 0))
+      parser.fail(std::string("/") + key, std::string(key) + " = " + format_number(v) + ": accepted range is > 0");
     return v;
   };
   stack.ambient_above = positive_index("ambient_above", 1.0);
@@ -216,7 +218,8 @@ LayersFile parse_layers_json(const std::string& text, const std::string& name) {
     const json& names = doc["channels"];
     if (!names.is_array() || names.empty()) parser.fail("/channels", "channels: expected a non-empty array of names");
     for (std::size_t i = 0; i < names.size(); ++i) {
-      if (!names[i].is_string()) parser.fail("/channels/" + std::to_string(i), "channels[" + std::to_string(i) + "]: expected a string");
+      if (!names[i].is_string())
+        parser.fail("/channels/" + std::to_string(i), "channels[" + std::to_string(i) + "]: expected a string");
       stack.channel_names.push_back(names[i].get<std::string>());
     }
     channels = stack.channel_names.size();
@@ -240,12 +243,14 @@ LayersFile parse_layers_json(const std::string& text, const std::string& name) {
       if (!l["name"].is_string()) parser.fail(at + "/name", Parser::field(at + "/name") + ": expected a string");
       layer.name = l["name"].get<std::string>();
     }
-    if (l.contains("n") && l.contains("eta")) parser.fail(at + "/eta", Parser::field(at) + ": give \"n\" or \"eta\", not both");
+    if (l.contains("n") && l.contains("eta"))
+      parser.fail(at + "/eta", Parser::field(at) + ": give \"n\" or \"eta\", not both");
     for (const char* key : {"n", "eta"})
       if (l.contains(key)) {
         layer.n = parser.number(l[key], at + "/" + key);
         if (!(layer.n > 0))
-          parser.fail(at + "/" + key, Parser::field(at + "/" + key) + " = " + format_number(layer.n) + ": accepted range is > 0");
+          parser.fail(at + "/" + key,
+                      Parser::field(at + "/" + key) + " = " + format_number(layer.n) + ": accepted range is > 0");
       }
     if (l.contains("thickness") && !l["thickness"].is_null()) {
       const double t = parser.number(l["thickness"], at + "/thickness");

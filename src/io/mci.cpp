@@ -21,7 +21,8 @@ using Record = TextRecord;
 
 class Reader {
  public:
-  Reader(const std::string& text, std::string name) : records_(comment_stripped_records(text)), name_(std::move(name)) {}
+  Reader(const std::string& text, std::string name)
+      : records_(comment_stripped_records(text)), name_(std::move(name)) {}
 
   // The next record, which must have `count` tokens (or at least min_count .. count).
   const Record& next(const std::string& what, std::size_t min_count, std::size_t count) {
@@ -31,9 +32,9 @@ class Reader {
     }
     const Record& r = records_[index_++];
     if (r.tokens.size() < min_count || r.tokens.size() > count)
-      throw FileError(name_, r.line, "expected " + what + " (" + std::to_string(count) + " value" +
-                                         (count > 1 ? "s" : "") + "), found " + std::to_string(r.tokens.size()) +
-                                         " on this line");
+      throw FileError(name_, r.line,
+                      "expected " + what + " (" + std::to_string(count) + " value" + (count > 1 ? "s" : "") +
+                          "), found " + std::to_string(r.tokens.size()) + " on this line");
     return r;
   }
 
@@ -49,16 +50,18 @@ class Reader {
   long long integer(const Record& r, std::size_t i, const std::string& field, long long min, long long max) const {
     const double v = number(r, i, field);
     if (v != std::floor(v) || v < static_cast<double>(min) || v > static_cast<double>(max))
-      throw FileError(name_, r.line, field + " = " + r.tokens[i] + ": accepted range is a whole number from " +
-                                         std::to_string(min) + " to " + std::to_string(max));
+      throw FileError(name_, r.line,
+                      field + " = " + r.tokens[i] + ": accepted range is a whole number from " + std::to_string(min) +
+                          " to " + std::to_string(max));
     return static_cast<long long>(v);
   }
   // A length or index within [min, max] (cm for lengths), so every derived bin width stays a normal number.
   double within(const Record& r, std::size_t i, const std::string& field, double min, double max) const {
     const double v = number(r, i, field);
     if (!(v >= min && v <= max))
-      throw FileError(name_, r.line, field + " = " + r.tokens[i] + ": accepted range is " + format_number(min) + " to " +
-                                         format_number(max));
+      throw FileError(
+          name_, r.line,
+          field + " = " + r.tokens[i] + ": accepted range is " + format_number(min) + " to " + format_number(max));
     return v;
   }
   bool done() const { return index_ >= records_.size(); }
@@ -103,9 +106,10 @@ MciFile parse_mci(const std::string& text, const std::string& name) {
     run.nr = static_cast<int>(in.integer(sizes, 1, "number of dr bins", 1, kMaxMciBins));
     run.na = static_cast<int>(in.integer(sizes, 2, "number of da bins", 1, kMaxMciBins));
     if (run.nz * run.dz > kMaxMciLength * cm || run.nr * run.dr > kMaxMciLength * cm)
-      throw FileError(name, sizes.line, "nz*dz and nr*dr (the grid's depth and radius) = " + format_number(run.nz * run.dz / cm) + ", " +
-                                            format_number(run.nr * run.dr / cm) + " cm: accepted range is up to " +
-                                            format_number(kMaxMciLength) + " cm each");
+      throw FileError(name, sizes.line,
+                      "nz*dz and nr*dr (the grid's depth and radius) = " + format_number(run.nz * run.dz / cm) + ", " +
+                          format_number(run.nr * run.dr / cm) + " cm: accepted range is up to " +
+                          format_number(kMaxMciLength) + " cm each");
     const Record& layers = in.next(prefix + "the number of layers", 1, 1);
     const auto layer_count = in.integer(layers, 0, "number of layers", 1, 1000);
     run.stack.channel_names = {"mcml"};
@@ -121,7 +125,8 @@ MciFile parse_mci(const std::string& text, const std::string& name) {
       const double g = in.number(r, 3, field + " g");
       if (mua < 0) throw FileError(name, r.line, field + " mua = " + r.tokens[1] + ": accepted range is >= 0");
       if (mus < 0) throw FileError(name, r.line, field + " mus = " + r.tokens[2] + ": accepted range is >= 0");
-      if (!(g > -1 && g < 1)) throw FileError(name, r.line, field + " g = " + r.tokens[3] + ": accepted range is -1 < g < 1");
+      if (!(g > -1 && g < 1))
+        throw FileError(name, r.line, field + " g = " + r.tokens[3] + ": accepted range is -1 < g < 1");
       layer.thickness = in.within(r, 4, field + " d", kMinMciLength, kMaxMciLength) * cm;
       layer.sigma_a = {mua / cm};
       layer.sigma_s = {mus / cm};

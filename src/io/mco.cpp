@@ -80,8 +80,8 @@ std::string format_mco(const MonteCarloResult& result, const std::string& output
     Tt_a[0] = c.total_transmittance.value / hemisphere_a;
     for (std::size_t i = 0; i < nr; ++i) {
       // weight in annulus i = R(r_i) 2 pi (i + 0.5) dr^2; the ra bin divides it by MCML's scale.
-      const double ra_over_r = 2 * std::numbers::pi / (4 * std::numbers::pi * std::numbers::pi * std::sin(0.5 * da) *
-                                                       std::sin(2 * 0.5 * da));
+      const double ra_over_r = 2 * std::numbers::pi /
+                               (4 * std::numbers::pi * std::numbers::pi * std::sin(0.5 * da) * std::sin(2 * 0.5 * da));
       Rd_ra[i] = Rd_r[i] * ra_over_r;
       Tt_ra[i] = Tt_r[i] * ra_over_r;
     }
@@ -90,9 +90,11 @@ std::string format_mco(const MonteCarloResult& result, const std::string& output
   const double cm = kCmPerMm;
   std::string out =
       "A1 \t# Version number of the file format.\n\n"
-      "####\n# Data categories include: \n# InParm, RAT, \n# A_l, A_z, Rd_r, Rd_a, Tt_r, Tt_a, \n# A_rz, Rd_ra, Tt_ra \n####\n\n"
-      "# Written by bssrdf " BSSRDF_VERSION " (reference --mci): " + std::to_string(result.options.photons) +
-      " photons in " + printf_string("%.3g", result.seconds) + " s, seed " + std::to_string(result.options.seed) + "\n\n";
+      "####\n# Data categories include: \n# InParm, RAT, \n# A_l, A_z, Rd_r, Rd_a, Tt_r, Tt_a, \n# A_rz, Rd_ra, Tt_ra "
+      "\n####\n\n"
+      "# Written by bssrdf " BSSRDF_VERSION " (reference --mci): " +
+      std::to_string(result.options.photons) + " photons in " + printf_string("%.3g", result.seconds) + " s, seed " +
+      std::to_string(result.options.seed) + "\n\n";
   out += "InParm \t\t\t# Input parameters. cm is used.\n";
   out += output_name + " \tA\t\t# output file name, ASCII.\n";
   out += std::to_string(result.options.photons) + " \t\t\t# No. of photons\n";
@@ -105,8 +107,8 @@ std::string format_mco(const MonteCarloResult& result, const std::string& output
     const auto& l = stack.layers[i];
     out += printf_string("%G", l.n) + "\t" + printf_string("%G", l.sigma_a[0] * per_cm) + "\t" +
            printf_string("%G", l.sigma_s[0] * per_cm) + "\t" + printf_string("%G", l.g[0]) + "\t" +
-           (std::isfinite(l.thickness) ? printf_string("%G", l.thickness * cm) : std::string("1E+09")) +
-           "\t# layer " + std::to_string(i + 1) + "\n";
+           (std::isfinite(l.thickness) ? printf_string("%G", l.thickness * cm) : std::string("1E+09")) + "\t# layer " +
+           std::to_string(i + 1) + "\n";
   }
   out += printf_string("%G", stack.ambient_below) + "\t\t\t\t\t# n for medium below\n\n";
   out += "RAT #Reflectance, absorption, transmission. \n";
@@ -130,12 +132,14 @@ std::string format_mco(const MonteCarloResult& result, const std::string& output
          five_a_line({"# A[r][z]. [1/cm3]", "# A[0][0], [0][1],..[0][nz-1]", "# A[1][0], [1][1],..[1][nz-1]", "# ...",
                       "# A[nr-1][0], [nr-1][1],..[nr-1][nz-1]", "A_rz"},
                      std::vector<double>(nr * nz, 0.0));
-  out += angles + five_a_line({"# Rd[r][angle]. [1/(cm2sr)].", "# Rd[0][0], [0][1],..[0][na-1]",
-                               "# Rd[1][0], [1][1],..[1][na-1]", "# ...", "# Rd[nr-1][0], [nr-1][1],..[nr-1][na-1]", "Rd_ra"},
-                              Rd_ra);
-  out += angles + five_a_line({"# Tt[r][angle]. [1/(cm2sr)].", "# Tt[0][0], [0][1],..[0][na-1]",
-                               "# Tt[1][0], [1][1],..[1][na-1]", "# ...", "# Tt[nr-1][0], [nr-1][1],..[nr-1][na-1]", "Tt_ra"},
-                              Tt_ra);
+  out += angles +
+         five_a_line({"# Rd[r][angle]. [1/(cm2sr)].", "# Rd[0][0], [0][1],..[0][na-1]",
+                      "# Rd[1][0], [1][1],..[1][na-1]", "# ...", "# Rd[nr-1][0], [nr-1][1],..[nr-1][na-1]", "Rd_ra"},
+                     Rd_ra);
+  out += angles +
+         five_a_line({"# Tt[r][angle]. [1/(cm2sr)].", "# Tt[0][0], [0][1],..[0][na-1]",
+                      "# Tt[1][0], [1][1],..[1][na-1]", "# ...", "# Tt[nr-1][0], [nr-1][1],..[nr-1][na-1]", "Tt_ra"},
+                     Tt_ra);
   return out;
 }
 

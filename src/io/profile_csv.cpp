@@ -56,7 +56,8 @@ MeasuredProfile parse_profile_csv(const std::string& text, const std::string& na
       header = fields;
       std::string r = header[0];
       if (r.rfind("radius", 0) != 0 && r != "r")
-        throw FileError(name, line_number, "the first column must be the radius ('radius' or 'radius_mm', ...), found '" + r + "'");
+        throw FileError(name, line_number,
+                        "the first column must be the radius ('radius' or 'radius_mm', ...), found '" + r + "'");
       const auto underscore = r.find('_');
       if (underscore != std::string::npos) {
         try {
@@ -91,9 +92,12 @@ MeasuredProfile parse_profile_csv(const std::string& text, const std::string& na
       for (std::size_t i = 1; i < header.size(); ++i) {
         const std::string& h = header[i];
         std::string base;
-        if (ends_with(h, "_stderr")) base = h.substr(0, h.size() - 7);
-        else if (ends_with(h, "_se")) base = h.substr(0, h.size() - 3);
-        else continue;
+        if (ends_with(h, "_stderr"))
+          base = h.substr(0, h.size() - 7);
+        else if (ends_with(h, "_se"))
+          base = h.substr(0, h.size() - 3);
+        else
+          continue;
         if (monte_carlo) {
           if (!ends_with(base, kMonteCarloChannel)) continue;
           base = base.substr(0, base.size() - std::string(kMonteCarloChannel).size());
@@ -107,7 +111,8 @@ MeasuredProfile parse_profile_csv(const std::string& text, const std::string& na
       continue;
     }
     if (fields.size() != header.size())
-      throw FileError(name, line_number, std::to_string(fields.size()) + " fields, the header has " + std::to_string(header.size()));
+      throw FileError(name, line_number,
+                      std::to_string(fields.size()) + " fields, the header has " + std::to_string(header.size()));
     const auto number = [&](std::size_t column) {
       const std::string& f = fields[column];
       double v = 0;
@@ -119,8 +124,9 @@ MeasuredProfile parse_profile_csv(const std::string& text, const std::string& na
     const double r = number(0);
     if (r < 0) throw FileError(name, line_number, header[0] + " = " + format_number(r) + ": accepted range is >= 0");
     if (!raw_radius.empty() && !(r > raw_radius.back()))
-      throw FileError(name, line_number, header[0] + " = " + format_number(r) + ": accepted range is > " +
-                                             format_number(raw_radius.back()) + " (radii must increase)");
+      throw FileError(name, line_number,
+                      header[0] + " = " + format_number(r) + ": accepted range is > " +
+                          format_number(raw_radius.back()) + " (radii must increase)");
     // A Monte Carlo bin no photon reached (value and standard error 0) carries no information.
     bool empty_bin = false;
     for (std::size_t c = 0; c < out.channels.size() && monte_carlo; ++c)
@@ -134,15 +140,17 @@ MeasuredProfile parse_profile_csv(const std::string& text, const std::string& na
     for (std::size_t c = 0; c < out.channels.size(); ++c) {
       const double v = number(static_cast<std::size_t>(value_column[c]));
       if (!(v >= 0 && v <= kMaxProfileValue))
-        throw FileError(name, line_number, header[value_column[c]] + " = " + format_number(v) + ": accepted range is 0 to " +
-                                               format_number(kMaxProfileValue));
+        throw FileError(name, line_number,
+                        header[value_column[c]] + " = " + format_number(v) + ": accepted range is 0 to " +
+                            format_number(kMaxProfileValue));
       out.channels[c].value.push_back(v);
       if (stderr_column[c] >= 0) {
         const double s = number(static_cast<std::size_t>(stderr_column[c]));
         // Relative to the largest value a profile may hold, so weights 1/s^2 and chi^2 stay finite.
         if (!(s >= kMinProfileStderr && s <= kMaxProfileValue))
-          throw FileError(name, line_number, header[stderr_column[c]] + " = " + format_number(s) + ": accepted range is " +
-                                                 format_number(kMinProfileStderr) + " to " + format_number(kMaxProfileValue));
+          throw FileError(name, line_number,
+                          header[stderr_column[c]] + " = " + format_number(s) + ": accepted range is " +
+                              format_number(kMinProfileStderr) + " to " + format_number(kMaxProfileValue));
         out.channels[c].standard_error.push_back(s);
       }
     }

@@ -10,8 +10,8 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/fresnel.hpp"
 #include "bssrdf/lut/interpolation.hpp"
-#include "bssrdf/parallel.hpp"
 #include "bssrdf/models/photon_beam_diffusion.hpp"
+#include "bssrdf/parallel.hpp"
 #include "bssrdf/single_scattering.hpp"
 
 namespace bssrdf {
@@ -49,7 +49,8 @@ AlbedoRadiusLayout AlbedoRadiusLayout::pbrt() {
 }
 
 AlbedoRadiusLayout AlbedoRadiusLayout::family(std::size_t albedos, std::size_t radii, double r_max) {
-  if (albedos < 4 || radii < 4) throw InvalidInput("table size", std::to_string(albedos) + " x " + std::to_string(radii), ">= 4 x 4");
+  if (albedos < 4 || radii < 4)
+    throw InvalidInput("table size", std::to_string(albedos) + " x " + std::to_string(radii), ">= 4 x 4");
   AlbedoRadiusLayout l;
   const double a = static_cast<double>(albedos - 1);
   for (std::size_t i = 0; i < albedos; ++i) l.albedo.push_back((1 - std::exp(-8.0 * i / a)) / (1 - std::exp(-8.0)));
@@ -77,14 +78,16 @@ AlbedoRadiusTable build_albedo_radius_table(const AlbedoRadiusLayout& layout, do
 
   // One quadrature order for the table: the largest any of a few albedos needs (optical units).
   for (double rho : {0.3, 0.9, 0.99, 0.999})
-    t.quadrature_order = std::max(t.quadrature_order, photon_beam_diffusion::samples_for_tolerance(reduced_albedo(rho, g), g, eta, options.tolerance));
+    t.quadrature_order = std::max(t.quadrature_order, photon_beam_diffusion::samples_for_tolerance(
+                                                          reduced_albedo(rho, g), g, eta, options.tolerance));
 
   // Single scattering with sigma_t = 1 is rho * S(r): one integral per column.
   const auto unit_scattering = reduce(0.0, 1.0, g, eta);
   std::vector<double> single(cols, 0.0);
   for (std::size_t j = 0; j < cols; ++j)
     if (layout.radius[j] > 0)
-      single[j] = kTwoPi * layout.radius[j] * single_scattering_reflectance(unit_scattering, layout.radius[j], t.quadrature_order);
+      single[j] = kTwoPi * layout.radius[j] *
+                  single_scattering_reflectance(unit_scattering, layout.radius[j], t.quadrature_order);
 
   BSSRDF_CHECK(rows >= 1 && cols >= 2 && std::is_sorted(layout.radius.begin(), layout.radius.end()));
   t.profile.assign(rows * cols, 0.0);
@@ -97,7 +100,9 @@ AlbedoRadiusTable build_albedo_radius_table(const AlbedoRadiusLayout& layout, do
     for (std::size_t j = 0; j < cols; ++j) {
       const double r = layout.radius[j];
       // 2 pi r R vanishes at r = 0 (R_ms is finite there; R_ss ~ 1/r is handled by the column factor).
-      row[j] = rho * single[j] + (r > 0 && rho > 0 ? kTwoPi * r * photon_beam_diffusion::multiple_scattering(m, b, r, t.quadrature_order) : 0.0);
+      row[j] = rho * single[j] +
+               (r > 0 && rho > 0 ? kTwoPi * r * photon_beam_diffusion::multiple_scattering(m, b, r, t.quadrature_order)
+                                 : 0.0);
     }
     const auto cum = catmull_rom_cumulative(layout.radius, row);
     t.effective_albedo[i] = cum.back();
@@ -140,7 +145,8 @@ std::vector<double> midpoints(const std::vector<double>& x, bool geometric) {
 
 AdaptiveAlbedoRadiusLayout adaptive_albedo_radius_layout(double g, double eta, double tolerance,
                                                          const AlbedoRadiusOptions& options) {
-  if (!(tolerance > 0 && tolerance < 1)) throw InvalidInput("table tolerance", format_number(tolerance), "0 < tolerance < 1");
+  if (!(tolerance > 0 && tolerance < 1))
+    throw InvalidInput("table tolerance", format_number(tolerance), "0 < tolerance < 1");
   const auto grow = [](std::size_t n) { return n + std::max<std::size_t>(1, n / 4); };
   constexpr std::size_t kLargest = 2048;
   AdaptiveAlbedoRadiusLayout out;
@@ -193,7 +199,8 @@ double AlbedoRadiusTable::interpolate(double albedo, double r) const {
     for (int k = 0; k < 4; ++k) {
       const int j = wr.offset + k;
       if (j < 0 || j >= static_cast<int>(columns()) || wr.weight[k] == 0) continue;
-      sum += wa.weight[a] * wr.weight[k] * profile[static_cast<std::size_t>(i) * columns() + static_cast<std::size_t>(j)];
+      sum +=
+          wa.weight[a] * wr.weight[k] * profile[static_cast<std::size_t>(i) * columns() + static_cast<std::size_t>(j)];
     }
   }
   return sum;
@@ -220,15 +227,20 @@ LookupTable to_lookup_table(const AlbedoRadiusTable& t, const TableContext& cont
   out.set("bssrdf:g", t.g);
   out.set("bssrdf:eta", t.eta);
   out.set("bssrdf:unit", std::string("mean free path 1/sigma_t (optical units, sigma_t = 1)"));
-  out.set("bssrdf:distance", std::string("radius r on the surface from the point of incidence, in mean free paths 1/sigma_t (unreduced)"));
-  out.set("bssrdf:normalization", std::string("per_entered_flux; profile = 2 pi r R(r) (multiple + single scattering)"));
+  out.set("bssrdf:distance",
+          std::string("radius r on the surface from the point of incidence, in mean free paths 1/sigma_t (unreduced)"));
+  out.set("bssrdf:normalization",
+          std::string("per_entered_flux; profile = 2 pi r R(r) (multiple + single scattering)"));
   out.set("bssrdf:layout", layout_name);
   out.set("bssrdf:grid", layout_name == "pbrt"
-                              ? std::string("rows: rho_i = (1 - exp(-8 i / 99)) / (1 - exp(-8)), i = 0..99; columns: r_0 = 0, r_1 = 0.0025, r_j = 1.2 r_{j-1}, j < 64")
-                              : std::string("rows: rho_i = (1 - exp(-8 i / (n - 1))) / (1 - exp(-8)); columns: r_0 = 0, r_1 = 0.0025, geometric to r_max; see the albedo and radius channels"));
+                             ? std::string("rows: rho_i = (1 - exp(-8 i / 99)) / (1 - exp(-8)), i = 0..99; columns: "
+                                           "r_0 = 0, r_1 = 0.0025, r_j = 1.2 r_{j-1}, j < 64")
+                             : std::string("rows: rho_i = (1 - exp(-8 i / (n - 1))) / (1 - exp(-8)); columns: r_0 = 0, "
+                                           "r_1 = 0.0025, geometric to r_max; see the albedo and radius channels"));
   out.set("bssrdf:interpolation", std::string("catmull-rom in albedo and in radius (pbrt's CatmullRomWeights)"));
   out.set("bssrdf:quadrature_order", t.quadrature_order);
-  out.set("bssrdf:cdf", std::string("per row: Catmull-Rom integral of the profile from 0 to r_j over effective_albedo"));
+  out.set("bssrdf:cdf",
+          std::string("per row: Catmull-Rom integral of the profile from 0 to r_j over effective_albedo"));
   std::vector<double> radius, albedo, rho_eff;
   for (std::size_t i = 0; i < t.rows(); ++i)
     for (std::size_t j = 0; j < t.columns(); ++j) {
@@ -249,8 +261,9 @@ std::string summary(const AlbedoRadiusTable& t, const std::string& layout_name) 
   s << "albedo-radius table (" << layout_name << " layout): " << t.rows() << " albedos x " << t.columns()
     << " radii, g = " << format_number(t.g) << ", eta = " << format_number(t.eta) << ", photon beam diffusion with "
     << t.quadrature_order << "-point Gauss-Legendre (tolerance " << format_number(t.tolerance) << "); table in "
-    << format_number(std::round(t.seconds * 1e5) / 100) << " ms\n  effective albedo: " << format_number(t.effective_albedo.front())
-    << " (rho = 0) to " << format_number(t.effective_albedo.back()) << " (rho = 1)\n";
+    << format_number(std::round(t.seconds * 1e5) / 100)
+    << " ms\n  effective albedo: " << format_number(t.effective_albedo.front()) << " (rho = 0) to "
+    << format_number(t.effective_albedo.back()) << " (rho = 1)\n";
   return s.str();
 }
 

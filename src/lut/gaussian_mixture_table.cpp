@@ -26,7 +26,9 @@ GaussianMixtureTable quantized_mixture_table(const Medium& medium, const quantiz
 GaussianMixtureTable own_mixture_table(const Medium& medium, const Model& model) {
   medium.validate();
   const auto& own = model_entry(model.name()).own_gaussians;
-  if (!own) throw InvalidInput("model", std::string("'").append(model.name()).append("'"), "a model with its own Gaussian mixture (quantized)");
+  if (!own)
+    throw InvalidInput("model", std::string("'").append(model.name()).append("'"),
+                       "a model with its own Gaussian mixture (quantized)");
   const auto start = std::chrono::steady_clock::now();
   GaussianMixtureTable t;
   t.method = "the model's own mixture: " + model.description();
@@ -61,9 +63,10 @@ LookupTable to_lookup_table(const GaussianMixtureTable& t, const TableContext& c
   const double mm = millimetres_per(context.unit);
   const std::string u(symbol(context.unit));
   out.set("bssrdf:method", t.method);
-  out.set("bssrdf:formula", "R(r) = sum_k w_k G2(v_k, r), G2(v, r) = exp(-r^2 / (2 v)) / (2 pi v); r in " + u + ", v in " + u +
-                                "^2, R per entered flux");
-  out.set("bssrdf:normalization", std::string("per_entered_flux: sum_k w_k is the channel's total diffuse reflectance"));
+  out.set("bssrdf:formula", "R(r) = sum_k w_k G2(v_k, r), G2(v, r) = exp(-r^2 / (2 v)) / (2 pi v); r in " + u +
+                                ", v in " + u + "^2, R per entered flux");
+  out.set("bssrdf:normalization",
+          std::string("per_entered_flux: sum_k w_k is the channel's total diffuse reflectance"));
   out.set("bssrdf:variances", std::string(t.shared_variance ? "shared by all channels (channel 'variance')"
                                                             : "per channel ('variance.<c>'); padding has weight 0"));
   out.set("bssrdf:count", static_cast<int>(t.count()));
@@ -79,18 +82,22 @@ LookupTable to_lookup_table(const GaussianMixtureTable& t, const TableContext& c
   const std::size_t n = t.count();
   const auto padded = [&](const std::vector<double>& v, double fill_scale, bool repeat) {
     std::vector<double> o(n, 0.0);
-    for (std::size_t k = 0; k < n; ++k) o[k] = k < v.size() ? v[k] * fill_scale : repeat && !v.empty() ? v.back() * fill_scale : 0.0;
+    for (std::size_t k = 0; k < n; ++k)
+      o[k] = k < v.size() ? v[k] * fill_scale : repeat && !v.empty() ? v.back() * fill_scale : 0.0;
     return o;
   };
   if (t.shared_variance) {
     out.add_channel("variance", "variance v_k, " + u + "^2", padded(t.variance[0], 1 / (mm * mm), true));
     for (std::size_t c = 0; c < t.channel_names.size(); ++c)
-      out.add_channel(t.channel_names[c], "weight w_k (reflectance carried by Gaussian k)", padded(t.weight[c], 1, false));
+      out.add_channel(t.channel_names[c], "weight w_k (reflectance carried by Gaussian k)",
+                      padded(t.weight[c], 1, false));
   } else {
     for (std::size_t c = 0; c < t.channel_names.size(); ++c) {
-      out.add_channel("variance." + t.channel_names[c], "variance v_k of channel " + t.channel_names[c] + ", " + u + "^2",
+      out.add_channel("variance." + t.channel_names[c],
+                      "variance v_k of channel " + t.channel_names[c] + ", " + u + "^2",
                       padded(t.variance[c], 1 / (mm * mm), true));
-      out.add_channel(t.channel_names[c], "weight w_k (reflectance carried by Gaussian k)", padded(t.weight[c], 1, false));
+      out.add_channel(t.channel_names[c], "weight w_k (reflectance carried by Gaussian k)",
+                      padded(t.weight[c], 1, false));
     }
   }
   return out;
@@ -100,16 +107,16 @@ std::string summary(const GaussianMixtureTable& t, const TableContext& context) 
   const double mm = millimetres_per(context.unit);
   const std::string u(symbol(context.unit));
   std::ostringstream s;
-  s << "Gaussian mixture: " << t.count() << " Gaussians (" << (t.shared_variance ? "shared" : "per-channel") << " variances) in "
-    << short_number(t.seconds * 1000) << " ms; " << t.method << '\n';
+  s << "Gaussian mixture: " << t.count() << " Gaussians (" << (t.shared_variance ? "shared" : "per-channel")
+    << " variances) in " << short_number(t.seconds * 1000) << " ms; " << t.method << '\n';
   for (std::size_t c = 0; c < t.channel_names.size(); ++c) {
     if (t.total_reflectance[c] == 0) {
       s << "  " << t.channel_names[c] << ": does not scatter (total reflectance 0): every weight 0\n";
       continue;
     }
     s << "  " << t.channel_names[c] << ": " << t.weight[c].size() << " Gaussians, variances "
-      << short_number(t.variance[c].front() / (mm * mm)) << " to " << short_number(t.variance[c].back() / (mm * mm)) << ' ' << u
-      << "^2; sum of weights / total reflectance - 1 = " << short_number(t.conservation_error[c]);
+      << short_number(t.variance[c].front() / (mm * mm)) << " to " << short_number(t.variance[c].back() / (mm * mm))
+      << ' ' << u << "^2; sum of weights / total reflectance - 1 = " << short_number(t.conservation_error[c]);
     if (t.shared_variance) s << "; relative L2 error " << short_number(t.relative_l2_error[c]);
     s << '\n';
   }

@@ -8,9 +8,7 @@
 
 namespace bssrdf {
 
-std::string_view to_string(Interpolation scheme) {
-  return scheme == Interpolation::linear ? "linear" : "catmull-rom";
-}
+std::string_view to_string(Interpolation scheme) { return scheme == Interpolation::linear ? "linear" : "catmull-rom"; }
 
 Interpolation parse_interpolation(std::string_view text, const std::string& field) {
   if (text == "catmull-rom") return Interpolation::catmull_rom;
@@ -27,7 +25,8 @@ NodeWeights catmull_rom_weights(std::span<const double> nodes, double x) {
     return out;
   }
   x = std::clamp(x, nodes.front(), nodes.back());
-  const int i = std::clamp(static_cast<int>(std::upper_bound(nodes.begin(), nodes.end(), x) - nodes.begin()) - 1, 0, n - 2);
+  const int i =
+      std::clamp(static_cast<int>(std::upper_bound(nodes.begin(), nodes.end(), x) - nodes.begin()) - 1, 0, n - 2);
   const double x0 = nodes[i], x1 = nodes[i + 1], h = x1 - x0;
   const double t = (x - x0) / h, t2 = t * t, t3 = t2 * t;
   // Hermite basis: values at x0, x1 and slopes (times h) at x0, x1.
@@ -60,7 +59,8 @@ double interpolate(std::span<const double> nodes, std::span<const double> values
   if (n == 1) return values[0];
   if (scheme == Interpolation::linear) {
     x = std::clamp(x, nodes.front(), nodes.back());
-    const int i = std::clamp(static_cast<int>(std::upper_bound(nodes.begin(), nodes.end(), x) - nodes.begin()) - 1, 0, n - 2);
+    const int i =
+        std::clamp(static_cast<int>(std::upper_bound(nodes.begin(), nodes.end(), x) - nodes.begin()) - 1, 0, n - 2);
     const double t = (x - nodes[i]) / (nodes[i + 1] - nodes[i]);
     return values[i] + t * (values[i + 1] - values[i]);
   }
@@ -95,7 +95,8 @@ std::vector<double> inverse_cdf(std::span<const double> cdf, std::span<const dou
     } else if (target <= cdf[0]) {
       out.push_back(radius[0] * target / cdf[0]);
     } else {
-      const auto i = std::min<std::size_t>(cdf.size() - 1, static_cast<std::size_t>(std::lower_bound(cdf.begin(), cdf.end(), target) - cdf.begin()));
+      const auto i = std::min<std::size_t>(
+          cdf.size() - 1, static_cast<std::size_t>(std::lower_bound(cdf.begin(), cdf.end(), target) - cdf.begin()));
       const double t = cdf[i] > cdf[i - 1] ? (target - cdf[i - 1]) / (cdf[i] - cdf[i - 1]) : 1.0;
       out.push_back(radius_at(x[i - 1] + t * (x[i] - x[i - 1])));
     }

@@ -47,14 +47,15 @@ std::string to_json(const LookupTable& table) {
   doc["width"] = table.width;
   doc["height"] = table.height;
   auto& attributes = doc["attributes"] = nlohmann::ordered_json::object();
-  for (const auto& a : table.attributes)
-    std::visit([&](const auto& v) { attributes[a.name] = v; }, a.value);
+  for (const auto& a : table.attributes) std::visit([&](const auto& v) { attributes[a.name] = v; }, a.value);
   for (const auto* axis : {&table.x_axis, &table.y_axis})
-    if (!axis->values.empty()) doc["axes"][axis == &table.x_axis ? "x" : "y"] = {{"name", axis->name}, {"values", axis->values}};
+    if (!axis->values.empty())
+      doc["axes"][axis == &table.x_axis ? "x" : "y"] = {{"name", axis->name}, {"values", axis->values}};
   doc["channels"] = nlohmann::ordered_json::array();
   for (const auto& c : table.channels) {
     nlohmann::ordered_json values = nlohmann::ordered_json::array();
-    for (double v : c.values) values.push_back(std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr));
+    for (double v : c.values)
+      values.push_back(std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr));
     doc["channels"].push_back({{"name", c.name}, {"description", c.description}, {"values", std::move(values)}});
   }
   return doc.dump(1) + "\n";
@@ -63,7 +64,8 @@ std::string to_json(const LookupTable& table) {
 std::string to_csv(const LookupTable& table) {
   std::ostringstream out;
   const bool two_d = table.height > 1;
-  const bool y_axis = two_d && table.y_axis.values.size() == table.height, x_axis = two_d && table.x_axis.values.size() == table.width;
+  const bool y_axis = two_d && table.y_axis.values.size() == table.height,
+             x_axis = two_d && table.x_axis.values.size() == table.width;
   if (two_d) out << "row,column";
   if (y_axis) out << ',' << table.y_axis.name;
   if (x_axis) out << ',' << table.x_axis.name;

@@ -27,8 +27,10 @@ Preview render_material_preview(const Medium& medium, const Model& model, const 
   medium.validate();
   const std::size_t n = medium.channels();
   if (n != 1 && n != 3) throw InvalidInput("preview", std::to_string(n) + " channels", "1 (grey) or 3 (R, G, B)");
-  if (o.width < 16 || o.width > 8192 || o.swatch_height < 1 || o.strip_height < 1 || o.swatch_height + o.strip_height > 8192)
-    throw InvalidInput("preview size", std::to_string(o.width) + "x" + std::to_string(o.swatch_height + o.strip_height), "16 to 8192 pixels");
+  if (o.width < 16 || o.width > 8192 || o.swatch_height < 1 || o.strip_height < 1 ||
+      o.swatch_height + o.strip_height > 8192)
+    throw InvalidInput("preview size", std::to_string(o.width) + "x" + std::to_string(o.swatch_height + o.strip_height),
+                       "16 to 8192 pixels");
   // A channel that does not scatter (sigma_s = 0) sends no light across the edge: it stays black.
   const auto p = project_channels(medium, model);
   double half = o.half_width;
@@ -42,7 +44,9 @@ Preview render_material_preview(const Medium& medium, const Model& model, const 
   const double raw = half / unit / 8, decade = std::pow(10.0, std::floor(std::log10(raw)));
   out.tick = unit * (raw / decade < 2 ? decade : raw / decade < 5 ? 2 * decade : 5 * decade);
   const double pixel = 2 * half / o.width;
-  const auto source = [&](std::size_t k) { return n == 1 ? 0 : k; };  // display channel k shows medium channel source(k)
+  const auto source = [&](std::size_t k) {
+    return n == 1 ? 0 : k;
+  };  // display channel k shows medium channel source(k)
   for (int x = 0; x < o.width; ++x) {
     const double d = -half + (x + 0.5) * pixel;  // signed distance from the edge; lit for d < 0
     const double r = std::max(std::abs(d), 1e-9);
@@ -80,8 +84,10 @@ Preview render_material_preview(const Medium& medium, const Model& model, const 
     draw_text(out.image, o.width - 6 - text_width(scale, kTextScale), y, scale, white, kTextScale);
     const int room = (o.width - 18 - text_width(scale, kTextScale)) / (6 * kTextScale);
     std::string label = o.label;
-    if (room < 1) label.clear();
-    else if (static_cast<int>(label.size()) > room) label = label.substr(0, static_cast<std::size_t>(std::max(0, room - 2))) + "..";
+    if (room < 1)
+      label.clear();
+    else if (static_cast<int>(label.size()) > room)
+      label = label.substr(0, static_cast<std::size_t>(std::max(0, room - 2))) + "..";
     draw_text(out.image, 6, y, label, white, kTextScale);
   }
   return out;

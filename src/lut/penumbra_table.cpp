@@ -5,15 +5,16 @@
 #include <sstream>
 
 #include "bssrdf/error.hpp"
-#include "bssrdf/parallel.hpp"
 #include "bssrdf/lut/projected_profile.hpp"
+#include "bssrdf/parallel.hpp"
 
 namespace bssrdf {
 
 void PenumbraOptions::validate() const {
   if (width < 2 || width > 8192) throw InvalidInput("size", std::to_string(width) + " shadow values", "2 to 8192");
   if (height < 1 || height > 8192) throw InvalidInput("size", std::to_string(height) + " penumbra widths", "1 to 8192");
-  if (!(width_max >= 0) || !std::isfinite(width_max)) throw InvalidInput("width_max", format_number(width_max), "> 0 (0: default)");
+  if (!(width_max >= 0) || !std::isfinite(width_max))
+    throw InvalidInput("width_max", format_number(width_max), "> 0 (0: default)");
   if (threads > 4096) throw InvalidInput("threads", std::to_string(threads), "0 (all cores) to 4096");
 }
 
@@ -40,7 +41,9 @@ PenumbraTable build_penumbra_table(const Medium& medium, const Model& model, con
     for (std::size_t c = 0; c < channels; ++c) {
       const auto& p = profiles[c];
       // A(x) = int_0^x half_plane, odd part handled through half_plane(-x) = total - half_plane(x).
-      const auto A = [&](double x) { return x >= 0 ? p->half_plane_integral(x) : p->half_plane_integral(-x) + p->total() * x; };
+      const auto A = [&](double x) {
+        return x >= 0 ? p->half_plane_integral(x) : p->half_plane_integral(-x) + p->total() * x;
+      };
       for (std::size_t i = 0; i < W; ++i) {
         const double s = t.shadow[i];
         if (!p) {
@@ -59,12 +62,16 @@ LookupTable to_lookup_table(const PenumbraTable& t, const TableContext& context)
   auto out = described_table("penumbra", t.options.width, t.options.height, context);
   const double mm = millimetres_per(context.unit);
   const std::string u(symbol(context.unit));
-  out.set("bssrdf:formula", std::string("D(s, w) = int L(X) R_line(p - X) dX / int R_line, L(X) = clamp(X / w + 1/2, 0, 1), p = (s - 1/2) w: "
-                                        "a light ramp across a penumbra of width w convolved with the profile's line projection "
-                                        "(Penner 2011's shadow LUT, without his artistic sharpening)"));
-  out.set("bssrdf:normalization", std::string("per channel, int R_line = 1: D is in [0, 1]; multiply by the diffuse colour"));
+  out.set(
+      "bssrdf:formula",
+      std::string("D(s, w) = int L(X) R_line(p - X) dX / int R_line, L(X) = clamp(X / w + 1/2, 0, 1), p = (s - 1/2) w: "
+                  "a light ramp across a penumbra of width w convolved with the profile's line projection "
+                  "(Penner 2011's shadow LUT, without his artistic sharpening)"));
+  out.set("bssrdf:normalization",
+          std::string("per channel, int R_line = 1: D is in [0, 1]; multiply by the diffuse colour"));
   out.set("bssrdf:x_axis", "shadow value s in [0, 1] (0: umbra, 1: lit): column i holds s_i = (i + 0.5) / width");
-  out.set("bssrdf:y_axis", "penumbra width w in " + u + ": row j holds w_j = width_max (j + 0.5) / height (texture coordinate w / width_max)");
+  out.set("bssrdf:y_axis", "penumbra width w in " + u +
+                               ": row j holds w_j = width_max (j + 0.5) / height (texture coordinate w / width_max)");
   out.x_axis = {"shadow", t.shadow};
   out.y_axis = {"penumbra_width (" + u + ")", {}};
   for (double w : t.penumbra_width) out.y_axis.values.push_back(w / mm);
@@ -72,7 +79,8 @@ LookupTable to_lookup_table(const PenumbraTable& t, const TableContext& context)
   out.set("bssrdf:widest_r50", t.widest_r50 / mm);
   out.set("bssrdf:size", std::to_string(t.options.width) + "x" + std::to_string(t.options.height));
   for (std::size_t c = 0; c < t.channel_names.size(); ++c)
-    if (!t.scatters[c]) out.set("bssrdf:note." + t.channel_names[c], std::string("the channel does not scatter (sigma_s = 0): D = s"));
+    if (!t.scatters[c])
+      out.set("bssrdf:note." + t.channel_names[c], std::string("the channel does not scatter (sigma_s = 0): D = s"));
   for (std::size_t c = 0; c < t.channel_names.size(); ++c)
     out.add_channel(t.channel_names[c], "diffused light across a penumbra D(s, w), dimensionless", t.value[c]);
   return out;
@@ -83,15 +91,17 @@ std::string summary(const PenumbraTable& t, const TableContext& context) {
   const std::string u(symbol(context.unit));
   const std::size_t W = t.options.width, H = t.options.height;
   std::ostringstream s;
-  s << "penumbra table: " << W << " shadow values x " << H << " penumbra widths from 0 to " << short_number(t.options.width_max / mm)
-    << ' ' << u << (t.width_from_widest ? " (8 r_50 of the widest channel)" : "") << ", texel centres\n";
+  s << "penumbra table: " << W << " shadow values x " << H << " penumbra widths from 0 to "
+    << short_number(t.options.width_max / mm) << ' ' << u
+    << (t.width_from_widest ? " (8 r_50 of the widest channel)" : "") << ", texel centres\n";
   for (std::size_t c = 0; c < t.channel_names.size(); ++c) {
     if (!t.scatters[c]) {
       s << "  " << t.channel_names[c] << ": does not scatter (total reflectance 0): D = s\n";
       continue;
     }
-    s << "  " << t.channel_names[c] << ": D at s = " << short_number(t.shadow[W / 8]) << ": " << short_number(t.value[c][W / 8])
-      << " (narrowest penumbra) to " << short_number(t.value[c][(H - 1) * W + W / 8]) << " (widest)\n";
+    s << "  " << t.channel_names[c] << ": D at s = " << short_number(t.shadow[W / 8]) << ": "
+      << short_number(t.value[c][W / 8]) << " (narrowest penumbra) to " << short_number(t.value[c][(H - 1) * W + W / 8])
+      << " (widest)\n";
   }
   return s.str();
 }

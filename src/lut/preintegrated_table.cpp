@@ -7,8 +7,8 @@
 #include <sstream>
 
 #include "bssrdf/error.hpp"
-#include "bssrdf/parallel.hpp"
 #include "bssrdf/lut/projected_profile.hpp"
+#include "bssrdf/parallel.hpp"
 
 namespace bssrdf {
 
@@ -20,16 +20,19 @@ void PreintegratedOptions::validate() const {
   if (threads > 4096) throw InvalidInput("threads", std::to_string(threads), "0 (all cores) to 4096");
   if (!(ring_nodes_per_decade >= 4 && ring_nodes_per_decade <= 1024))
     throw InvalidInput("ring_nodes_per_decade", format_number(ring_nodes_per_decade), "4 to 1024");
-  if (!(ring_step > 0 && ring_step <= 0.1)) throw InvalidInput("ring_step", format_number(ring_step), "0 < step <= 0.1");
+  if (!(ring_step > 0 && ring_step <= 0.1))
+    throw InvalidInput("ring_step", format_number(ring_step), "0 < step <= 0.1");
 }
 
-PreintegratedTable build_preintegrated_table(const Medium& medium, const Model& model, const PreintegratedOptions& options) {
+PreintegratedTable build_preintegrated_table(const Medium& medium, const Model& model,
+                                             const PreintegratedOptions& options) {
   medium.validate();
   options.validate();
   return build_preintegrated_table(medium, project_channels(medium, model), options);
 }
 
-PreintegratedTable build_preintegrated_table(const Medium& medium, const std::vector<std::optional<ProjectedProfile>>& profiles,
+PreintegratedTable build_preintegrated_table(const Medium& medium,
+                                             const std::vector<std::optional<ProjectedProfile>>& profiles,
                                              const PreintegratedOptions& options) {
   options.validate();
   PreintegratedTable t;
@@ -45,7 +48,8 @@ PreintegratedTable build_preintegrated_table(const Medium& medium, const std::ve
     r_min = std::min(r_min, p->r_min());
   }
   if (t.options.curvature_max == 0) t.options.curvature_max = 1 / t.widest_r50;
-  for (std::size_t i = 0; i < W; ++i) t.n_dot_l.push_back(-1 + 2 * (static_cast<double>(i) + 0.5) / static_cast<double>(W));
+  for (std::size_t i = 0; i < W; ++i)
+    t.n_dot_l.push_back(-1 + 2 * (static_cast<double>(i) + 0.5) / static_cast<double>(W));
   for (std::size_t j = 0; j < H; ++j)
     t.curvature.push_back(t.options.curvature_max * (static_cast<double>(j) + 0.5) / static_cast<double>(H));
   t.value.assign(channels, std::vector<double>(W * H));
@@ -60,12 +64,15 @@ PreintegratedTable build_preintegrated_table(const Medium& medium, const std::ve
     for (double v = x_lo; v < 0.1; v *= std::exp(h)) x.push_back(v);
     const double step = options.ring_step;
     const auto n_uniform = static_cast<std::size_t>(std::ceil((std::numbers::pi - 0.1) / step));
-    for (std::size_t k = 0; k <= n_uniform; ++k) x.push_back(0.1 + (std::numbers::pi - 0.1) * static_cast<double>(k) / static_cast<double>(n_uniform));
+    for (std::size_t k = 0; k <= n_uniform; ++k)
+      x.push_back(0.1 + (std::numbers::pi - 0.1) * static_cast<double>(k) / static_cast<double>(n_uniform));
     const std::size_t K = x.size();
     std::vector<double> quad(K), cos_x(K), sin_x(K), chord(K);
     for (std::size_t k = 0; k < K; ++k) {
       // Trapezoid weight; the first node also covers (0, x_0] (the integrand taken constant there).
-      quad[k] = k == 0 ? x[0] + 0.5 * (x[1] - x[0]) : k + 1 == K ? 0.5 * (x[k] - x[k - 1]) : 0.5 * (x[k + 1] - x[k - 1]);
+      quad[k] = k == 0       ? x[0] + 0.5 * (x[1] - x[0])
+                : k + 1 == K ? 0.5 * (x[k] - x[k - 1])
+                             : 0.5 * (x[k + 1] - x[k - 1]);
       cos_x[k] = std::cos(x[k]);
       sin_x[k] = std::sin(x[k]);
       chord[k] = 2 * radius * std::sin(0.5 * x[k]);
@@ -83,7 +90,8 @@ PreintegratedTable build_preintegrated_table(const Medium& medium, const std::ve
     const double pi = std::numbers::pi;
     std::vector<std::array<std::pair<std::size_t, std::size_t>, 3>> ranges(W);
     for (std::size_t i = 0; i < W; ++i)
-      ranges[i] = {range(-1.0, pi / 2 - theta[i]), range(3 * pi / 2 - theta[i], 4.0), range(theta[i] - pi / 2, theta[i] + pi / 2)};
+      ranges[i] = {range(-1.0, pi / 2 - theta[i]), range(3 * pi / 2 - theta[i], 4.0),
+                   range(theta[i] - pi / 2, theta[i] + pi / 2)};
     std::vector<double> prefix_cos(K + 1, 0.0), prefix_sin(K + 1, 0.0);
     for (std::size_t c = 0; c < channels; ++c) {
       if (!profiles[c]) {
@@ -117,12 +125,18 @@ LookupTable to_lookup_table(const PreintegratedTable& t, const TableContext& con
   auto out = described_table("preintegrated", t.options.width, t.options.height, context);
   const double mm = millimetres_per(context.unit);
   const std::string u(symbol(context.unit));
-  out.set("bssrdf:formula", std::string("D(theta, r) = int max(0, cos(theta + x)) R_ring(2 r sin(x/2)) dx / int R_ring(2 r sin(x/2)) dx "
-                                        "over x in [-pi, pi] (Penner 2011); R_ring(d) = int R(sqrt(d^2 + y^2)) dy, the profile's "
-                                        "cross-section through the ring"));
-  out.set("bssrdf:normalization", std::string("per channel, int R_ring = 1: D is in [0, 1]; multiply by the diffuse colour"));
-  out.set("bssrdf:x_axis", std::string("u = N.L in [-1, 1]: column i holds u_i = -1 + 2 (i + 0.5) / width (texture coordinate (u + 1) / 2)"));
-  out.set("bssrdf:y_axis", "curvature 1/r in 1/" + u + ": row j holds c_j = curvature_max (j + 0.5) / height (texture coordinate c / curvature_max); row 0 is the flattest");
+  out.set("bssrdf:formula",
+          std::string("D(theta, r) = int max(0, cos(theta + x)) R_ring(2 r sin(x/2)) dx / int R_ring(2 r sin(x/2)) dx "
+                      "over x in [-pi, pi] (Penner 2011); R_ring(d) = int R(sqrt(d^2 + y^2)) dy, the profile's "
+                      "cross-section through the ring"));
+  out.set("bssrdf:normalization",
+          std::string("per channel, int R_ring = 1: D is in [0, 1]; multiply by the diffuse colour"));
+  out.set("bssrdf:x_axis",
+          std::string(
+              "u = N.L in [-1, 1]: column i holds u_i = -1 + 2 (i + 0.5) / width (texture coordinate (u + 1) / 2)"));
+  out.set("bssrdf:y_axis", "curvature 1/r in 1/" + u +
+                               ": row j holds c_j = curvature_max (j + 0.5) / height (texture coordinate c / "
+                               "curvature_max); row 0 is the flattest");
   out.x_axis = {"n_dot_l", t.n_dot_l};
   out.y_axis = {"curvature (1/" + u + ")", {}};
   for (double c : t.curvature) out.y_axis.values.push_back(c * mm);
@@ -132,7 +146,8 @@ LookupTable to_lookup_table(const PreintegratedTable& t, const TableContext& con
   out.set("bssrdf:size", std::to_string(t.options.width) + "x" + std::to_string(t.options.height));
   for (std::size_t c = 0; c < t.channel_names.size(); ++c)
     if (t.scatters.size() > c && !t.scatters[c])
-      out.set("bssrdf:note." + t.channel_names[c], std::string("the channel does not scatter (sigma_s = 0): D = max(0, N.L)"));
+      out.set("bssrdf:note." + t.channel_names[c],
+              std::string("the channel does not scatter (sigma_s = 0): D = max(0, N.L)"));
   for (std::size_t c = 0; c < t.channel_names.size(); ++c)
     out.add_channel(t.channel_names[c], "pre-integrated diffuse D(N.L, curvature), dimensionless", t.value[c]);
   return out;
@@ -143,13 +158,14 @@ std::string summary(const PreintegratedTable& t, const TableContext& context) {
   const std::string u(symbol(context.unit));
   const std::size_t W = t.options.width, H = t.options.height;
   std::ostringstream s;
-  s << "pre-integrated table: " << W << " N.L x " << H << " curvatures from 0 to " << short_number(t.options.curvature_max * mm)
-    << " 1/" << u << " (sphere radius down to " << short_number(1 / (t.options.curvature_max * mm)) << ' ' << u
-    << ", the widest channel's r_50), texel centres\n";
+  s << "pre-integrated table: " << W << " N.L x " << H << " curvatures from 0 to "
+    << short_number(t.options.curvature_max * mm) << " 1/" << u << " (sphere radius down to "
+    << short_number(1 / (t.options.curvature_max * mm)) << ' ' << u << ", the widest channel's r_50), texel centres\n";
   for (std::size_t c = 0; c < t.channel_names.size(); ++c)
-    s << "  " << t.channel_names[c] << ": D at N.L = " << short_number(t.n_dot_l[W / 2]) << ": " << short_number(t.value[c][W / 2])
-      << " (flattest row) to " << short_number(t.value[c][(H - 1) * W + W / 2]) << " (most curved); at N.L = "
-      << short_number(t.n_dot_l[0]) << ": " << short_number(t.value[c][0]) << " to " << short_number(t.value[c][(H - 1) * W]) << '\n';
+    s << "  " << t.channel_names[c] << ": D at N.L = " << short_number(t.n_dot_l[W / 2]) << ": "
+      << short_number(t.value[c][W / 2]) << " (flattest row) to " << short_number(t.value[c][(H - 1) * W + W / 2])
+      << " (most curved); at N.L = " << short_number(t.n_dot_l[0]) << ": " << short_number(t.value[c][0]) << " to "
+      << short_number(t.value[c][(H - 1) * W]) << '\n';
   return s.str();
 }
 

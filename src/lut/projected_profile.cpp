@@ -28,7 +28,8 @@ ProjectedProfile::ProjectedProfile(const Model& model, const Reduced<double>& m)
   for (double u = u0_;; u += h_) {
     const double r = std::exp(u);
     const double value = model.reflectance(m, r);
-    if (!std::isfinite(value)) throw InvalidInput("profile", "R(" + format_number(r) + ") = " + format_number(value), "finite");
+    if (!std::isfinite(value))
+      throw InvalidInput("profile", "R(" + format_number(r) + ") = " + format_number(value), "finite");
     R.push_back(value);
     const double f = kTwoPi * r * r * std::max(value, 0.0);
     cum += R.size() == 1 ? 0.5 * f : 0.5 * h_ * (f + f_prev);  // first: the inner disc pi r0^2 R(r0)
@@ -48,9 +49,9 @@ ProjectedProfile::ProjectedProfile(const Model& model, const Reduced<double>& m)
   // (ln(x_j cosh s) = u_j + ln cosh s), so each sample's Catmull-Rom stencil and weights in the
   // (ln r, ln R) table are computed once, not once per node.
   struct Sample {
-    double offset;                      // ln cosh s / h: grid positions beyond the node
-    std::ptrdiff_t i;                   // floor(offset)
-    std::array<double, 4> weight;       // of log_R at j + i - 1 .. j + i + 2
+    double offset;                 // ln cosh s / h: grid positions beyond the node
+    std::ptrdiff_t i;              // floor(offset)
+    std::array<double, 4> weight;  // of log_R at j + i - 1 .. j + i + 2
     double cosh_s;
   };
   std::vector<Sample> samples;
@@ -61,9 +62,10 @@ ProjectedProfile::ProjectedProfile(const Model& model, const Reduced<double>& m)
     const auto i = static_cast<std::ptrdiff_t>(std::floor(offset));
     const double f = offset - static_cast<double>(i), f2 = f * f, f3 = f2 * f;
     // Catmull-Rom (as cubic()) written as weights of the four nodes around the interval.
-    samples.push_back({offset, i,
-                       {-0.5 * (f3 - 2 * f2 + f), 2 * f3 - 3 * f2 + 1 - 0.5 * (f3 - f2), -2 * f3 + 3 * f2 + 0.5 * (f3 - 2 * f2 + f),
-                        0.5 * (f3 - f2)},
+    samples.push_back({offset,
+                       i,
+                       {-0.5 * (f3 - 2 * f2 + f), 2 * f3 - 3 * f2 + 1 - 0.5 * (f3 - f2),
+                        -2 * f3 + 3 * f2 + 0.5 * (f3 - 2 * f2 + f), 0.5 * (f3 - f2)},
                        cosh_s});
   }
   std::vector<double> line(n);
@@ -81,7 +83,8 @@ ProjectedProfile::ProjectedProfile(const Model& model, const Reduced<double>& m)
         continue;
       }
       const double* f = log_R_.data() + first;
-      const double v = sample.weight[0] * f[0] + sample.weight[1] * f[1] + sample.weight[2] * f[2] + sample.weight[3] * f[3];
+      const double v =
+          sample.weight[0] * f[0] + sample.weight[1] * f[1] + sample.weight[2] * f[2] + sample.weight[3] * f[3];
       sum += (v <= kNegligible ? 0 : std::exp(v)) * rho;
     }
     line[j] = 2 * hs * sum;
@@ -112,7 +115,9 @@ double ProjectedProfile::cubic(const std::vector<double>& f, double u) const {
   auto i = static_cast<std::ptrdiff_t>(std::floor(t));
   i = std::clamp<std::ptrdiff_t>(i, 0, n - 2);
   const double x = t - static_cast<double>(i);
-  const auto at = [&](std::ptrdiff_t k) { return f[static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(k, 0, n - 1))]; };
+  const auto at = [&](std::ptrdiff_t k) {
+    return f[static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(k, 0, n - 1))];
+  };
   const double p0 = at(i - 1), p1 = at(i), p2 = at(i + 1), p3 = at(i + 2);
   // Catmull-Rom; one-sided (linear) at the ends where a neighbour is missing.
   const double m1 = i > 0 ? 0.5 * (p2 - p0) : p2 - p1;
@@ -185,7 +190,8 @@ std::vector<std::optional<ProjectedProfile>> project_channels(const Medium& medi
       out[c].emplace(model, medium.reduced(c));
       any = true;
     }
-  if (!any) throw InvalidInput("profile", "0 in every channel", "a medium that scatters (sigma_s > 0) in at least one channel");
+  if (!any)
+    throw InvalidInput("profile", "0 in every channel", "a medium that scatters (sigma_s > 0) in at least one channel");
   return out;
 }
 

@@ -1,9 +1,9 @@
 #include "bssrdf/lut/radial_table.hpp"
 
-#include <sstream>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/parallel.hpp"
@@ -93,7 +93,7 @@ struct GridMap {
 
 // Values at the nodes and at the two check points of every interval, for all channels.
 struct GridValues {
-  std::vector<double> log_r;  // holds x: the grid coordinate
+  std::vector<double> log_r;                     // holds x: the grid coordinate
   std::vector<std::vector<double>> node, check;  // [channel][j], check: [channel][2 j + k]
 };
 
@@ -131,9 +131,9 @@ struct DenseProfile {
   }
 };
 
-DenseProfile dense_profile(const Model& model, const std::vector<Reduced<double>>& media, const std::vector<Probe>& probes,
-                           const GridMap& map, double u0, double u1, double accuracy, std::size_t max_nodes,
-                           unsigned threads, std::size_t& evaluations) {
+DenseProfile dense_profile(const Model& model, const std::vector<Reduced<double>>& media,
+                           const std::vector<Probe>& probes, const GridMap& map, double u0, double u1, double accuracy,
+                           std::size_t max_nodes, unsigned threads, std::size_t& evaluations) {
   const std::size_t channels = media.size();
   DenseProfile d;
   d.x0 = u0;
@@ -194,7 +194,8 @@ GridValues evaluate(std::size_t channels, double u0, double u1, std::size_t n, u
     const std::size_t c = item / n, j = item % n;
     g.node[c][j] = f(c, g.log_r[j]);
     if (j + 1 < n)
-      for (int k = 0; k < 2; ++k) g.check[c][2 * j + k] = f(c, g.log_r[j] + kCheckPoint[k] * (g.log_r[j + 1] - g.log_r[j]));
+      for (int k = 0; k < 2; ++k)
+        g.check[c][2 * j + k] = f(c, g.log_r[j] + kCheckPoint[k] * (g.log_r[j + 1] - g.log_r[j]));
   });
   return g;
 }
@@ -298,7 +299,8 @@ RadialTable build_radial_table(const Medium& medium, const Model& model, const R
     return std::isfinite(p) ? std::clamp(p, 1.0, 8.0) : order;
   };
   const double guess = 64 * std::pow(1e-3 / options.tolerance, 1 / 2.5);
-  std::size_t fail = 1, n = std::min(options.max_size, std::max<std::size_t>(16, static_cast<std::size_t>(std::ceil(guess))));
+  std::size_t fail = 1,
+              n = std::min(options.max_size, std::max<std::size_t>(16, static_cast<std::size_t>(std::ceil(guess))));
   double fail_error = 0;
   auto [best, best_error] = trial(n);
   while (best_error > target) {
@@ -372,7 +374,8 @@ RadialTable build_radial_table(const Medium& medium, const Model& model, const R
       continue;
     }
     for (std::size_t j = 0; j < N; ++j) cdf[j] = cum[j] / in_table;
-    auto inverse = inverse_cdf(cdf, table.radius, best.log_r, [&](double x) { return map.r(x); }, table.u);
+    auto inverse = inverse_cdf(
+        cdf, table.radius, best.log_r, [&](double x) { return map.r(x); }, table.u);
     table.reflectance.push_back(R);
     table.ring.push_back(std::move(ring));
     table.cdf.push_back(std::move(cdf));
@@ -392,9 +395,12 @@ LookupTable to_lookup_table(const RadialTable& t, const TableContext& context) {
     return o;
   };
   out.set("bssrdf:distance", "radius r on the surface from the point of incidence, in " + u);
-  out.set("bssrdf:normalization",
-          std::string("per_entered_flux: R(r) is the exitance at r from a normally incident pencil beam per unit flux that entered the medium"));
-  out.set("bssrdf:grid", "uniform in x = ln(r / " + u + ") + r / L, L = bssrdf:decay_length (logarithmic near 0, linear in the exponential tail): x_j = x(r_min) + (x(r_max) - x(r_min)) j / (N - 1), j = 0 .. N - 1; the radius channel holds r_j");
+  out.set("bssrdf:normalization", std::string("per_entered_flux: R(r) is the exitance at r from a normally incident "
+                                              "pencil beam per unit flux that entered the medium"));
+  out.set("bssrdf:grid",
+          "uniform in x = ln(r / " + u +
+              ") + r / L, L = bssrdf:decay_length (logarithmic near 0, linear in the exponential tail): x_j = x(r_min) "
+              "+ (x(r_max) - x(r_min)) j / (N - 1), j = 0 .. N - 1; the radius channel holds r_j");
   out.set("bssrdf:decay_length", t.decay_length / mm);
   out.set("bssrdf:size", static_cast<int>(t.size()));
   out.set("bssrdf:r_min", t.radius.front() / mm);
@@ -403,24 +409,32 @@ LookupTable to_lookup_table(const RadialTable& t, const TableContext& context) {
   out.set("bssrdf:tolerance", t.options.tolerance);
   out.set("bssrdf:max_error", t.max_error);
   out.set("bssrdf:energy", t.options.energy);
-  out.set("bssrdf:cdf", std::string("cdf.<c>(r_j) = int_0^{r_j} 2 pi r R dr / int_0^{r_max} 2 pi r R dr; inverse_cdf.<c> at u_j = j / (N - 1)"));
+  out.set(
+      "bssrdf:cdf",
+      std::string(
+          "cdf.<c>(r_j) = int_0^{r_j} 2 pi r R dr / int_0^{r_max} 2 pi r R dr; inverse_cdf.<c> at u_j = j / (N - 1)"));
   for (std::size_t c = 0; c < t.channel_names.size(); ++c) {
     const auto& name = t.channel_names[c];
     out.set("bssrdf:total_reflectance." + name, t.total_reflectance[c]);
     out.set("bssrdf:table_reflectance." + name, t.table_reflectance[c]);
-    out.set("bssrdf:range." + name, t.range_max[c] > 0 ? format_number(t.range_min[c] / mm) + " to " + format_number(t.range_max[c] / mm) + " " + u
-                                                       : std::string("none: the channel does not scatter (total reflectance 0); R = 0, cdf = 1 and inverse_cdf = 0 (all at r = 0)"));
+    out.set("bssrdf:range." + name,
+            t.range_max[c] > 0
+                ? format_number(t.range_min[c] / mm) + " to " + format_number(t.range_max[c] / mm) + " " + u
+                : std::string("none: the channel does not scatter (total reflectance 0); R = 0, cdf = 1 and "
+                              "inverse_cdf = 0 (all at r = 0)"));
   }
   for (std::size_t c = 0; c < t.channel_names.size(); ++c)
     out.add_channel(t.channel_names[c], "R(r), 1/" + u + "^2 per unit entered flux", scaled(t.reflectance[c], mm * mm));
   out.add_channel("radius", "r, " + u, scaled(t.radius, 1 / mm));
-  add_sampling_channels(out, t.channel_names, t.ring, t.cdf, t.u, t.inverse_cdf, "CDF of 2 pi r R(r) over [0, r_max]", context.unit);
+  add_sampling_channels(out, t.channel_names, t.ring, t.cdf, t.u, t.inverse_cdf, "CDF of 2 pi r R(r) over [0, r_max]",
+                        context.unit);
   return out;
 }
 
-void add_sampling_channels(LookupTable& out, const std::vector<std::string>& channel_names, const std::vector<std::vector<double>>& ring,
-                           const std::vector<std::vector<double>>& cdf, const std::vector<double>& u,
-                           const std::vector<std::vector<double>>& inverse_cdf, const std::string& cdf_description, LengthUnit unit) {
+void add_sampling_channels(LookupTable& out, const std::vector<std::string>& channel_names,
+                           const std::vector<std::vector<double>>& ring, const std::vector<std::vector<double>>& cdf,
+                           const std::vector<double>& u, const std::vector<std::vector<double>>& inverse_cdf,
+                           const std::string& cdf_description, LengthUnit unit) {
   const double mm = millimetres_per(unit);
   const std::string symbol_u(symbol(unit));
   const auto scaled = [](std::vector<double> v, double s) {
@@ -429,10 +443,12 @@ void add_sampling_channels(LookupTable& out, const std::vector<std::string>& cha
   };
   for (std::size_t c = 0; c < channel_names.size(); ++c)
     out.add_channel("ring." + channel_names[c], "2 pi r R(r), 1/" + symbol_u, scaled(ring[c], mm));
-  for (std::size_t c = 0; c < channel_names.size(); ++c) out.add_channel("cdf." + channel_names[c], cdf_description, cdf[c]);
+  for (std::size_t c = 0; c < channel_names.size(); ++c)
+    out.add_channel("cdf." + channel_names[c], cdf_description, cdf[c]);
   out.add_channel("u", "CDF value u_j = j / (N - 1) of the inverse_cdf channels", u);
   for (std::size_t c = 0; c < channel_names.size(); ++c)
-    out.add_channel("inverse_cdf." + channel_names[c], "radius r with cdf(r) = u_j, " + symbol_u, scaled(inverse_cdf[c], 1 / mm));
+    out.add_channel("inverse_cdf." + channel_names[c], "radius r with cdf(r) = u_j, " + symbol_u,
+                    scaled(inverse_cdf[c], 1 / mm));
 }
 
 std::string summary(const RadialTable& t, const TableContext& context) {
@@ -440,8 +456,8 @@ std::string summary(const RadialTable& t, const TableContext& context) {
   const std::string u(symbol(context.unit));
   std::ostringstream s;
   s << "radial table: " << t.size() << " radii from " << short_number(t.radius.front() / mm) << " to "
-    << short_number(t.radius.back() / mm) << ' ' << u << ", uniform in ln r + r/" << short_number(t.decay_length / mm) << " ("
-    << to_string(t.options.interpolation) << "; worst error " << short_number(t.max_error) << " <= tolerance "
+    << short_number(t.radius.back() / mm) << ' ' << u << ", uniform in ln r + r/" << short_number(t.decay_length / mm)
+    << " (" << to_string(t.options.interpolation) << "; worst error " << short_number(t.max_error) << " <= tolerance "
     << short_number(t.options.tolerance) << " over the range holding " << short_number(t.options.energy)
     << " of each channel's total; " << t.evaluations << " model evaluations)\n";
   for (std::size_t c = 0; c < t.channel_names.size(); ++c)

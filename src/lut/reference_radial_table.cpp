@@ -17,7 +17,8 @@ ReferenceRadialTable build_reference_radial_table(const LayerStack& stack, const
   if (options.bins < 4 || options.bins > 4096) throw InvalidInput("bins", std::to_string(options.bins), "4 to 4096");
   if (options.photons < 1000) throw InvalidInput("photons", std::to_string(options.photons), ">= 1000");
   const auto ell = transport_mfp_range(stack);
-  if (!(ell.max > 0)) throw InvalidInput("layers", "no attenuation in any layer or channel", "sigma_a + sigma_s > 0 somewhere");
+  if (!(ell.max > 0))
+    throw InvalidInput("layers", "no attenuation in any layer or channel", "sigma_a + sigma_s > 0 somewhere");
   MonteCarloOptions mc;
   mc.photons = options.photons;
   mc.seed = options.seed;
@@ -51,7 +52,9 @@ ReferenceRadialTable build_reference_radial_table(const LayerStack& stack, const
       log_r[j] = std::log(t.r_outer[j]);
     }
     // The CDF is known at the bins' outer edges: interpolated in ln r between them. No light: all at r = 0.
-    auto inverse = sum > 0 ? inverse_cdf(cdf, t.r_outer, log_r, [](double x) { return std::exp(x); }, t.u) : std::vector<double>(N, 0.0);
+    auto inverse = sum > 0 ? inverse_cdf(
+                                 cdf, t.r_outer, log_r, [](double x) { return std::exp(x); }, t.u)
+                           : std::vector<double>(N, 0.0);
     t.reflectance.push_back(c.reflectance);
     t.reflectance_stderr.push_back(c.reflectance_stderr);
     t.ring.push_back(std::move(ring));
@@ -73,19 +76,27 @@ LookupTable to_lookup_table(const ReferenceRadialTable& t, const TableContext& c
     return v;
   };
   out.set("bssrdf:model", std::string("monte carlo"));
-  out.set("bssrdf:model_description", "Monte Carlo reference (radiative transfer, true Henyey-Greenstein phase function, Fresnel boundaries): " +
-                                          std::to_string(t.options.photons) + " photons per channel, seed " + std::to_string(t.options.seed));
+  out.set("bssrdf:model_description",
+          "Monte Carlo reference (radiative transfer, true Henyey-Greenstein phase function, Fresnel boundaries): " +
+              std::to_string(t.options.photons) + " photons per channel, seed " + std::to_string(t.options.seed));
   out.set("bssrdf:includes_single_scattering", std::string("yes"));
   out.set("bssrdf:distance", "radius r on the surface from the point of incidence, in " + u);
-  out.set("bssrdf:normalization", std::string("per_entered_flux: R is the bin average of the exitance per unit flux that entered the medium"));
-  out.set("bssrdf:grid", "bins: [0, r_outer_0), then geometric; channel radius holds each bin's centre (geometric mean; r_outer_0 / 2 for the first), r_inner and r_outer its edges");
+  out.set("bssrdf:normalization",
+          std::string("per_entered_flux: R is the bin average of the exitance per unit flux that entered the medium"));
+  out.set("bssrdf:grid",
+          "bins: [0, r_outer_0), then geometric; channel radius holds each bin's centre (geometric mean; r_outer_0 / 2 "
+          "for the first), r_inner and r_outer its edges");
   out.set("bssrdf:size", static_cast<int>(t.size()));
   out.set("bssrdf:r_min", t.r_outer.front() / mm);
   out.set("bssrdf:r_max", t.r_outer.back() / mm);
   out.set("bssrdf:photons", static_cast<double>(t.options.photons));
   out.set("bssrdf:seed", static_cast<double>(t.options.seed));
-  out.set("bssrdf:error", std::string("statistical: stderr.<c> is each bin's standard error (no interpolation tolerance)"));
-  out.set("bssrdf:cdf", std::string("cdf.<c> at r_outer: int_0^{r_outer} 2 pi r R dr / the table's total; inverse_cdf.<c> at u_j = j / (N - 1)"));
+  out.set("bssrdf:error",
+          std::string("statistical: stderr.<c> is each bin's standard error (no interpolation tolerance)"));
+  out.set(
+      "bssrdf:cdf",
+      std::string(
+          "cdf.<c> at r_outer: int_0^{r_outer} 2 pi r R dr / the table's total; inverse_cdf.<c> at u_j = j / (N - 1)"));
   for (std::size_t c = 0; c < t.channel_names.size(); ++c) {
     const auto& name = t.channel_names[c];
     out.set("bssrdf:total_reflectance." + name, t.total_reflectance[c]);
@@ -93,13 +104,16 @@ LookupTable to_lookup_table(const ReferenceRadialTable& t, const TableContext& c
     out.set("bssrdf:table_reflectance." + name, t.table_reflectance[c]);
   }
   for (std::size_t c = 0; c < t.channel_names.size(); ++c)
-    out.add_channel(t.channel_names[c], "R(r) bin average, 1/" + u + "^2 per unit entered flux", scaled(t.reflectance[c], mm * mm));
+    out.add_channel(t.channel_names[c], "R(r) bin average, 1/" + u + "^2 per unit entered flux",
+                    scaled(t.reflectance[c], mm * mm));
   out.add_channel("radius", "bin centre, " + u, scaled(t.radius, 1 / mm));
   out.add_channel("r_inner", "bin inner edge, " + u, scaled(t.r_inner, 1 / mm));
   out.add_channel("r_outer", "bin outer edge, " + u, scaled(t.r_outer, 1 / mm));
   for (std::size_t c = 0; c < t.channel_names.size(); ++c)
-    out.add_channel("stderr." + t.channel_names[c], "standard error of R, 1/" + u + "^2", scaled(t.reflectance_stderr[c], mm * mm));
-  add_sampling_channels(out, t.channel_names, t.ring, t.cdf, t.u, t.inverse_cdf, "CDF of 2 pi r R(r) at r_outer", context.unit);
+    out.add_channel("stderr." + t.channel_names[c], "standard error of R, 1/" + u + "^2",
+                    scaled(t.reflectance_stderr[c], mm * mm));
+  add_sampling_channels(out, t.channel_names, t.ring, t.cdf, t.u, t.inverse_cdf, "CDF of 2 pi r R(r) at r_outer",
+                        context.unit);
   return out;
 }
 
@@ -107,9 +121,10 @@ std::string summary(const ReferenceRadialTable& t, const TableContext& context) 
   const double mm = millimetres_per(context.unit);
   const std::string u(symbol(context.unit));
   std::ostringstream s;
-  s << "radial table from the Monte Carlo reference: " << t.size() << " bins from " << short_number(t.r_outer.front() / mm) << " to "
-    << short_number(t.r_outer.back() / mm) << ' ' << u << " (logarithmic), " << t.options.photons << " photons per channel, seed "
-    << t.options.seed << "; values are bin averages with standard errors (stderr.<c>)\n";
+  s << "radial table from the Monte Carlo reference: " << t.size() << " bins from "
+    << short_number(t.r_outer.front() / mm) << " to " << short_number(t.r_outer.back() / mm) << ' ' << u
+    << " (logarithmic), " << t.options.photons << " photons per channel, seed " << t.options.seed
+    << "; values are bin averages with standard errors (stderr.<c>)\n";
   for (std::size_t c = 0; c < t.channel_names.size(); ++c)
     s << "  " << t.channel_names[c] << ": total reflectance " << short_number(t.total_reflectance[c]) << " +- "
       << short_number(t.total_stderr[c]) << ", "

@@ -11,20 +11,23 @@
 namespace bssrdf {
 
 void SeparableKernelOptions::validate() const {
-  if (taps < 3 || taps > 255 || taps % 2 == 0) throw InvalidInput("taps", std::to_string(taps), "an odd number from 3 to 255");
+  if (taps < 3 || taps > 255 || taps % 2 == 0)
+    throw InvalidInput("taps", std::to_string(taps), "an odd number from 3 to 255");
   if (!(range >= 0) || !std::isfinite(range)) throw InvalidInput("range", format_number(range), "> 0 (0: default)");
   if (!(band > 0 && band < 1)) throw InvalidInput("band", format_number(band), "0 < band < 1");
 }
 
 double jimenez_range(int taps) { return taps > 20 ? 3.0 : 2.0; }
 
-SeparableKernel build_separable_kernel(const Medium& medium, const Model& model, const SeparableKernelOptions& options) {
+SeparableKernel build_separable_kernel(const Medium& medium, const Model& model,
+                                       const SeparableKernelOptions& options) {
   medium.validate();
   options.validate();
   return build_separable_kernel(medium, project_channels(medium, model), options);
 }
 
-SeparableKernel build_separable_kernel(const Medium& medium, const std::vector<std::optional<ProjectedProfile>>& profiles,
+SeparableKernel build_separable_kernel(const Medium& medium,
+                                       const std::vector<std::optional<ProjectedProfile>>& profiles,
                                        const SeparableKernelOptions& options) {
   options.validate();
   SeparableKernel k;
@@ -84,19 +87,27 @@ LookupTable to_lookup_table(const SeparableKernel& k, const TableContext& contex
   out.set("bssrdf:taps", static_cast<int>(k.offset.size()));
   out.set("bssrdf:range", k.options.range / mm);
   out.set("bssrdf:range_unit", u);
-  out.set("bssrdf:range_rule", k.range_from_band ? "half-width of the band |x| < range holding " + format_number(k.options.band) +
-                                                      " of the widest channel's light (line projection of R)"
-                                                : std::string("given"));
-  out.set("bssrdf:offset", "offset in units of the kernel half-width bssrdf:range (" + format_number(k.options.range / mm) + " " + u +
-                               "): physical offset = offset x range; o_i = sign(t) t^2, t = -1 + 2 i / (N - 1); centre tap first");
-  out.set("bssrdf:weights", std::string("per channel: the line-projected profile integrated over each tap's footprint, normalised to sum to 1 "
-                                        "(multiply by the diffuse colour, bssrdf:total_reflectance.<c>)"));
-  out.set("bssrdf:layout", std::string("Jimenez et al. 2015 separable SSS: float4(weight.rgb, offset), applied horizontally then vertically"));
+  out.set("bssrdf:range_rule", k.range_from_band
+                                   ? "half-width of the band |x| < range holding " + format_number(k.options.band) +
+                                         " of the widest channel's light (line projection of R)"
+                                   : std::string("given"));
+  out.set("bssrdf:offset",
+          "offset in units of the kernel half-width bssrdf:range (" + format_number(k.options.range / mm) + " " + u +
+              "): physical offset = offset x range; o_i = sign(t) t^2, t = -1 + 2 i / (N - 1); centre tap first");
+  out.set("bssrdf:weights",
+          std::string(
+              "per channel: the line-projected profile integrated over each tap's footprint, normalised to sum to 1 "
+              "(multiply by the diffuse colour, bssrdf:total_reflectance.<c>)"));
+  out.set("bssrdf:layout",
+          std::string(
+              "Jimenez et al. 2015 separable SSS: float4(weight.rgb, offset), applied horizontally then vertically"));
   for (std::size_t c = 0; c < k.channel_names.size(); ++c) {
     out.set("bssrdf:total_reflectance." + k.channel_names[c], k.total_reflectance[c]);
     out.set("bssrdf:captured." + k.channel_names[c], k.captured[c]);
     if (k.total_reflectance[c] == 0)
-      out.set("bssrdf:note." + k.channel_names[c], std::string("the channel does not scatter (sigma_s = 0, total reflectance 0): identity kernel, centre tap 1"));
+      out.set("bssrdf:note." + k.channel_names[c],
+              std::string(
+                  "the channel does not scatter (sigma_s = 0, total reflectance 0): identity kernel, centre tap 1"));
   }
   for (std::size_t c = 0; c < k.channel_names.size(); ++c)
     out.add_channel(k.channel_names[c], "tap weight, normalised per channel", k.weight[c]);
@@ -126,23 +137,26 @@ std::string to_shader(const SeparableKernel& k, const TableContext& context, Sha
   const std::size_t N = k.offset.size();
   const bool glsl = language == ShaderLanguage::glsl;
   std::ostringstream s;
-  s << "// bssrdf " << BSSRDF_VERSION << ": separable subsurface-scattering kernel (Jimenez et al. 2015), " << N << " taps\n";
+  s << "// bssrdf " << BSSRDF_VERSION << ": separable subsurface-scattering kernel (Jimenez et al. 2015), " << N
+    << " taps\n";
   if (context.material) s << "// material: " << context.material->name << " (" << context.material->source << ")\n";
   if (context.model) s << "// model: " << context.model->name() << "\n";
   s << "// xyz: weight per channel (" << k.channel_names[0] << ", " << k.channel_names[1] << ", " << k.channel_names[2]
     << "), each channel sums to 1; multiply the result by the diffuse colour\n"
-    << "//      (total reflectance " << format_number(k.total_reflectance[0]) << ", " << format_number(k.total_reflectance[1])
-    << ", " << format_number(k.total_reflectance[2]) << " per entered flux)\n"
-    << "// w:   offset in units of the kernel half-width kernelRange = " << format_number(k.options.range / mm) << ' ' << u
-    << " (physical offset = w * kernelRange); centre tap first\n";
-  s << (glsl ? "const float kernelRange = " : "static const float kernelRange = ") << float_literal(k.options.range / mm) << ";  // " << u << "\n";
+    << "//      (total reflectance " << format_number(k.total_reflectance[0]) << ", "
+    << format_number(k.total_reflectance[1]) << ", " << format_number(k.total_reflectance[2]) << " per entered flux)\n"
+    << "// w:   offset in units of the kernel half-width kernelRange = " << format_number(k.options.range / mm) << ' '
+    << u << " (physical offset = w * kernelRange); centre tap first\n";
+  s << (glsl ? "const float kernelRange = " : "static const float kernelRange = ")
+    << float_literal(k.options.range / mm) << ";  // " << u << "\n";
   if (glsl)
     s << "const vec4 kernel[" << N << "] = vec4[" << N << "](\n";
   else
     s << "static const float4 kernel[" << N << "] = {\n";
   for (std::size_t i = 0; i < N; ++i)
-    s << "    " << (glsl ? "vec4(" : "float4(") << float_literal(k.weight[0][i]) << ", " << float_literal(k.weight[1][i]) << ", "
-      << float_literal(k.weight[2][i]) << ", " << float_literal(k.offset[i]) << ")" << (i + 1 < N ? "," : "") << "\n";
+    s << "    " << (glsl ? "vec4(" : "float4(") << float_literal(k.weight[0][i]) << ", "
+      << float_literal(k.weight[1][i]) << ", " << float_literal(k.weight[2][i]) << ", " << float_literal(k.offset[i])
+      << ")" << (i + 1 < N ? "," : "") << "\n";
   s << (glsl ? ");\n" : "};\n");
   return s.str();
 }
@@ -152,9 +166,10 @@ std::string summary(const SeparableKernel& k, const TableContext& context) {
   const std::string u(symbol(context.unit));
   std::ostringstream s;
   s << "separable kernel: " << k.options.taps << " taps over +-" << short_number(k.options.range / mm) << ' ' << u
-    << (k.range_from_band ? " (the band holding " + short_number(100 * k.options.band) + " % of the widest channel's light)"
+    << (k.range_from_band
+            ? " (the band holding " + short_number(100 * k.options.band) + " % of the widest channel's light)"
         : k.options.range == jimenez_range(k.options.taps) ? std::string(" (Jimenez's range)")
-                                                            : std::string())
+                                                           : std::string())
     << ", offsets warped quadratically, centre tap first\n";
   double worst = 1;
   for (std::size_t c = 0; c < k.channel_names.size(); ++c) {
@@ -162,13 +177,14 @@ std::string summary(const SeparableKernel& k, const TableContext& context) {
       s << "  " << k.channel_names[c] << ": does not scatter (total reflectance 0): identity kernel, centre weight 1\n";
       continue;
     }
-    s << "  " << k.channel_names[c] << ": centre weight " << short_number(k.weight[c][0]) << ", the band |x| < range holds "
-      << short_number(100 * k.captured[c]) << " % of the total reflectance " << short_number(k.total_reflectance[c]) << '\n';
+    s << "  " << k.channel_names[c] << ": centre weight " << short_number(k.weight[c][0])
+      << ", the band |x| < range holds " << short_number(100 * k.captured[c]) << " % of the total reflectance "
+      << short_number(k.total_reflectance[c]) << '\n';
     worst = std::min(worst, k.captured[c]);
   }
   if (worst < 0.9)
-    s << "  note: the range holds less than 90 % of a channel's light; a wider --range (e.g. " << short_number(1.5 * k.options.range / mm)
-      << " " << u << ") keeps more of it\n";
+    s << "  note: the range holds less than 90 % of a channel's light; a wider --range (e.g. "
+      << short_number(1.5 * k.options.range / mm) << " " << u << ") keeps more of it\n";
   return s.str();
 }
 

@@ -29,7 +29,8 @@ void describe(LookupTable& table, const TableContext& context) {
   if (context.model) {
     table.set("bssrdf:model", context.model->name());
     table.set("bssrdf:model_description", context.model->description());
-    table.set("bssrdf:includes_single_scattering", std::string(context.model->includes_single_scattering() ? "yes" : "no"));
+    table.set("bssrdf:includes_single_scattering",
+              std::string(context.model->includes_single_scattering() ? "yes" : "no"));
   }
   if (context.medium) {
     const double mm = millimetres_per(context.unit);

@@ -1,9 +1,9 @@
 #include "bssrdf/lut/transmission_table.hpp"
 
-#include <sstream>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 
 #include "bssrdf/adding_doubling/slab.hpp"
 #include "bssrdf/error.hpp"
@@ -15,15 +15,19 @@ namespace bssrdf {
 void TransmissionTableOptions::validate() const {
   if (photons < 100 || photons > 1'000'000'000) throw InvalidInput("photons", std::to_string(photons), "100 to 1e9");
   if (threads > 4096) throw InvalidInput("threads", std::to_string(threads), "0 (all cores) to 4096");
-  if (model != "multipole" && model != "adding-doubling") throw InvalidInput("model", model, "multipole or adding-doubling");
+  if (model != "multipole" && model != "adding-doubling")
+    throw InvalidInput("model", model, "multipole or adding-doubling");
 }
 
 std::string_view to_string(TransmissionSource source) {
-  return source == TransmissionSource::multipole ? "multipole" : source == TransmissionSource::monte_carlo ? "monte_carlo" : "adding_doubling";
+  return source == TransmissionSource::multipole     ? "multipole"
+         : source == TransmissionSource::monte_carlo ? "monte_carlo"
+                                                     : "adding_doubling";
 }
 
 SlabThicknessRange default_thickness_range(const Medium& medium, const TransmissionTableOptions& options) {
-  const bool every_thickness_valued = options.model == "adding-doubling" || options.reference || options.reference_everywhere;
+  const bool every_thickness_valued =
+      options.model == "adding-doubling" || options.reference || options.reference_everywhere;
   const auto ell = transport_mfp_range(medium);
   return {every_thickness_valued ? 0.1 * ell.min : 2 * ell.max, 40 * ell.max};
 }
@@ -73,7 +77,8 @@ TransmissionTable build_transmission_table(const Medium& medium, std::vector<dou
       // Exact: per entered flux, the unscattered beam removed, as the multipole reports it.
       const auto stack = LayerStack::slab(medium, d);
       for (std::size_t c = 0; c < channels; ++c) {
-        const auto a = adding_doubling::solve(adding_doubling::slab_of(stack, c), adding_doubling::Incidence::collimated);
+        const auto a =
+            adding_doubling::solve(adding_doubling::slab_of(stack, c), adding_doubling::Incidence::collimated);
         T[c] = (a.total_transmittance - a.unscattered_transmittance) * a.entered_scale();
       }
       invalid.clear();
@@ -91,7 +96,8 @@ TransmissionTable build_transmission_table(const Medium& medium, std::vector<dou
         const auto entered = result.channels[c].per_entered_flux();
         T[c] = entered.total_transmittance.value - entered.unscattered_transmittance.value;
         // The two estimates share photons; combining their errors in quadrature is an approximation.
-        se[c] = std::hypot(entered.total_transmittance.standard_error, entered.unscattered_transmittance.standard_error);
+        se[c] =
+            std::hypot(entered.total_transmittance.standard_error, entered.unscattered_transmittance.standard_error);
       }
       source = TransmissionSource::monte_carlo;
     } else if (!invalid.empty()) {
@@ -108,12 +114,14 @@ TransmissionTable build_transmission_table(const Medium& medium, std::vector<dou
   }
   // The channel's other warnings and invalid notes (thickness-independent, e.g. low_albedo).
   const multipole::Model thickest(thickness.back());
-  for (std::size_t c = 0; c < channels && options.model == "adding-doubling"; ++c) t.validity.push_back("no warnings (adding-doubling is exact)");
+  for (std::size_t c = 0; c < channels && options.model == "adding-doubling"; ++c)
+    t.validity.push_back("no warnings (adding-doubling is exact)");
   for (std::size_t c = 0; c < channels && options.model != "adding-doubling"; ++c) {
     std::string notes;
     for (const auto& note : thickest.validity(medium.reduced(c)))
       if (note.severity != Severity::note && note.code != "thin_slab")
-        notes += (notes.empty() ? "" : "; ") + std::string(to_string(note.severity)) + " " + note.code + ": " + note.message;
+        notes +=
+            (notes.empty() ? "" : "; ") + std::string(to_string(note.severity)) + " " + note.code + ": " + note.message;
     t.validity.push_back(notes.empty() ? "no warnings" : notes);
   }
   return t;
@@ -125,49 +133,64 @@ LookupTable to_lookup_table(const TransmissionTable& t, const TableContext& cont
     for (std::size_t i = 0; i < t.omitted_thickness.size() && i < 3; ++i)
       why += (why.empty() ? "" : "; ") + format_number(t.omitted_thickness[i] / millimetres_per(context.unit)) + " " +
              std::string(symbol(context.unit)) + " (" + t.omitted_reason[i] + ")";
-    throw InvalidInput("thickness", "every thickness", "one where the multipole holds (" + why +
-                                                           "), or --reference for the Monte Carlo reference there");
+    throw InvalidInput(
+        "thickness", "every thickness",
+        "one where the multipole holds (" + why + "), or --reference for the Monte Carlo reference there");
   }
   auto out = described_table("transmission", t.size(), 1, context);
   const double mm = millimetres_per(context.unit);
   const std::string u(symbol(context.unit));
   bool any_mc = false, any_multipole = false, any_ad = false;
   for (auto s : t.source)
-    (s == TransmissionSource::monte_carlo ? any_mc : s == TransmissionSource::multipole ? any_multipole : any_ad) = true;
+    (s == TransmissionSource::monte_carlo ? any_mc
+     : s == TransmissionSource::multipole ? any_multipole
+                                          : any_ad) = true;
   out.set("bssrdf:distance", "slab thickness d, in " + u);
-  out.set("bssrdf:normalization",
-          std::string("per_entered_flux: diffuse total transmittance T(d) = flux leaving the bottom face after at least "
-                      "one scattering, per unit flux that entered through the top face (normal incidence); the ballistic "
-                      "beam e^{-sigma_t d} is not included"));
+  out.set(
+      "bssrdf:normalization",
+      std::string("per_entered_flux: diffuse total transmittance T(d) = flux leaving the bottom face after at least "
+                  "one scattering, per unit flux that entered through the top face (normal incidence); the ballistic "
+                  "beam e^{-sigma_t d} is not included"));
   out.set("bssrdf:ballistic_included", std::string("no"));
-  out.set("bssrdf:slab", std::string("homogeneous slab, the medium's eta on both faces, ambient index 1 above and below"));
-  out.set("bssrdf:grid", std::string("the thickness channel holds d_j, increasing; interpolate linearly in d (or in ln d)"));
+  out.set("bssrdf:slab",
+          std::string("homogeneous slab, the medium's eta on both faces, ambient index 1 above and below"));
+  out.set("bssrdf:grid",
+          std::string("the thickness channel holds d_j, increasing; interpolate linearly in d (or in ln d)"));
   out.set("bssrdf:size", static_cast<int>(t.size()));
-  out.set("bssrdf:sources", std::string(any_ad ? "adding_doubling" : any_multipole && any_mc ? "multipole and monte_carlo (see the source channel)"
-                                        : any_mc ? "monte_carlo" : "multipole"));
+  out.set("bssrdf:sources", std::string(any_ad                    ? "adding_doubling"
+                                        : any_multipole && any_mc ? "multipole and monte_carlo (see the source channel)"
+                                        : any_mc                  ? "monte_carlo"
+                                                                  : "multipole"));
   if (any_ad)
-    out.set("bssrdf:adding_doubling", std::string("exact slab totals (van de Hulst; Prahl 1995), 1e-4 absolute, true HG phase function "
-                                                  "with delta-M, Fresnel at both faces; T = total minus unscattered, per entered flux"));
-  if (any_multipole) out.set("bssrdf:multipole", std::string("Donner & Jensen 2005, closed-form totals of the infinite dipole-pair series, classical A"));
+    out.set("bssrdf:adding_doubling",
+            std::string("exact slab totals (van de Hulst; Prahl 1995), 1e-4 absolute, true HG phase function "
+                        "with delta-M, Fresnel at both faces; T = total minus unscattered, per entered flux"));
+  if (any_multipole)
+    out.set("bssrdf:multipole",
+            std::string("Donner & Jensen 2005, closed-form totals of the infinite dipole-pair series, classical A"));
   if (any_mc) {
     out.set("bssrdf:monte_carlo_photons", static_cast<int>(t.options.photons));
     out.set("bssrdf:monte_carlo_seed", static_cast<int>(t.options.seed));
-    out.set("bssrdf:monte_carlo", std::string("bssrdf reference: true Henyey-Greenstein phase function, Fresnel at both faces; "
-                                              "T = total minus unscattered transmittance, per entered flux"));
+    out.set("bssrdf:monte_carlo",
+            std::string("bssrdf reference: true Henyey-Greenstein phase function, Fresnel at both faces; "
+                        "T = total minus unscattered transmittance, per entered flux"));
   }
   std::string omitted;
   for (std::size_t i = 0; i < t.omitted_thickness.size(); ++i)
-    omitted += (omitted.empty() ? "" : "; ") + format_number(t.omitted_thickness[i] / mm) + " " + u + " (" + t.omitted_reason[i] + ")";
+    omitted += (omitted.empty() ? "" : "; ") + format_number(t.omitted_thickness[i] / mm) + " " + u + " (" +
+               t.omitted_reason[i] + ")";
   for (std::size_t c = 0; c < t.channel_names.size() && c < t.validity.size(); ++c)
     out.set("bssrdf:validity." + t.channel_names[c], t.validity[c]);
   out.set("bssrdf:omitted_count", static_cast<int>(t.omitted_thickness.size()));
   if (!omitted.empty())
-    out.set("bssrdf:omitted", "thicknesses where the multipole is invalid and no reference was run (--reference fills them): " + omitted);
+    out.set("bssrdf:omitted",
+            "thicknesses where the multipole is invalid and no reference was run (--reference fills them): " + omitted);
   std::vector<double> d(t.thickness);
   for (auto& x : d) x /= mm;
   out.add_channel("thickness", "slab thickness d, " + u, d);
   for (std::size_t c = 0; c < t.channel_names.size(); ++c)
-    out.add_channel(t.channel_names[c], "diffuse total transmittance T(d) per entered flux, ballistic excluded", t.transmittance[c]);
+    out.add_channel(t.channel_names[c], "diffuse total transmittance T(d) per entered flux, ballistic excluded",
+                    t.transmittance[c]);
   if (any_mc) {
     std::vector<double> s;
     for (auto x : t.source) s.push_back(x == TransmissionSource::monte_carlo ? 1.0 : 0.0);

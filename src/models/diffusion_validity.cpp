@@ -49,9 +49,8 @@ ValidityReport diffusion_validity(const Reduced<double>& m, const DiffusionLimit
   }
   if (m.eta < limits.eta_min || m.eta > limits.eta_max)
     report.push_back({Severity::warning, "eta_unvalidated",
-                      "eta = " + format_number(m.eta) + " is outside the range [" +
-                          format_number(limits.eta_min) + ", " + format_number(limits.eta_max) +
-                          "] over which the accuracy was measured"});
+                      "eta = " + format_number(m.eta) + " is outside the range [" + format_number(limits.eta_min) +
+                          ", " + format_number(limits.eta_max) + "] over which the accuracy was measured"});
   if (std::abs(m.g) >= 0.5)
     report.push_back({Severity::note, "similarity",
                       "g = " + format_number(m.g) +
@@ -89,7 +88,8 @@ ValidityReport slab_validity(const Reduced<double>& m, const SlabState& state) {
   } else if (t < 4) {
     report.push_back({Severity::warning, "thin_slab",
                       d_text + " < 4 ell: near the multipole's thin-slab limit (T_total off by up to " +
-                          std::string(kThinSlabTError) + " at d = 2 ell against Monte Carlo; at 4 ell R_total within "
+                          std::string(kThinSlabTError) +
+                          " at d = 2 ell against Monte Carlo; at 4 ell R_total within "
                           "10.6 % and T_total within 7.0 % against adding-doubling)"});
   } else {
     report.push_back({Severity::note, "slab_accuracy",

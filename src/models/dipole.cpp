@@ -9,9 +9,7 @@ std::string Model::description() const {
          "total, single scattering included (measured against adding-doubling)";
 }
 
-double Model::reflectance(const Reduced<double>& m, double r) const {
-  return classical_dipole::reflectance(m, r);
-}
+double Model::reflectance(const Reduced<double>& m, double r) const { return classical_dipole::reflectance(m, r); }
 
 double Model::total_reflectance(const Reduced<double>& m) const {
   return classical_dipole::total_reflectance(m.albedo_prime, m.eta);

@@ -69,8 +69,9 @@ void write_exact_table(const ExactTable& table, const std::string& path) {
   header["ln_r0"] = table.ln_r0;
   header["d_ln_r"] = table.d_ln_r;
   header["radii"] = table.radii;
-  header["layout"] = "ln_y float32 [eta][g][albedo_prime][radius], relative_error uint16 (1e-4 units, 65535 = "
-                     "extrapolated) same order, total float64 [eta][g][albedo_prime]; little-endian";
+  header["layout"] =
+      "ln_y float32 [eta][g][albedo_prime][radius], relative_error uint16 (1e-4 units, 65535 = "
+      "extrapolated) same order, total float64 [eta][g][albedo_prime]; little-endian";
   header["provenance"] = table.provenance.empty() ? nlohmann::json::object() : nlohmann::json::parse(table.provenance);
   const std::string text = header.dump();
   std::string out(kMagic, sizeof kMagic);

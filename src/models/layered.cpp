@@ -20,8 +20,8 @@ Stack::Stack(const LayerStack& stack, std::size_t channel, multipole::BoundaryA 
   const auto& L = stack.layers;
   for (std::size_t i = 0; i < L.size(); ++i) {
     if (L[i].clear(channel))
-      throw InvalidInput("layers[" + std::to_string(i) + "].sigma_a + sigma_s[" + stack.channel_names[channel] + "]", "0",
-                         "> 0: a clear layer is not diffusive (use the Monte Carlo reference)");
+      throw InvalidInput("layers[" + std::to_string(i) + "].sigma_a + sigma_s[" + stack.channel_names[channel] + "]",
+                         "0", "> 0: a clear layer is not diffusive (use the Monte Carlo reference)");
     const double above = i == 0 ? stack.ambient_above : L[i - 1].n;
     const double below = i + 1 == L.size() ? stack.ambient_below : L[i + 1].n;
     media_.push_back(reduce(L[i].sigma_a[channel], L[i].sigma_s[channel], L[i].g[channel], L[i].n / above));
@@ -59,16 +59,19 @@ StackSpectra Stack::spectra(double k) const {
 }
 
 double Stack::reflectance(double r) const {
-  return hankel_transform([&](double k) { return spectra(k).reflectance; }, r, 1 / media_[0].ell) / (2 * std::numbers::pi);
+  return hankel_transform([&](double k) { return spectra(k).reflectance; }, r, 1 / media_[0].ell) /
+         (2 * std::numbers::pi);
 }
 
 double Stack::transmittance(double r) const {
   if (semi_infinite_) return 0;
-  return hankel_transform([&](double k) { return spectra(k).transmittance; }, r, 1 / media_[0].ell) / (2 * std::numbers::pi);
+  return hankel_transform([&](double k) { return spectra(k).transmittance; }, r, 1 / media_[0].ell) /
+         (2 * std::numbers::pi);
 }
 
 double Stack::radius_for_fraction(double fraction, bool transmitted) const {
-  if (!(fraction > 0 && fraction < 1)) throw InvalidInput("energy fraction", format_number(fraction), "0 < fraction < 1");
+  if (!(fraction > 0 && fraction < 1))
+    throw InvalidInput("energy fraction", format_number(fraction), "0 < fraction < 1");
   const double total = transmitted ? total_transmittance() : total_reflectance();
   if (!(total > 0)) return std::numeric_limits<double>::infinity();
   // int_0^rho 2 pi r R dr = rho int_0^inf F(k) J1(k rho) dk: one Hankel-type integral per radius.

@@ -57,7 +57,8 @@ Model::Model(double thickness_mm, std::optional<double> eta_bottom, double toler
     throw InvalidInput("thickness", format_number(thickness_mm), "> 0 and finite");
   if (eta_bottom && (!(*eta_bottom > 0) || !std::isfinite(*eta_bottom)))
     throw InvalidInput("eta_bottom", format_number(*eta_bottom), "> 0 and finite");
-  if (!(tolerance > 0 && tolerance < 1)) throw InvalidInput("pair tolerance", format_number(tolerance), "0 < tolerance < 1");
+  if (!(tolerance > 0 && tolerance < 1))
+    throw InvalidInput("pair tolerance", format_number(tolerance), "0 < tolerance < 1");
 }
 
 std::string Model::description() const {
@@ -106,7 +107,8 @@ double Model::cumulative_transmittance(const Reduced<double>& m, double r) const
 }
 
 double Model::transmittance_radius_for_fraction(const Reduced<double>& m, double fraction) const {
-  if (!(fraction > 0 && fraction < 1)) throw InvalidInput("energy fraction", format_number(fraction), "0 < fraction < 1");
+  if (!(fraction > 0 && fraction < 1))
+    throw InvalidInput("energy fraction", format_number(fraction), "0 < fraction < 1");
   const double target = fraction * total_transmittance(m);
   if (!(target > 0)) return std::numeric_limits<double>::infinity();
   return radius_where([&](double r) { return cumulative_transmittance(m, r); }, target, m.ell);

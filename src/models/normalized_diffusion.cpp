@@ -5,16 +5,19 @@
 #include <tuple>
 
 #include "bssrdf/error.hpp"
-#include "bssrdf/models/diffusion_validity.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/models/diffusion_validity.hpp"
 
 namespace bssrdf::normalized_diffusion {
 
 std::string Model::name() const {
   switch (scaling_) {
-    case Scaling::searchlight_mfp: return "burley";
-    case Scaling::diffuse_mfp: return "burley-diffuse";
-    case Scaling::searchlight_dmfp: return "burley-dmfp";
+    case Scaling::searchlight_mfp:
+      return "burley";
+    case Scaling::diffuse_mfp:
+      return "burley-diffuse";
+    case Scaling::searchlight_dmfp:
+      return "burley-dmfp";
   }
   return "burley";
 }
@@ -23,8 +26,8 @@ std::string Model::description() const {
   const char* fit = scaling_ == Scaling::searchlight_mfp ? "searchlight mfp fit"
                     : scaling_ == Scaling::diffuse_mfp   ? "diffuse-transmission mfp fit"
                                                          : "searchlight dmfp fit";
-  return std::string("normalized diffusion (Christensen & Burley 2015), ") + fit +
-         "; surface albedo " + (surface_albedo_ ? "given: " + format_number(*surface_albedo_) : "from quantized diffusion");
+  return std::string("normalized diffusion (Christensen & Burley 2015), ") + fit + "; surface albedo " +
+         (surface_albedo_ ? "given: " + format_number(*surface_albedo_) : "from quantized diffusion");
 }
 
 double Model::surface_albedo(const Reduced<double>& m) const {
@@ -65,13 +68,12 @@ ValidityReport Model::check_validity(const Reduced<double>& m) const {
     report.push_back({Severity::invalid, "no_absorption",
                       "sigma_a = 0: the diffuse mean free path is infinite, so the dmfp fit has no scale"});
   if (std::abs(m.eta - 1) > 0.01)
-    report.push_back({Severity::warning, "index_mismatch",
-                      "eta = " + format_number(m.eta) +
-                          ": the scaling fits were made for an index-matched boundary (eta = 1)"});
+    report.push_back(
+        {Severity::warning, "index_mismatch",
+         "eta = " + format_number(m.eta) + ": the scaling fits were made for an index-matched boundary (eta = 1)"});
   for (auto& note : diffusion_validity(m, measured_limits(name())))
     if (note.code != "near_field") report.push_back(std::move(note));
-  report.push_back({Severity::note, "singular_at_origin",
-                    "R(r) ~ 1/r as r -> 0: integrable, but R(0) is infinite"});
+  report.push_back({Severity::note, "singular_at_origin", "R(r) ~ 1/r as r -> 0: integrable, but R(0) is infinite"});
   return report;
 }
 

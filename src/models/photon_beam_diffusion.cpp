@@ -67,8 +67,8 @@ double Model::total_reflectance(const Reduced<double>& m) const {
 ValidityReport Model::check_validity(const Reduced<double>& m) const {
   auto report = diffusion_validity(m, measured_limits(name()));
   report.push_back({Severity::note, "quadrature",
-                    "beam integrals by " + std::to_string(samples(m)) +
-                        "-point Gauss-Legendre (relative tolerance " + format_number(tolerance_) + ")"});
+                    "beam integrals by " + std::to_string(samples(m)) + "-point Gauss-Legendre (relative tolerance " +
+                        format_number(tolerance_) + ")"});
   return report;
 }
 

@@ -13,7 +13,8 @@ namespace bssrdf::quantized_diffusion {
 double ratio_for_tolerance(double albedo_prime, double eta, double tolerance) {
   const auto m = reduced_optical(albedo_prime, eta);
   const auto b = improved_boundary(eta);
-  const double radii[] = {1e-2, 0.1, 0.3, 1, 3, 10};  // beyond ~10 ell a Gaussian mixture cannot follow the exponential tail closely
+  const double radii[] = {1e-2, 0.1, 0.3, 1,
+                          3,    10};  // beyond ~10 ell a Gaussian mixture cannot follow the exponential tail closely
   const auto evaluate = [&](double ratio) {
     const auto mix = mixture(m, b, ratio);
     std::vector<double> values;
@@ -69,7 +70,8 @@ Mixture<double> Model::gaussians(const Reduced<double>& m) const {
 
 std::string Model::description() const {
   return "quantized diffusion (d'Eon & Irving 2011): improved diffusion as a sum of 2D Gaussians, "
-         "multiple scattering only; bin ratio chosen for relative tolerance " + format_number(tolerance_);
+         "multiple scattering only; bin ratio chosen for relative tolerance " +
+         format_number(tolerance_);
 }
 
 double Model::reflectance(const Reduced<double>& m, double r) const {

@@ -14,14 +14,16 @@ namespace bssrdf {
 
 WithSingleScattering::WithSingleScattering(std::unique_ptr<Model> base, double tolerance)
     : base_(std::move(base)), tolerance_(tolerance) {
-  if (!(tolerance > 0 && tolerance < 1)) throw InvalidInput("single-scattering tolerance", format_number(tolerance), "0 < tolerance < 1");
+  if (!(tolerance > 0 && tolerance < 1))
+    throw InvalidInput("single-scattering tolerance", format_number(tolerance), "0 < tolerance < 1");
   if (base_->includes_single_scattering())
     throw InvalidInput("model", "'" + base_->name() + "+ss'",
                        "a model without single scattering: " + base_->name() + " already includes it");
 }
 
 std::string WithSingleScattering::description() const {
-  return base_->description() + ", plus exact single scattering (Gauss-Legendre order for relative tolerance " + format_number(tolerance_) + ")";
+  return base_->description() + ", plus exact single scattering (Gauss-Legendre order for relative tolerance " +
+         format_number(tolerance_) + ")";
 }
 
 int WithSingleScattering::samples(const Reduced<double>& m) const {
@@ -35,9 +37,11 @@ int WithSingleScattering::samples(const Reduced<double>& m) const {
   for (std::size_t k = 0; k + 1 < std::size(kOrders) && chosen == kOrders[std::size(kOrders) - 1]; ++k) {
     bool converged = true;
     for (double r : {1e-3, 1e-2, 0.1, 0.3, 1.0, 3.0, 10.0, 30.0}) {
-      const double x = r * m.ell, whole = base_->reflectance(m, x) + single_scattering_reflectance(m, x, kOrders[k + 1]);
-      converged &= std::abs(single_scattering_reflectance(m, x, kOrders[k]) - single_scattering_reflectance(m, x, kOrders[k + 1])) <=
-                   tolerance_ * std::abs(whole) + 1e-300;
+      const double x = r * m.ell,
+                   whole = base_->reflectance(m, x) + single_scattering_reflectance(m, x, kOrders[k + 1]);
+      converged &=
+          std::abs(single_scattering_reflectance(m, x, kOrders[k]) -
+                   single_scattering_reflectance(m, x, kOrders[k + 1])) <= tolerance_ * std::abs(whole) + 1e-300;
     }
     if (converged) chosen = kOrders[k];
   }

@@ -54,12 +54,16 @@ inline u2 load2(const std::uint64_t* p) {
 inline void store2(double* p, d2 v) { std::memcpy(p, &v, sizeof v); }
 inline void store2(std::uint64_t* p, u2 v) { std::memcpy(p, &v, sizeof v); }
 inline void store2(std::int64_t* p, i2 v) { std::memcpy(p, &v, sizeof v); }
-template <class V> inline V load(const void* p) {
+template <class V>
+inline V load(const void* p) {
   V v;
   std::memcpy(&v, p, sizeof v);
   return v;
 }
-template <class V> inline void store(void* p, V v) { std::memcpy(p, &v, sizeof v); }
+template <class V>
+inline void store(void* p, V v) {
+  std::memcpy(p, &v, sizeof v);
+}
 
 inline double sqrt_of(double x) { return std::sqrt(x); }
 inline d2 sqrt_of(d2 x) {
@@ -74,14 +78,34 @@ inline d2 sqrt_of(d2 x) {
 inline d4 sqrt_of(d4 x) { return d4{std::sqrt(x[0]), std::sqrt(x[1]), std::sqrt(x[2]), std::sqrt(x[3])}; }
 
 // Integer type of the same shape as D and back: std::uint64_t for double, u2 for d2, u4 for d4.
-template <class D> struct bits_of { using type = std::uint64_t; };
-template <> struct bits_of<d2> { using type = u2; };
-template <> struct bits_of<d4> { using type = u4; };
-template <class D> using bits_t = typename bits_of<D>::type;
-template <class U> struct double_of { using type = double; };
-template <> struct double_of<u2> { using type = d2; };
-template <> struct double_of<u4> { using type = d4; };
-template <class U> using double_t_of = typename double_of<U>::type;
+template <class D>
+struct bits_of {
+  using type = std::uint64_t;
+};
+template <>
+struct bits_of<d2> {
+  using type = u2;
+};
+template <>
+struct bits_of<d4> {
+  using type = u4;
+};
+template <class D>
+using bits_t = typename bits_of<D>::type;
+template <class U>
+struct double_of {
+  using type = double;
+};
+template <>
+struct double_of<u2> {
+  using type = d2;
+};
+template <>
+struct double_of<u4> {
+  using type = d4;
+};
+template <class U>
+using double_t_of = typename double_of<U>::type;
 
 // The logarithm in two halves around its one division, so a caller can share one reciprocal
 // between several divisions: log_reduce gives f = m - 1 and k; the quotient s = f / (2 + f) is the
@@ -155,7 +179,7 @@ inline void azimuth_cos_sin(U v, D& cos_phi, D& sin_phi) {
   constexpr double C1 = 4.16666666666666019037e-02, C2 = -1.38888888888741095749e-03, C3 = 2.48015872894767294178e-05,
                    C4 = -2.75573143513906633035e-07, C5 = 2.08757232129817482790e-09, C6 = -1.13596475577881948265e-11;
   constexpr double kHalfPi = 1.57079632679489661923, kSqrtHalf = 0.70710678118654752440;
-  const U cell = v & 0x3fffffffull;  // 30 bits
+  const U cell = v & 0x3fffffffull;                                                       // 30 bits
   const D f = (std::bit_cast<D>(cell | 0x4330000000000000ull) - 0x1p52 + 0.5) * 0x1p-30;  // (0, 1)
   const D x = (f - 0.5) * kHalfPi;
   const D z = x * x;

@@ -13,7 +13,9 @@ namespace {
 
 nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-nlohmann::json estimate_json(const Estimate& e) { return {{"value", number(e.value)}, {"stderr", number(e.standard_error)}}; }
+nlohmann::json estimate_json(const Estimate& e) {
+  return {{"value", number(e.value)}, {"stderr", number(e.standard_error)}};
+}
 
 std::vector<double> scaled(const std::vector<double>& v, double k) {
   std::vector<double> out(v);
@@ -146,7 +148,8 @@ std::string to_csv(const MonteCarloResult& result, LengthUnit unit) {
         << format_number(result.bin_outer[i] / mm);
     for (std::size_t c = 0; c < result.channels.size(); ++c) {
       for (const ChannelResult* ch : std::initializer_list<const ChannelResult*>{&result.channels[c], &entered[c]}) {
-        out << ',' << format_number(ch->reflectance[i] * mm * mm) << ',' << format_number(ch->reflectance_stderr[i] * mm * mm);
+        out << ',' << format_number(ch->reflectance[i] * mm * mm) << ','
+            << format_number(ch->reflectance_stderr[i] * mm * mm);
         if (transmission)
           out << ',' << format_number(ch->transmittance[i] * mm * mm) << ','
               << format_number(ch->transmittance_stderr[i] * mm * mm);
@@ -169,7 +172,8 @@ std::string MonteCarloResult::report(LengthUnit unit) const {
   for (std::size_t i = 0; i < stack.layers.size(); ++i) {
     const Layer& layer = stack.layers[i];
     out << "  layer " << i << (layer.name.empty() ? "" : " (" + layer.name + ")") << "  n = " << format_number(layer.n)
-        << ", thickness = " << (std::isfinite(layer.thickness) ? format_number(layer.thickness / mm) : "semi-infinite") << "\n";
+        << ", thickness = " << (std::isfinite(layer.thickness) ? format_number(layer.thickness / mm) : "semi-infinite")
+        << "\n";
     for (std::size_t c = 0; c < stack.channels(); ++c)
       out << "    " << stack.channel_names[c] << ": sigma_a = " << format_number(layer.sigma_a[c] * mm)
           << ", sigma_s = " << format_number(layer.sigma_s[c] * mm) << ", g = " << format_number(layer.g[c]) << "\n";
@@ -184,8 +188,8 @@ std::string MonteCarloResult::report(LengthUnit unit) const {
   if (options.absorption == AbsorptionEstimator::implicit_capture)
     out << ", roulette below weight " << format_number(options.roulette_threshold) << " with survival "
         << format_number(options.roulette_survival);
-  out << "\n  radial bins        " << options.bins << " " << to_string(options.spacing) << " bins to r_max = "
-      << format_number(options.r_max / mm) << " " << u;
+  out << "\n  radial bins        " << options.bins << " " << to_string(options.spacing)
+      << " bins to r_max = " << format_number(options.r_max / mm) << " " << u;
   if (options.spacing == BinSpacing::log) out << " (first bin [0, " << format_number(options.r_min / mm) << "))";
   out << "\n\nTotals (value +- standard error):\n";
   out << "  channel  quantity                          per incident flux           per entered flux\n";
@@ -218,12 +222,14 @@ std::string MonteCarloResult::report(LengthUnit unit) const {
       warnings.push_back(ch.name + ": weight " + format_number(ch.lost) + " stopped after " +
                          std::to_string(options.max_interactions) + " interactions (a bias of that size)");
     if (ch.reflectance_beyond > 0.01 * ch.diffuse_reflectance.value)
-      warnings.push_back(ch.name + ": " + fixed(100 * ch.reflectance_beyond / std::max(1e-300, ch.diffuse_reflectance.value), 0, 1) +
+      warnings.push_back(ch.name + ": " +
+                         fixed(100 * ch.reflectance_beyond / std::max(1e-300, ch.diffuse_reflectance.value), 0, 1) +
                          " % of R_d lands beyond r_max and is not binned (raise --r-max)");
   }
   out << "\nR(r) per unit area, first bins (1/" << u << "^2, per incident flux):\n";
   out << "    radius (" << u << ")";
-  for (const auto& ch : channels) out << "  " << std::string(ch.name.size() < 22 ? 22 - ch.name.size() : 1, ' ') << ch.name;
+  for (const auto& ch : channels)
+    out << "  " << std::string(ch.name.size() < 22 ? 22 - ch.name.size() : 1, ' ') << ch.name;
   out << "\n";
   const std::size_t shown = std::min<std::size_t>(bin_radius.size(), 12);
   for (std::size_t i = 0; i < shown; ++i) {
@@ -232,7 +238,8 @@ std::string MonteCarloResult::report(LengthUnit unit) const {
       out << "  " << general(ch.reflectance[i] * mm * mm) << " +- " << general(ch.reflectance_stderr[i] * mm * mm, 7);
     out << "\n";
   }
-  if (shown < bin_radius.size()) out << "  ... (" << bin_radius.size() - shown << " more bins in the JSON/CSV output)\n";
+  if (shown < bin_radius.size())
+    out << "  ... (" << bin_radius.size() - shown << " more bins in the JSON/CSV output)\n";
   out << "\n" << (warnings.empty() ? "No warnings.\n" : "Warnings:\n");
   for (const auto& w : warnings) out << "  " << w << "\n";
   return out.str();

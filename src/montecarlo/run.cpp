@@ -21,14 +21,16 @@ std::string_view to_string(AbsorptionEstimator estimator) {
 }
 
 void MonteCarloOptions::validate() const {
-  if (photons < 1 || photons > 10'000'000'000) throw InvalidInput("photons", std::to_string(photons), "1 to 10000000000");
+  if (photons < 1 || photons > 10'000'000'000)
+    throw InvalidInput("photons", std::to_string(photons), "1 to 10000000000");
   if (batch_size < 1) throw InvalidInput("batch_size", std::to_string(batch_size), ">= 1");
   if (threads > 4096) throw InvalidInput("threads", std::to_string(threads), "0 (all cores) to 4096");
   if (bins < 2 || bins > 10'000'000) throw InvalidInput("bins", std::to_string(bins), "2 to 10000000");
   // Bins of at least 1e-9 mm, so R(r) = weight / bin area stays finite; lengths within 1e6 mm.
   if (!(r_max == 0 || (r_max >= 1e-9 * static_cast<double>(bins) && r_max <= 1e6)))
     throw InvalidInput("r_max", format_number(r_max), "1e-9 mm per bin to 1e6 mm (0: default)");
-  if (!(r_min == 0 || (r_min >= 1e-9 && r_min <= 1e6))) throw InvalidInput("r_min", format_number(r_min), "1e-9 to 1e6 mm (0: default)");
+  if (!(r_min == 0 || (r_min >= 1e-9 && r_min <= 1e6)))
+    throw InvalidInput("r_min", format_number(r_min), "1e-9 to 1e6 mm (0: default)");
   if (r_max > 0 && r_min > 0 && spacing == BinSpacing::log && !(r_min < r_max))
     throw InvalidInput("r_min", format_number(r_min), "< r_max = " + format_number(r_max));
   if (depth_bins > 10'000'000) throw InvalidInput("depth_bins", std::to_string(depth_bins), "0 to 10000000");
@@ -206,7 +208,8 @@ MonteCarloResult run_monte_carlo(const LayerStack& stack, const MonteCarloOption
     const auto radial = [&](const std::vector<double>& sum, const std::vector<double>& sum_sq,
                             std::vector<double>& value, std::vector<double>& error) {
       for (std::size_t i = 0; i < sum.size(); ++i) {
-        const double area = std::numbers::pi * (binning.outer[i] * binning.outer[i] - binning.inner[i] * binning.inner[i]);
+        const double area =
+            std::numbers::pi * (binning.outer[i] * binning.outer[i] - binning.inner[i] * binning.inner[i]);
         const Estimate e = estimate(sum[i], sum_sq[i], n);
         value.push_back(e.value / area);
         error.push_back(e.standard_error / area);

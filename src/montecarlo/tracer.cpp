@@ -158,8 +158,8 @@ struct Lanes {
 }  // namespace
 
 template <bool kAnalog, class V>
-[[gnu::always_inline]] inline void trace_lanes(const ChannelGeometry& geo, const TraceSettings& settings, Rng& batch_rng, std::uint64_t photons,
-                        BatchTally& tally) {
+[[gnu::always_inline]] inline void trace_lanes(const ChannelGeometry& geo, const TraceSettings& settings,
+                                               Rng& batch_rng, std::uint64_t photons, BatchTally& tally) {
   const LayerCoefficients* const layers = geo.layers.data();
   const int layer_count = static_cast<int>(geo.layers.size());
   const RadialBinning& binning = *settings.binning;

@@ -43,7 +43,7 @@ class Rng {
     s_[3] = (s_[3] << 45) | (s_[3] >> 19);
     return result;
   }
-  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }            // [0, 1)
+  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }              // [0, 1)
   double uniform_open0() { return static_cast<double>((next() >> 11) + 1) * 0x1.0p-53; }  // (0, 1]
 
  private:
@@ -62,7 +62,7 @@ struct LayerCoefficients {
 struct ChannelGeometry {
   std::vector<LayerCoefficients> layers;
   double n_above = 1, n_below = 1;
-  double specular = 0;       // R_sp; photons start with weight 1 - R_sp
+  double specular = 0;  // R_sp; photons start with weight 1 - R_sp
   std::size_t start_layer = 0;
   double start_z = 0;
 };
@@ -119,7 +119,7 @@ struct TraceSettings {
   SimdLevel simd = SimdLevel::best;
 };
 
-void trace_batch(const ChannelGeometry& geometry, const TraceSettings& settings, Rng& rng,
-                 std::uint64_t photons, BatchTally& tally);
+void trace_batch(const ChannelGeometry& geometry, const TraceSettings& settings, Rng& rng, std::uint64_t photons,
+                 BatchTally& tally);
 
 }  // namespace bssrdf::mc

@@ -1,7 +1,7 @@
 // Uses the installed library: the better dipole's total reflectance of Jensen et al.'s Skin1 red
 // channel (sigma_a 0.032/mm, sigma_s' 0.74/mm, eta 1.3), printed for the install test to check.
-#include <bssrdf/model.hpp>
 #include <bssrdf/medium.hpp>
+#include <bssrdf/model.hpp>
 #include <cstdio>
 
 #ifdef BSSRDF_VERSION

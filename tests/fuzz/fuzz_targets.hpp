@@ -33,7 +33,10 @@ inline const std::vector<Target>& targets() {
       {"mci", [](const std::string& b) { parse_mci(b, "fuzz.mci"); }},
       {"profile_csv", [](const std::string& b) { parse_profile_csv(b, "fuzz.csv"); }},
       {"rxt", [](const std::string& b) { parse_rxt(b, "fuzz.rxt"); }},
-      {"fit_import", [](const std::string& b) { MaterialDatabase().add_text(materials_file_from_fit(b, "fit.json", "X", std::nullopt, "fit"), "m.json"); }},
+      {"fit_import",
+       [](const std::string& b) {
+         MaterialDatabase().add_text(materials_file_from_fit(b, "fit.json", "X", std::nullopt, "fit"), "m.json");
+       }},
   };
   return kFuzzTargets;
 }

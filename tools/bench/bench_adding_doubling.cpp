@@ -51,9 +51,11 @@ volatile double sink = 0;
 int main(int argc, char** argv) {
   const int repetitions = argc > 1 ? std::max(1, std::atoi(argv[1])) : 51;
   // The baseline is timed over 1000 calls at a time: one call is shorter than reading the clocks.
-  Timing baseline = median_us([] {
-    for (int k = 0; k < 1000; ++k) sink = slab_measurables(0.1, 2.0, 0.0, 1.4, 2.0).first;
-  }, repetitions);
+  Timing baseline = median_us(
+      [] {
+        for (int k = 0; k < 1000; ++k) sink = slab_measurables(0.1, 2.0, 0.0, 1.4, 2.0).first;
+      },
+      repetitions);
   baseline.wall_us /= 1000;
   baseline.cpu_us /= 1000;
   std::printf("median of %d; baseline: multipole slab totals (closed form), wall %.2f us, cpu %.2f us\n", repetitions,
@@ -64,7 +66,8 @@ int main(int argc, char** argv) {
     bool slides;
     int points;
   };
-  const Case cases[] = {  // the 16-angle solve first: the others are also given as multiples of it
+  const Case cases[] = {
+      // the 16-angle solve first: the others are also given as multiples of it
       {"n 1.4, g 0.9, 4 mfp, 16 angles", 1.4, 0.9, 4, false, 16},
       {"n 1.0, g 0,   4 mfp, tolerance 1e-4", 1.0, 0.0, 4, false, 0},
       {"n 1.4, g 0.9, 4 mfp, tolerance 1e-4", 1.4, 0.9, 4, false, 0},
@@ -73,7 +76,8 @@ int main(int argc, char** argv) {
       {"n 1.4, g 0.9, 4 mfp, 32 angles", 1.4, 0.9, 4, false, 32},
       {"n 1.4, g 0.9, 100 mfp, 32 angles", 1.4, 0.9, 100, false, 32},
   };
-  std::printf("%-42s %10s %10s %8s %8s %s\n", "forward slab (alpha 0.99)", "wall us", "cpu us", "x base", "x 16 ang", "angles");
+  std::printf("%-42s %10s %10s %8s %8s %s\n", "forward slab (alpha 0.99)", "wall us", "cpu us", "x base", "x 16 ang",
+              "angles");
   double sixteen_cpu = 0;
   for (const auto& c : cases) {
     adding_doubling::Slab slab;
@@ -83,27 +87,42 @@ int main(int argc, char** argv) {
     adding_doubling::Options o;
     o.points = c.points;
     int points = 0;
-    const Timing t = median_us([&] { points = adding_doubling::solve(slab, adding_doubling::Incidence::collimated, o).points; }, repetitions);
+    const Timing t = median_us(
+        [&] { points = adding_doubling::solve(slab, adding_doubling::Incidence::collimated, o).points; }, repetitions);
     if (c.points == 16) sixteen_cpu = t.cpu_us;
     char versus_sixteen[16] = "";
     if (c.points != 16) std::snprintf(versus_sixteen, sizeof versus_sixteen, "%.1f", t.cpu_us / sixteen_cpu);
-    std::printf("%-42s %10.1f %10.1f %8.0f %8s %d\n", c.name, t.wall_us, t.cpu_us, t.cpu_us / baseline.cpu_us, versus_sixteen, points);
+    std::printf("%-42s %10.1f %10.1f %8.0f %8s %d\n", c.name, t.wall_us, t.cpu_us, t.cpu_us / baseline.cpu_us,
+                versus_sixteen, points);
   }
   const int fits = std::max(3, repetitions / 5);
-  const auto t = adding_doubling::solve({{{0.05, 2.0, 0.0, 2.0}}, 1.4, 1, 1, {}, {}}, adding_doubling::Incidence::collimated);
-  const Timing fit_ad = median_us([&] {
-    sink = fit_slab({{"x", t.diffuse_reflectance, t.total_transmittance, 1e-3, 1e-3, 0.0}}, 2.0, LengthUnit::millimetre, 1.4).iterations;
-  }, fits);
+  const auto t =
+      adding_doubling::solve({{{0.05, 2.0, 0.0, 2.0}}, 1.4, 1, 1, {}, {}}, adding_doubling::Incidence::collimated);
+  const Timing fit_ad = median_us(
+      [&] {
+        sink = fit_slab({{"x", t.diffuse_reflectance, t.total_transmittance, 1e-3, 1e-3, 0.0}}, 2.0,
+                        LengthUnit::millimetre, 1.4)
+                   .iterations;
+      },
+      fits);
   SlabFitOptions mp;
   mp.model = "multipole";
-  const Timing fit_mp = median_us([&] {
-    sink = fit_slab({{"x", t.diffuse_reflectance, t.total_transmittance, 1e-3, 1e-3, 0.0}}, 2.0, LengthUnit::millimetre, 1.4, mp).iterations;
-  }, fits);
-  std::printf("inverse, one wavelength (median of %d; wall / cpu):\n  fit slab adding-doubling %.2f / %.2f ms, multipole %.2f / %.2f ms (x %.1f cpu)\n",
-              fits, fit_ad.wall_us / 1000, fit_ad.cpu_us / 1000, fit_mp.wall_us / 1000, fit_mp.cpu_us / 1000, fit_ad.cpu_us / fit_mp.cpu_us);
+  const Timing fit_mp = median_us(
+      [&] {
+        sink = fit_slab({{"x", t.diffuse_reflectance, t.total_transmittance, 1e-3, 1e-3, 0.0}}, 2.0,
+                        LengthUnit::millimetre, 1.4, mp)
+                   .iterations;
+      },
+      fits);
+  std::printf(
+      "inverse, one wavelength (median of %d; wall / cpu):\n  fit slab adding-doubling %.2f / %.2f ms, multipole %.2f "
+      "/ %.2f ms (x %.1f cpu)\n",
+      fits, fit_ad.wall_us / 1000, fit_ad.cpu_us / 1000, fit_mp.wall_us / 1000, fit_mp.cpu_us / 1000,
+      fit_ad.cpu_us / fit_mp.cpu_us);
   for (int spheres : {0, 1}) {
     char text[512];
-    std::snprintf(text, sizeof text, "IAD1\n1.4 1.5 1.0 1.0 5 0.98 %d\n203.2 25.4 12.7 1.0 0.96\n203.2 25.4 12.7 1.0 0.96\n2\n0.35 0.25\n",
+    std::snprintf(text, sizeof text,
+                  "IAD1\n1.4 1.5 1.0 1.0 5 0.98 %d\n203.2 25.4 12.7 1.0 0.96\n203.2 25.4 12.7 1.0 0.96\n2\n0.35 0.25\n",
                   spheres);
     const auto file = parse_rxt(text, "bench");
     const Timing t = median_us([&] { sink = fit_rxt(file).rows[0].mu_a; }, fits);

@@ -47,22 +47,26 @@ int main(int argc, char** argv) {
   const auto m = reduce(0.1, 0.9, 0.0, 1.3);
   const auto dipole = make_model("dipole");
   const double base = median_ns_per_call([&](double r) { return dipole->reflectance(m, r); }, radii, repetitions);
-  std::printf("per evaluation, median of %d (alpha' 0.9, eta 1.3, 64 radii over 0.01-20 ell); ratio to the dipole\n", repetitions);
+  std::printf("per evaluation, median of %d (alpha' 0.9, eta 1.3, 64 radii over 0.01-20 ell); ratio to the dipole\n",
+              repetitions);
   std::printf("  %-22s %8.2f ns  1.00\n", "dipole (baseline)", base);
   const auto table = radial_table(*make_model("pbd"), m, 16);
   const double lookup = median_ns_per_call(table, radii, repetitions);
-  std::printf("  %-22s %8.2f ns  %.2f   (assumed kTableLookupNs = %g)\n", "radial table lookup", lookup, lookup / base, kTableLookupNs);
+  std::printf("  %-22s %8.2f ns  %.2f   (assumed kTableLookupNs = %g)\n", "radial table lookup", lookup, lookup / base,
+              kTableLookupNs);
   for (int k : {1, 2, 4, 8}) {
     std::vector<double> w(static_cast<std::size_t>(k), 0.1), v;
     for (int j = 0; j < k; ++j) v.push_back(0.1 * std::pow(4.0, j));
     const double ns = median_ns_per_call(
         [&](double r) {
           double R = 0;
-          for (std::size_t j = 0; j < w.size(); ++j) R += w[j] * std::exp(-r * r / (2 * v[j])) / (2 * std::numbers::pi * v[j]);
+          for (std::size_t j = 0; j < w.size(); ++j)
+            R += w[j] * std::exp(-r * r / (2 * v[j])) / (2 * std::numbers::pi * v[j]);
           return R;
         },
         radii, repetitions);
-    std::printf("  %d Gaussian%-12s %8.2f ns  %.2f   (assumed %g)\n", k, k > 1 ? "s" : "", ns, ns / base, k * kGaussianTermNs);
+    std::printf("  %d Gaussian%-12s %8.2f ns  %.2f   (assumed %g)\n", k, k > 1 ? "s" : "", ns, ns / base,
+                k * kGaussianTermNs);
   }
   {
     // One separable-kernel tap: an RGB irradiance row read between two texels (a bilinear fetch
@@ -80,7 +84,8 @@ int main(int argc, char** argv) {
           return static_cast<double>(acc);
         },
         radii, repetitions);
-    std::printf("  %-22s %8.2f ns  %.2f   (assumed kKernelTapNs = %g)\n", "separable kernel tap", ns, ns / base, kKernelTapNs);
+    std::printf("  %-22s %8.2f ns  %.2f   (assumed kKernelTapNs = %g)\n", "separable kernel tap", ns, ns / base,
+                kKernelTapNs);
   }
 
   const auto database = MaterialDatabase::load_with_user("");
@@ -93,11 +98,16 @@ int main(int argc, char** argv) {
     o.pixel = pixel;
     const double with_mc = median_seconds([&] { advise(skin, mc, o); }, repetitions);
     const double with_model = median_seconds([&] { advise(skin, model_reference, o); }, repetitions);
-    std::printf("  %5g mm  Monte Carlo reference %.3f s   model reference %.3f s   ratio %.1f\n", pixel, with_mc, with_model, with_mc / with_model);
+    std::printf("  %5g mm  Monte Carlo reference %.3f s   model reference %.3f s   ratio %.1f\n", pixel, with_mc,
+                with_model, with_mc / with_model);
   }
   AdviseOptions o;
   o.pixel = 1;
-  const double all = median_seconds([&] { for (const auto& mat : database.all()) advise(mat.medium, model_reference, o); }, 1);
-  std::printf("\nthe database (%zu materials) at 1 mm with the model reference: %.2f s (%.3f s a material)\n", database.all().size(), all,
-              all / static_cast<double>(database.all().size()));
+  const double all = median_seconds(
+      [&] {
+        for (const auto& mat : database.all()) advise(mat.medium, model_reference, o);
+      },
+      1);
+  std::printf("\nthe database (%zu materials) at 1 mm with the model reference: %.2f s (%.3f s a material)\n",
+              database.all().size(), all, all / static_cast<double>(database.all().size()));
 }

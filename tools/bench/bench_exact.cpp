@@ -46,8 +46,8 @@ double median_ms(const std::function<double()>& f, int repetitions) {
 }
 
 void row(const char* what, double exact, double baseline, const char* unit, double goal) {
-  std::printf("  %-28s exact %10.3f %s   pbd %10.3f %s   exact/pbd %6.3f   goal <= %g %s: %s\n", what, exact, unit, baseline, unit,
-              exact / baseline, goal, unit, exact <= goal ? "met" : "MISSED");
+  std::printf("  %-28s exact %10.3f %s   pbd %10.3f %s   exact/pbd %6.3f   goal <= %g %s: %s\n", what, exact, unit,
+              baseline, unit, exact / baseline, goal, unit, exact <= goal ? "met" : "MISSED");
 }
 
 MeasuredProfile three_channel_profile(const Model& model, const Medium& medium) {
@@ -80,11 +80,13 @@ int main(int argc, char** argv) {
 
   // One profile build at new coefficients (each a different alpha').
   const ExactTable& table = bundled_exact_table();
-  const double build_ms = median_ms([&] {
-    double s = 0;
-    for (int k = 0; k < 1000; ++k) s += ExactProfile(table, 0.5 + 0.0004 * k, 0.3, 1.35).total();
-    return s;
-  }, repetitions);
+  const double build_ms = median_ms(
+      [&] {
+        double s = 0;
+        for (int k = 0; k < 1000; ++k) s += ExactProfile(table, 0.5 + 0.0004 * k, 0.3, 1.35).total();
+        return s;
+      },
+      repetitions);
   std::printf("  %-28s exact %10.3f us   (1000 builds at distinct alpha', per build)\n", "one profile build", build_ms);
 
   // A radial LUT for one material (3 channels, default tolerance).
@@ -107,23 +109,28 @@ int main(int argc, char** argv) {
   std::vector<double> totals;
   for (int k = 0; k < 1000; ++k) totals.push_back(0.01 + 0.5 * k / 999.0);
   row("1000 albedo inversions",
-      median_ms([&] {
-        double s = 0;
-        for (double t : totals) s += exact_albedo_prime_from_total(table, t, 0.0, 1.3);
-        return s;
-      }, repetitions),
+      median_ms(
+          [&] {
+            double s = 0;
+            for (double t : totals) s += exact_albedo_prime_from_total(table, t, 0.0, 1.3);
+            return s;
+          },
+          repetitions),
       // pbd's generic root finding costs ~16 ms per value: every 10th value, times 10.
-      10 * median_ms([&] {
-        double s = 0;
-        for (std::size_t k = 0; k < totals.size(); k += 10) s += pbd->albedo_prime_from_total(totals[k], 1.3);
-        return s;
-      }, std::min(repetitions, 3)),
+      10 * median_ms(
+               [&] {
+                 double s = 0;
+                 for (std::size_t k = 0; k < totals.size(); k += 10) s += pbd->albedo_prime_from_total(totals[k], 1.3);
+                 return s;
+               },
+               std::min(repetitions, 3)),
       "ms", 5);
 
   // `--model auto` on one material: the live measurement of every candidate against exact.
   const double lut_ms = median_ms([&] { return build_radial_table(skin, *exact, lut).max_error; }, repetitions);
-  const double choose_ms = median_ms([&] { return static_cast<double>(choose_model(skin, 0.1).estimates.size()); }, repetitions);
-  std::printf("  %-28s %10.3f ms   exact radial LUT %8.3f ms   ratio %6.1f   goal <= 200 ms: %s\n", "choose_model(Skin1, 0.1)",
-              choose_ms, lut_ms, choose_ms / lut_ms, choose_ms <= 200 ? "met" : "MISSED");
+  const double choose_ms =
+      median_ms([&] { return static_cast<double>(choose_model(skin, 0.1).estimates.size()); }, repetitions);
+  std::printf("  %-28s %10.3f ms   exact radial LUT %8.3f ms   ratio %6.1f   goal <= 200 ms: %s\n",
+              "choose_model(Skin1, 0.1)", choose_ms, lut_ms, choose_ms / lut_ms, choose_ms <= 200 ? "met" : "MISSED");
   return 0;
 }

@@ -40,7 +40,8 @@ int main(int argc, char** argv) {
     data.radius = log_spaced(0.05, 10.0, 64);
     for (int c = 0; c < 3; ++c) {
       MeasuredProfile::Channel ch{std::string(1, "RGB"[c]), {}, {}};
-      for (double r : data.radius) ch.value.push_back(model->reflectance(reduce(sigma_a[c], sigma_s_prime[c], 0.0, 1.3), r));
+      for (double r : data.radius)
+        ch.value.push_back(model->reflectance(reduce(sigma_a[c], sigma_s_prime[c], 0.0, 1.3), r));
       data.channels.push_back(ch);
     }
     ProfileFitOptions options;
@@ -49,7 +50,8 @@ int main(int argc, char** argv) {
     const double ms = median_ms([&] { iterations = fit_profile(data, options).iterations; }, repetitions);
     std::printf("  %-17s %8.2f ms  (%d iterations)\n", name, ms, iterations);
   }
-  std::printf("\nAlbedo inversion (total + mfp -> sigma_a, sigma_s'), 1000 spectral bins, median of %d:\n", repetitions);
+  std::printf("\nAlbedo inversion (total + mfp -> sigma_a, sigma_s'), 1000 spectral bins, median of %d:\n",
+              repetitions);
   for (const char* name : {"dipole", "better-dipole", "quantized", "pbd"}) {
     const int bins = std::string(name) == "pbd" || std::string(name) == "quantized" ? 20 : 1000;
     const double ms = median_ms(
@@ -58,7 +60,8 @@ int main(int argc, char** argv) {
             invert_albedo(name, 0.05 + 0.85 * i / (bins - 1.0), 1.0, DistanceConvention::mfp, 1.3);
         },
         std::max(1, repetitions / (bins < 1000 ? 4 : 1)));
-    std::printf("  %-17s %8.2f ms per 1000 bins%s\n", name, ms * 1000.0 / bins, bins < 1000 ? " (extrapolated from 20 bins)" : "");
+    std::printf("  %-17s %8.2f ms per 1000 bins%s\n", name, ms * 1000.0 / bins,
+                bins < 1000 ? " (extrapolated from 20 bins)" : "");
   }
   return 0;
 }

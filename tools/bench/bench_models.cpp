@@ -18,16 +18,14 @@
 #include "bssrdf/models/exact.hpp"
 #include "bssrdf/models/photon_beam_diffusion.hpp"
 #include "bssrdf/single_scattering.hpp"
-#include "pbrt_style.hpp"
 #include "median_timing.hpp"
+#include "pbrt_style.hpp"
 
 using namespace bssrdf;
 using bssrdf::bench::median_ns_per_call;
 using bssrdf::bench::pbrt_style_pbd;
 
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 int main(int argc, char** argv) {
   const int repetitions = argc > 1 ? std::max(1, std::atoi(argv[1])) : 15;
@@ -35,7 +33,8 @@ int main(int argc, char** argv) {
   std::vector<double> radii;
   for (int i = 0; i < 64; ++i) radii.push_back(0.01 * std::pow(2000.0, i / 63.0));
 
-  std::printf("Cost of one R(r) evaluation, median of %d runs (alpha' = 0.9, g = 0, eta = 1.3; r in [0.01, 20] ell)\n", repetitions);
+  std::printf("Cost of one R(r) evaluation, median of %d runs (alpha' = 0.9, g = 0, eta = 1.3; r in [0.01, 20] ell)\n",
+              repetitions);
   const auto m = reduce(0.1, 0.9, 0.0, 1.3);
   std::vector<std::string> names;  // every row of the model registry, NAME+ss included
   for (const auto& e : model_registry()) names.push_back(e.name);
@@ -53,12 +52,15 @@ int main(int argc, char** argv) {
   const ExactTable& table = bundled_exact_table();
   std::vector<double> albedos;
   for (int i = 0; i < 64; ++i) albedos.push_back(0.5 + 0.007 * i);
-  const double build_ns = median_ns_per_call([&](double a) { return ExactProfile(table, a, 0.3, 1.35).total(); }, albedos, repetitions);
-  std::printf("  %-16s %9.1f ns   %7.3f x pbd   (one ExactProfile build, per medium)\n", "exact build", build_ns, build_ns / pbd_ns);
+  const double build_ns =
+      median_ns_per_call([&](double a) { return ExactProfile(table, a, 0.3, 1.35).total(); }, albedos, repetitions);
+  std::printf("  %-16s %9.1f ns   %7.3f x pbd   (one ExactProfile build, per medium)\n", "exact build", build_ns,
+              build_ns / pbd_ns);
 
   std::printf("\nPhoton beam diffusion: ours vs pbrt's 100 + 100 midpoint samples (same process)\n");
   std::printf("  case                     pbrt ns   pbrt worst err   ours n  ours ns   ours worst err   speed-up\n");
-  for (const auto& [alpha, g, eta] : {std::tuple{0.99, 0.0, 1.3}, std::tuple{0.9, 0.0, 1.0}, std::tuple{0.999, 0.9, 1.4}, std::tuple{0.5, 0.0, 1.4}}) {
+  for (const auto& [alpha, g, eta] : {std::tuple{0.99, 0.0, 1.3}, std::tuple{0.9, 0.0, 1.0},
+                                      std::tuple{0.999, 0.9, 1.4}, std::tuple{0.5, 0.0, 1.4}}) {
     const auto c = reduced_unit_extinction(alpha, g, eta);
     const auto b = improved_boundary(eta);
     const photon_beam_diffusion::Model model;

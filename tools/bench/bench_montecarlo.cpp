@@ -1,6 +1,6 @@
 // Monte Carlo throughput: photons/s of run_monte_carlo on the published MCML speed cases
-// (MCML 1.2.2, Wang, Jacques & Zheng 1995, timed on this machine kind), against a straightforward scalar implementation of the same
-// physics run in this process: MCML 1.2.2's algorithm (one thread, double precision, analog
+// (MCML 1.2.2, Wang, Jacques & Zheng 1995, timed on this machine kind), against a straightforward scalar implementation
+// of the same physics run in this process: MCML 1.2.2's algorithm (one thread, double precision, analog
 // Henyey-Greenstein sampling with trigonometry, implicit capture with weight roulette 1e-4/0.1,
 // all-or-none Fresnel), with a 53-bit mt19937_64 generator. Medians over repetitions.
 //
@@ -33,7 +33,7 @@ struct Case {
   double mua, mus, g, n, thickness_mm;  // 1/mm, mm (infinite: semi-infinite)
   std::uint64_t photons;                // per repetition, ours
   std::uint64_t baseline_photons;
-  double mcml_photons_per_second;       // MCML 1.2.2 timed on this machine kind
+  double mcml_photons_per_second;  // MCML 1.2.2 timed on this machine kind
 };
 
 // R(r) efficiency is compared on kProfileBins linear bins out to 5 transport mean free paths.
@@ -63,7 +63,8 @@ BaselineResult mcml_baseline(const Case& c, std::uint64_t photons, std::uint64_t
       double s;
       if (s_left == 0) {
         double xi;
-        do xi = rand(); while (xi <= 0);
+        do xi = rand();
+        while (xi <= 0);
         s = -std::log(xi) / mut;
       } else {
         s = s_left / mut;
@@ -131,8 +132,10 @@ BaselineResult mcml_baseline(const Case& c, std::uint64_t photons, std::uint64_t
       }
       // Roulette
       if (w < 1e-4) {
-        if (rand() <= 0.1) w /= 0.1;
-        else alive = false;
+        if (rand() <= 0.1)
+          w /= 0.1;
+        else
+          alive = false;
       }
     }
   }
@@ -181,18 +184,23 @@ int main(int argc, char** argv) {
     return s.substr(0, s.find(' ', s.find(' ', s.find(' ') + 1) + 1));
   };
   std::string command;
-  for (int i = 0; i < argc; ++i) command += std::string(i ? " " : "") + argv[i];  // not const char* + string&&: GCC 12 -Wrestrict false positive (bug 105329)
+  for (int i = 0; i < argc; ++i)
+    command += std::string(i ? " " : "") +
+               argv[i];  // not const char* + string&&: GCC 12 -Wrestrict false positive (bug 105329)
   const MonteCarloOptions defaults;
   std::printf("command: %s\n", command.c_str());
   std::printf("machine: %u hardware threads; load average (1, 5, 15 min) at start: %s\n", cores, load().c_str());
   std::printf("Medians of %d repetitions (each runs every row once, in turn), wall-clock time. 'baseline' = MCML's\n",
               repetitions);
   std::printf("algorithm in this process (1 thread).\n");
-  std::printf("'ours' = run_monte_carlo with its defaults (implicit capture, roulette %g/%g), 'ours mcml-rr' = the same\n",
-              defaults.roulette_threshold, defaults.roulette_survival);
-  std::printf("with MCML's roulette (1e-4/0.1), 'analog' = analog absorption. Efficiency = ratio of 1/(variance x time)\n");
-  std::printf("(figure of merit) to the baseline's, of R_d and of R(r) in %d bins to 5 transport mfp (median over the bins\n",
-              kProfileBins);
+  std::printf(
+      "'ours' = run_monte_carlo with its defaults (implicit capture, roulette %g/%g), 'ours mcml-rr' = the same\n",
+      defaults.roulette_threshold, defaults.roulette_survival);
+  std::printf(
+      "with MCML's roulette (1e-4/0.1), 'analog' = analog absorption. Efficiency = ratio of 1/(variance x time)\n");
+  std::printf(
+      "(figure of merit) to the baseline's, of R_d and of R(r) in %d bins to 5 transport mfp (median over the bins\n",
+      kProfileBins);
   std::printf("with r < 1 mfp, 'near', and 3-5 mfp, 'far').\n\n");
   std::printf("%-40s %-15s %12s %10s %8s %8s %8s %9s %9s\n", "case", "run", "photons/s", "x baseline", "x MCML",
               "eff R_d", "eff near", "eff far", "R_d");

@@ -11,9 +11,9 @@
 //   case 3: half-space albedo' = 0.99, eta = 1.3, g = 0 (the models' validation medium)
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -48,7 +48,8 @@ Merits merits(const MonteCarloResult& r, double ell, double t) {
   std::vector<double> near, far, top, deep;
   for (std::size_t i = 0; i < r.bin_radius.size(); ++i) {
     if (r.bin_outer[i] <= ell) near.push_back(fom(c.reflectance_stderr[i]));
-    if (r.bin_inner[i] >= 3 * ell && r.bin_outer[i] <= 5 * ell * (1 + 1e-9)) far.push_back(fom(c.reflectance_stderr[i]));
+    if (r.bin_inner[i] >= 3 * ell && r.bin_outer[i] <= 5 * ell * (1 + 1e-9))
+      far.push_back(fom(c.reflectance_stderr[i]));
   }
   const std::size_t nz = r.depth_inner.size();
   for (std::size_t i = 0; i < nz; ++i) {
@@ -112,7 +113,8 @@ int main(int argc, char** argv) {
               static_cast<unsigned long long>(photons), repetitions);
   std::printf("Figures of merit 1/(se^2 t) relative to the first row (measured in this process, same seeds;\n");
   std::printf("t = CPU seconds of the one thread, photons/s per CPU second).\n");
-  std::printf("R(r): linear bins of ell/10 to 5 ell (ell = %.3f mm); near r < ell, far 3-5 ell (median over bins).\n", ell);
+  std::printf("R(r): linear bins of ell/10 to 5 ell (ell = %.3f mm); near r < ell, far 3-5 ell (median over bins).\n",
+              ell);
   std::printf("Absorption by depth: 20 bins over %s; top = first 4 bins, deep = bottom half (median over bins).\n\n",
               c.thickness == kSemiInfinite ? "10 ell" : "the slab");
   std::printf("%-26s %9s %8s %8s %7s %7s %7s %7s %7s %7s %7s %8s\n", "setting", "photons/s", "int/ph", "R_d", "R_d",
@@ -154,9 +156,9 @@ int main(int argc, char** argv) {
     }
     std::printf(absolute ? "%-26s %9.0f %8.1f %8.5f %7.3g %7.3g %7.3g %7.3g %7.3g %7.3g %7.3g %8.6f\n"
                          : "%-26s %9.0f %8.1f %8.5f %7.2f %7.2f %7.2f %7.2f %7.2f %7.2f %7.2f %8.6f\n",
-                s.label.c_str(), median(rate),
-                median(inter), median(rd), ratio(&Merits::rd), ratio(&Merits::t), ratio(&Merits::absorbed),
-                ratio(&Merits::r_near), ratio(&Merits::r_far), ratio(&Merits::a_top), ratio(&Merits::a_deep), median(se));
+                s.label.c_str(), median(rate), median(inter), median(rd), ratio(&Merits::rd), ratio(&Merits::t),
+                ratio(&Merits::absorbed), ratio(&Merits::r_near), ratio(&Merits::r_far), ratio(&Merits::a_top),
+                ratio(&Merits::a_deep), median(se));
   }
   return 0;
 }

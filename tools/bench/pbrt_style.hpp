@@ -21,7 +21,8 @@ inline double pbrt_style_pbd(const Reduced<double>& m, const ImprovedBoundary<do
     const double zr = -std::log(1 - (i + 0.5) / samples) / sigma_tp;
     const double zv = -zr + 2 * ze;
     const double dr = std::sqrt(r * r + zr * zr), dv = std::sqrt(r * r + zv * zv);
-    const double phiD = 1 / (4 * std::numbers::pi * D) * (std::exp(-sigma_tr * dr) / dr - std::exp(-sigma_tr * dv) / dv);
+    const double phiD =
+        1 / (4 * std::numbers::pi * D) * (std::exp(-sigma_tr * dr) / dr - std::exp(-sigma_tr * dv) / dv);
     const double EDn = 1 / (4 * std::numbers::pi) *
                        (zr * (1 + sigma_tr * dr) * std::exp(-sigma_tr * dr) / (dr * dr * dr) -
                         zv * (1 + sigma_tr * dv) * std::exp(-sigma_tr * dv) / (dv * dv * dv));

@@ -14,9 +14,9 @@
 //    the albedo at each interaction), so one run gives every albedo node: radius r (in mfp) maps to
 //    r (1 - alpha g) transport mfp. Low albedos come from absorbing runs at a few base albedos
 //    instead (weight (alpha / alpha_base)^k), which sample the rare photons that turn round in a few
-//    scatterings at far less cost (Grid::base_albedo_prime). Photons are stopped after K = 6 / (1 - alpha_max) scatterings,
-//    where the largest albedo's weight is below e^-6 = 0.25 % and the photons still inside (P(k > K)
-//    ~ K^-1/2, under 1 %) carry a fraction of the total of order 1e-5 (the lost part is reported);
+//    scatterings at far less cost (Grid::base_albedo_prime). Photons are stopped after K = 6 / (1 - alpha_max)
+//    scatterings, where the largest albedo's weight is below e^-6 = 0.25 % and the photons still inside (P(k > K) ~
+//    K^-1/2, under 1 %) carry a fraction of the total of order 1e-5 (the lost part is reported);
 //  - single scattering: the exact integral (single_scattering.hpp), evaluated at each node radius;
 //  - the total: adding-doubling of the semi-infinite medium; the Monte Carlo multiple-scattering
 //    part is scaled to (adding-doubling total - exact single-scattering total), and the scale's
@@ -208,7 +208,7 @@ void run_chunk(const Grid& grid, std::size_t gi, std::size_t ei, std::size_t run
   for (std::size_t a = 0; a < albedos; ++a) {
     const double alpha = single_albedo(grid.albedo_prime[a], g);
     ln_alpha[a] = std::log(alpha) - std::log(base_alpha);  // the weight already carries base_alpha^k
-    ln_scale[a] = std::log(1 - alpha * g);  // sigma_t' / sigma_t: mfp -> transport mfp
+    ln_scale[a] = std::log(1 - alpha * g);                 // sigma_t' / sigma_t: mfp -> transport mfp
   }
   const double first = grid.ln_first_edge(), inv_step = 1 / grid.d_ln_r;
   for (const ReflectedPhoton& p : channel.reflected_photons) {
@@ -249,8 +249,7 @@ std::string describe_node(const Grid& grid, std::size_t gi, std::size_t ei) {
   return text;
 }
 
-int run(const std::filesystem::path& dir, std::uint64_t target, std::uint64_t chunk, double hours,
-        std::uint64_t seed) {
+int run(const std::filesystem::path& dir, std::uint64_t target, std::uint64_t chunk, double hours, std::uint64_t seed) {
   const Grid grid;
   std::filesystem::create_directories(dir);
   const auto start = std::chrono::steady_clock::now();
@@ -261,26 +260,27 @@ int run(const std::filesystem::path& dir, std::uint64_t target, std::uint64_t ch
     bool any = false;
     for (std::size_t ei = 0; ei < grid.eta.size(); ++ei) {
       for (std::size_t gi = 0; gi < grid.g.size(); ++gi) {
-       for (std::size_t b = 0; b < grid.runs(); ++b) {
-        NodeSums sums;
-        const auto path = node_path(dir, grid, gi, ei, b);
-        load(sums, path, grid);
-        const std::uint64_t run_target = target * grid.run_factor(b);
-        if (sums.photons >= run_target) continue;
-        any = true;
-        if (elapsed_hours() > hours) {
-          std::cerr << "stopped after " << hours << " h (run again to continue)\n";
-          return 0;
+        for (std::size_t b = 0; b < grid.runs(); ++b) {
+          NodeSums sums;
+          const auto path = node_path(dir, grid, gi, ei, b);
+          load(sums, path, grid);
+          const std::uint64_t run_target = target * grid.run_factor(b);
+          if (sums.photons >= run_target) continue;
+          any = true;
+          if (elapsed_hours() > hours) {
+            std::cerr << "stopped after " << hours << " h (run again to continue)\n";
+            return 0;
+          }
+          const std::uint64_t n = std::min(chunk * grid.run_factor(b), run_target - sums.photons);
+          const auto t0 = std::chrono::steady_clock::now();
+          run_chunk(grid, gi, ei, b, n, seed, sums);
+          save(sums, path);
+          std::cerr << describe_node(grid, gi, ei) << " base alpha' " << grid.run_albedo_prime(b) << ": "
+                    << sums.photons << " photons, "
+                    << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s, "
+                    << static_cast<double>(sums.interactions) / static_cast<double>(sums.photons)
+                    << " scatterings/photon, lost " << sums.lost / static_cast<double>(sums.photons) << "\n";
         }
-        const std::uint64_t n = std::min(chunk * grid.run_factor(b), run_target - sums.photons);
-        const auto t0 = std::chrono::steady_clock::now();
-        run_chunk(grid, gi, ei, b, n, seed, sums);
-        save(sums, path);
-        std::cerr << describe_node(grid, gi, ei) << " base alpha' " << grid.run_albedo_prime(b) << ": " << sums.photons << " photons, "
-                  << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s, "
-                  << static_cast<double>(sums.interactions) / static_cast<double>(sums.photons)
-                  << " scatterings/photon, lost " << sums.lost / static_cast<double>(sums.photons) << "\n";
-       }
       }
     }
     if (!any) break;
@@ -412,7 +412,8 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
           // Near field below the first well-measured radius: multiple scattering is flat in R
           // there (y ~ r^2) and far below single scattering (y ~ r), so continue it that way.
           for (std::size_t k = 0; k < first_good; ++k) {
-            y_ms[k] = y_ms[first_good] * std::exp(2 * grid.d_ln_r * (static_cast<double>(k) - static_cast<double>(first_good)));
+            y_ms[k] = y_ms[first_good] *
+                      std::exp(2 * grid.d_ln_r * (static_cast<double>(k) - static_cast<double>(first_good)));
             continued[k] = true;
           }
           // Between well-measured radii, a bin without photons takes the log-linear interpolation
@@ -486,12 +487,14 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   p["scatterings_total"] = interactions;
   p["monte_carlo_seconds"] = cpu_seconds;
   p["seed"] = seed;
-  p["seed_rule"] = "chunk c of node (g index, eta index): s = splitmix(splitmix(splitmix(seed ^ g) ^ (eta << 20)) ^ c); "
-                   "absorbing run b: splitmix(s ^ ((b + 1) << 40))";
+  p["seed_rule"] =
+      "chunk c of node (g index, eta index): s = splitmix(splitmix(splitmix(seed ^ g) ^ (eta << 20)) ^ c); "
+      "absorbing run b: splitmix(s ^ ((b + 1) << 40))";
   p["adding_doubling_tolerance"] = "1e-5 alpha' absolute";
   p["totals"] = "adding-doubling where its error estimate is within 2e-4 of the total, else the Monte Carlo total";
   p["monte_carlo_totals"] = monte_carlo_totals;
-  p["worst_total_check_sigma"] = {{"value", worst_scale_sigma}, {"at", worst_scale_at},
+  p["worst_total_check_sigma"] = {{"value", worst_scale_sigma},
+                                  {"at", worst_scale_at},
                                   {"meaning", "(Monte Carlo - exact) multiple-scattering total / its standard error"}};
   p["worst_single_scattering_check_sigma"] = {{"value", worst_ss_sigma}, {"at", worst_ss_at}};
   p["largest_lost_fraction"] = worst_lost;
@@ -525,13 +528,20 @@ int main(int argc, char** argv) {
     std::uint64_t photons = 1'000'000, chunk = 16384, seed = 20261201;
     double hours = 1e9;
     for (std::size_t i = 1; i + 1 < args.size(); i += 2) {
-      if (args[i] == "--state") state = args[i + 1];
-      else if (args[i] == "--out") out = args[i + 1];
-      else if (args[i] == "--photons") photons = std::stoull(args[i + 1]);
-      else if (args[i] == "--chunk") chunk = std::stoull(args[i + 1]);
-      else if (args[i] == "--hours") hours = std::stod(args[i + 1]);
-      else if (args[i] == "--seed") seed = std::stoull(args[i + 1]);
-      else throw std::invalid_argument("unknown option " + args[i]);
+      if (args[i] == "--state")
+        state = args[i + 1];
+      else if (args[i] == "--out")
+        out = args[i + 1];
+      else if (args[i] == "--photons")
+        photons = std::stoull(args[i + 1]);
+      else if (args[i] == "--chunk")
+        chunk = std::stoull(args[i + 1]);
+      else if (args[i] == "--hours")
+        hours = std::stod(args[i + 1]);
+      else if (args[i] == "--seed")
+        seed = std::stoull(args[i + 1]);
+      else
+        throw std::invalid_argument("unknown option " + args[i]);
     }
     if (state.empty()) throw std::invalid_argument("--state DIR is required");
     if (args[0] == "run") return run(state, photons, chunk, hours, seed);

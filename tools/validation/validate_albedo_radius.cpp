@@ -37,9 +37,9 @@
 #include "bssrdf/layers.hpp"
 #include "bssrdf/lut/albedo_radius_table.hpp"
 #include "bssrdf/lut/interpolation.hpp"
-#include "bssrdf/parallel.hpp"
 #include "bssrdf/models/photon_beam_diffusion.hpp"
 #include "bssrdf/montecarlo.hpp"
+#include "bssrdf/parallel.hpp"
 
 using namespace bssrdf;
 
@@ -59,10 +59,16 @@ int main(int argc, char** argv) {
   const auto layout = AlbedoRadiusLayout::pbrt();
   const std::size_t cols = layout.radius.size();
   const char* names[] = {"pbrt-style", "ours 1e-2", "ours 1e-3", "converged"};
-  std::printf("pbrt-layout albedo-radius table (100 x 64, photon beam diffusion) against Monte Carlo, %llu photons per row, %zu log bins\n",
-              static_cast<unsigned long long>(photons), bins);
-  std::printf("L2 and worst: bin-averaged 2 pi r R over the radii holding 99.9 %% of the row's energy; rho_eff: relative error of the row's effective albedo (%%)\n\n");
-  std::printf("g    eta  rho     r_max   MC rho_eff       noise |  L2 %%: pbrt ours-2 ours-3   conv | noise | L2 ln %%: pbrt ours-2 ours-3  conv | worst %%: pbrt ours-2 ours-3   conv | rho_eff %%: pbrt ours-2 ours-3   conv\n");
+  std::printf(
+      "pbrt-layout albedo-radius table (100 x 64, photon beam diffusion) against Monte Carlo, %llu photons per row, "
+      "%zu log bins\n",
+      static_cast<unsigned long long>(photons), bins);
+  std::printf(
+      "L2 and worst: bin-averaged 2 pi r R over the radii holding 99.9 %% of the row's energy; rho_eff: relative error "
+      "of the row's effective albedo (%%)\n\n");
+  std::printf(
+      "g    eta  rho     r_max   MC rho_eff       noise |  L2 %%: pbrt ours-2 ours-3   conv | noise | L2 ln %%: pbrt "
+      "ours-2 ours-3  conv | worst %%: pbrt ours-2 ours-3   conv | rho_eff %%: pbrt ours-2 ours-3   conv\n");
   std::vector<double> all[4], all_log[4], all_eff[4];
   const auto t0 = std::chrono::steady_clock::now();
   for (const auto& [g, eta] : {std::pair{0.0, 1.3}, std::pair{0.9, 1.3}, std::pair{0.0, 1.0}, std::pair{0.9, 1.0}}) {
@@ -85,7 +91,8 @@ int main(int argc, char** argv) {
     });
     for (auto* t : {&tables[0], &tables[3]})
       for (std::size_t i = 0; i < t->rows(); ++i)
-        t->effective_albedo[i] = catmull_rom_integral(layout.radius, std::span(&t->profile[i * cols], cols), 0, layout.radius.back());
+        t->effective_albedo[i] =
+            catmull_rom_integral(layout.radius, std::span(&t->profile[i * cols], cols), 0, layout.radius.back());
 
     for (double target : {0.3, 0.6, 0.8, 0.9, 0.95, 0.99}) {
       std::size_t row = 0;
@@ -96,7 +103,8 @@ int main(int argc, char** argv) {
       const std::span<const double> cdf(&tables[1].cdf[row * cols], cols);
       std::size_t k = 1;
       while (k + 1 < cols && cdf[k] < 0.999) ++k;
-      const double r_max = layout.radius[k - 1] + (layout.radius[k] - layout.radius[k - 1]) * (0.999 - cdf[k - 1]) / (cdf[k] - cdf[k - 1]);
+      const double r_max = layout.radius[k - 1] +
+                           (layout.radius[k] - layout.radius[k - 1]) * (0.999 - cdf[k - 1]) / (cdf[k] - cdf[k - 1]);
 
       const auto medium = Medium::single_channel(1 - rho, rho, g, eta);
       MonteCarloOptions options;
@@ -141,12 +149,14 @@ int main(int argc, char** argv) {
         all[t].push_back(e[t].l2);
         all_eff[t].push_back(std::abs(e[t].rho_eff));
       }
-      std::printf("%-4.1f %-4.1f %-6.4f %7.2f  %.4f±%.4f %5.2f |     %6.2f %6.2f %6.2f %6.2f | %5.2f |      %6.2f %6.2f %6.2f %6.2f |     %6.2f %6.2f %6.2f %6.2f |        %+6.2f %+6.2f %+6.2f %+6.2f\n",
-                  g, eta, rho, r_max, mc.diffuse_reflectance.value, mc.diffuse_reflectance.standard_error,
-                  100 * std::sqrt(noise / norm), 100 * e[0].l2, 100 * e[1].l2, 100 * e[2].l2, 100 * e[3].l2,
-                  100 * std::sqrt(noise_log / norm_log), 100 * e[0].l2_log, 100 * e[1].l2_log, 100 * e[2].l2_log, 100 * e[3].l2_log, 100 * e[0].worst,
-                  100 * e[1].worst, 100 * e[2].worst, 100 * e[3].worst, 100 * e[0].rho_eff, 100 * e[1].rho_eff, 100 * e[2].rho_eff,
-                  100 * e[3].rho_eff);
+      std::printf(
+          "%-4.1f %-4.1f %-6.4f %7.2f  %.4f±%.4f %5.2f |     %6.2f %6.2f %6.2f %6.2f | %5.2f |      %6.2f %6.2f %6.2f "
+          "%6.2f |     %6.2f %6.2f %6.2f %6.2f |        %+6.2f %+6.2f %+6.2f %+6.2f\n",
+          g, eta, rho, r_max, mc.diffuse_reflectance.value, mc.diffuse_reflectance.standard_error,
+          100 * std::sqrt(noise / norm), 100 * e[0].l2, 100 * e[1].l2, 100 * e[2].l2, 100 * e[3].l2,
+          100 * std::sqrt(noise_log / norm_log), 100 * e[0].l2_log, 100 * e[1].l2_log, 100 * e[2].l2_log,
+          100 * e[3].l2_log, 100 * e[0].worst, 100 * e[1].worst, 100 * e[2].worst, 100 * e[3].worst, 100 * e[0].rho_eff,
+          100 * e[1].rho_eff, 100 * e[2].rho_eff, 100 * e[3].rho_eff);
       std::fflush(stdout);
     }
   }
@@ -156,8 +166,9 @@ int main(int argc, char** argv) {
   };
   std::printf("\nmedian over rows:\n");
   for (int t = 0; t < 4; ++t)
-    std::printf("  %-11s  L2 %6.2f %%   L2 ln %6.2f %%   |rho_eff err| %5.2f %%   max L2 %6.2f %%\n", names[t], 100 * median(all[t]),
-                100 * median(all_log[t]), 100 * median(all_eff[t]), 100 * *std::max_element(all[t].begin(), all[t].end()));
+    std::printf("  %-11s  L2 %6.2f %%   L2 ln %6.2f %%   |rho_eff err| %5.2f %%   max L2 %6.2f %%\n", names[t],
+                100 * median(all[t]), 100 * median(all_log[t]), 100 * median(all_eff[t]),
+                100 * *std::max_element(all[t].begin(), all[t].end()));
   // Paired comparison with pbrt-style (the same Monte Carlo run serves both tables of a row).
   const auto paired = [&](const char* what, const std::vector<double>* v, int t) {
     int better = 0;
@@ -168,8 +179,10 @@ int main(int argc, char** argv) {
       worse_by = std::max(worse_by, d);
       better_by = std::max(better_by, -d);
     }
-    std::printf("  %-11s vs pbrt-style, %-12s  as good or better in %2d of %zu rows; at most %.2f pp worse, up to %.2f pp better\n", names[t], what,
-                better, v[0].size(), 100 * worse_by, 100 * better_by);
+    std::printf(
+        "  %-11s vs pbrt-style, %-12s  as good or better in %2d of %zu rows; at most %.2f pp worse, up to %.2f pp "
+        "better\n",
+        names[t], what, better, v[0].size(), 100 * worse_by, 100 * better_by);
   };
   for (int t = 1; t < 4; ++t) {
     paired("L2", all, t);

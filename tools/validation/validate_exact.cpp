@@ -82,7 +82,8 @@ int main(int argc, char** argv) {
     const auto mc = run(medium, *model, scatterings, seed * 1000 + static_cast<unsigned>(i));
     const auto d = compare_with_monte_carlo(*model, medium.reduced(0), mc);
     const auto per_entered = mc.channels[0].per_entered_flux();
-    const double sigma = d.total * per_entered.diffuse_reflectance.value / per_entered.diffuse_reflectance.standard_error;
+    const double sigma =
+        d.total * per_entered.diffuse_reflectance.value / per_entered.diffuse_reflectance.standard_error;
     std::printf("%11.6f %6.3f %6.3f %10llu %8.3f %7.2f %8.3f %8.3f %8.3f %8.3f\n", ap, g, eta,
                 static_cast<unsigned long long>(mc.options.photons), 100 * d.total, sigma, 100 * d.near_r,
                 100 * d.near_r_noise, 100 * d.far_r, 100 * d.far_r_noise);
@@ -96,8 +97,9 @@ int main(int argc, char** argv) {
   }
   std::printf("# points meeting the goals: total %d/%d, near L2 %d/%d, far L2 %d/%d\n", total_ok, points, near_ok,
               points, far_ok, points);
-  std::printf("# worst: total %.3f %%, near L2 %.3f %%, far L2 %.3f %% (the Monte Carlo noise is in the L2: see columns)\n",
-              100 * worst_total, 100 * worst_near, 100 * worst_far);
+  std::printf(
+      "# worst: total %.3f %%, near L2 %.3f %%, far L2 %.3f %% (the Monte Carlo noise is in the L2: see columns)\n",
+      100 * worst_total, 100 * worst_near, 100 * worst_far);
   if (!materials) return 0;
 
   std::printf("\n# bundled materials: each channel's total, exact model vs a fresh Monte Carlo run\n");
@@ -129,8 +131,8 @@ int main(int argc, char** argv) {
       const double dev = exact / mc.diffuse_reflectance.value - 1;
       const double sigma = (exact - mc.diffuse_reflectance.value) / mc.diffuse_reflectance.standard_error;
       within += std::abs(dev) <= 0.01 || std::abs(sigma) <= 3;
-      std::printf("  %-28s %4zu %9.6f %6.3f %6.3f %9.6f %9.6f %8.3f %7.2f\n", material.name.c_str(), c,
-                  m.albedo_prime, m.g, m.eta, exact, mc.diffuse_reflectance.value, 100 * dev, sigma);
+      std::printf("  %-28s %4zu %9.6f %6.3f %6.3f %9.6f %9.6f %8.3f %7.2f\n", material.name.c_str(), c, m.albedo_prime,
+                  m.g, m.eta, exact, mc.diffuse_reflectance.value, 100 * dev, sigma);
       std::fflush(stdout);
     }
   }

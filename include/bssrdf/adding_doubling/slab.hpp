@@ -52,8 +52,8 @@ struct Slab {
   std::vector<ScatteringLayer> layers;  // top to bottom
   double n = 1.0;                       // absolute index of every scattering layer
   double ambient_above = 1.0, ambient_below = 1.0;
-  std::vector<ClearLayer> above;        // between the ambient above and the slab, top to bottom
-  std::vector<ClearLayer> below;        // between the slab and the ambient below, top to bottom
+  std::vector<ClearLayer> above;  // between the ambient above and the slab, top to bottom
+  std::vector<ClearLayer> below;  // between the slab and the ambient below, top to bottom
 
   // Throws InvalidInput naming the field (e.g. "layers[0].g = 1: accepted range is -1 < g < 1").
   void validate() const;

@@ -12,12 +12,12 @@
 //    one R(r) evaluation as measured by bench_models (model_choice.hpp).
 //  - the real-time tables of the analytic model with the smallest image error, each sized by the
 //    tolerance (realtime_tables.hpp: the smallest within it, else the most accurate tried):
-//    "radial-table-N:MODEL" (N radii of radial_table_nodes(), linear in (ln r, ln R), 0 beyond; N = 8 to 256; cost kTableLookupNs, memory N x channels x 4 bytes);
-//    "gaussians-K:MODEL" (K = 1 to 8 shared-variance Gaussians, fitted_mixture_table, the
-//    texture-space / GPU Gems 3 form; cost K x kGaussianTermNs, memory K x (channels + 1) x 4);
-//    "separable-N:MODEL" (Jimenez et al. 2015, N taps and the range in `parameters`; cost 2 N x
-//    kKernelTapNs, memory N x 4 floats); "preintegrated-N:MODEL" (Penner & Borshukov 2011, N x N;
-//    cost kTableLookupNs, memory N^2 x channels x 4).
+//    "radial-table-N:MODEL" (N radii of radial_table_nodes(), linear in (ln r, ln R), 0 beyond; N = 8 to 256; cost
+//    kTableLookupNs, memory N x channels x 4 bytes); "gaussians-K:MODEL" (K = 1 to 8 shared-variance Gaussians,
+//    fitted_mixture_table, the texture-space / GPU Gems 3 form; cost K x kGaussianTermNs, memory K x (channels + 1) x
+//    4); "separable-N:MODEL" (Jimenez et al. 2015, N taps and the range in `parameters`; cost 2 N x kKernelTapNs,
+//    memory N x 4 floats); "preintegrated-N:MODEL" (Penner & Borshukov 2011, N x N; cost kTableLookupNs, memory N^2 x
+//    channels x 4).
 //  - "reference-table": the reference itself tabulated on its annuli (what `lut --kind radial
 //    --reference` writes); error: twice the reference noise (its own statistical error, which the
 //    comparison against itself cannot see). Cost kTableLookupNs, memory annuli x channels x 4 bytes.
@@ -56,16 +56,16 @@ AdviseTarget parse_advise_target(const std::string& text);  // throws InvalidInp
 std::string_view to_string(AdviseTarget target);
 
 struct AdviseOptions {
-  double pixel = 0.1;      // mm per pixel
-  double tolerance = 1;    // largest acceptable image error, 8-bit sRGB code values
+  double pixel = 0.1;    // mm per pixel
+  double tolerance = 1;  // largest acceptable image error, 8-bit sRGB code values
   AdviseTarget target = AdviseTarget::any;
   double object_size = 0;  // mm; 0: not given
 };
 
 struct AdviseCandidate {
   std::string representation;
-  ImageError image;                // .error: the predicted image-space error
-  double cost = 0;                 // ns per evaluation
+  ImageError image;  // .error: the predicted image-space error
+  double cost = 0;   // ns per evaluation
   std::size_t memory_bytes = 0;
   bool realtime = false;
   bool meets_tolerance = false;
@@ -74,14 +74,14 @@ struct AdviseCandidate {
 
 struct Advice {
   AdviseOptions options;
-  std::string reference;                  // its description
+  std::string reference;  // its description
   double reference_seconds = 0;
-  double reference_noise = 0;             // largest over the candidates' comparisons (code values)
+  double reference_noise = 0;               // largest over the candidates' comparisons (code values)
   std::vector<double> diffuse_reflectance;  // the reference's, per channel (the Lambertian albedo)
   std::vector<AdviseCandidate> candidates;  // cheapest first (all, whatever the target)
-  std::optional<std::size_t> choice;      // index into candidates: cheapest within tolerance for the target
-  double profile_radius = 0;              // mm: the radius holding 99 % of the reference's light, widest channel
-  std::string object_warning;             // non-empty when 2 profile_radius exceeds options.object_size
+  std::optional<std::size_t> choice;        // index into candidates: cheapest within tolerance for the target
+  double profile_radius = 0;                // mm: the radius holding 99 % of the reference's light, widest channel
+  std::string object_warning;               // non-empty when 2 profile_radius exceeds options.object_size
 };
 
 // The radial-table candidate: R(r) of `model` at n >= 2 radii geometric over [lo_ell ell, outer]
@@ -91,10 +91,11 @@ struct Advice {
 struct RadialTableNodes {
   std::vector<double> radius, value;  // mm, 1/mm^2
 };
-RadialTableNodes radial_table_nodes(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell = 1e-3, double hi_ell = 0);
+RadialTableNodes radial_table_nodes(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell = 1e-3,
+                                    double hi_ell = 0);
 std::function<double(double)> radial_table(const RadialTableNodes& nodes);
-std::function<double(double)> radial_table(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell = 1e-3,
-                                           double hi_ell = 0);
+std::function<double(double)> radial_table(const Model& model, const Reduced<double>& m, std::size_t n,
+                                           double lo_ell = 1e-3, double hi_ell = 0);
 
 Advice advise(const Medium& medium, const ReferenceProfile& reference, const AdviseOptions& options);
 

@@ -22,8 +22,8 @@ namespace bssrdf {
 
 // Writes the chosen candidate's file (atomically; creates DIR). Returns its path. Throws
 // InvalidInput when the advice has no choice or DIR cannot be created.
-std::filesystem::path write_advised_file(const std::filesystem::path& dir, const std::string& stem, const Medium& medium,
-                                         const std::optional<Material>& material, const Advice& advice,
-                                         const MonteCarloReferenceOptions& reference);
+std::filesystem::path write_advised_file(const std::filesystem::path& dir, const std::string& stem,
+                                         const Medium& medium, const std::optional<Material>& material,
+                                         const Advice& advice, const MonteCarloReferenceOptions& reference);
 
 }  // namespace bssrdf

@@ -28,7 +28,8 @@ struct AnnularProfile {
 
 // R(r) integrated over each annulus (Gauss-Legendre in ln r, 2 points per annulus; the first annulus
 // from 1e-6 r_1 to r_1 with 8), plus total - (sum of the annuli) added to the last one (clamped at 0).
-AnnularProfile annuli_of(const std::vector<double>& edges, const std::function<double(double)>& reflectance, double total);
+AnnularProfile annuli_of(const std::vector<double>& edges, const std::function<double(double)>& reflectance,
+                         double total);
 
 // All of `total` at the centre (a Lambertian surface: light leaves where it entered).
 AnnularProfile point_profile(const std::vector<double>& edges, double total);

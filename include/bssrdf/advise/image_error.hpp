@@ -56,7 +56,7 @@ struct ImageError {
   double reference_noise = 0;  // one standard error of the reference's codes, largest over pixels
   std::string pattern;         // where the largest difference is: "flat", "edge" or "line"
   std::size_t channel = 0;
-  double position = 0;         // centre of that pixel, mm from the edge (lit side > 0)
+  double position = 0;  // centre of that pixel, mm from the edge (lit side > 0)
 };
 
 // The image of both patterns for one channel: linear pixel values, pixel k at index k + K, and the

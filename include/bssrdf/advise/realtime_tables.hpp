@@ -39,9 +39,9 @@
 #include "bssrdf/advise/image_error.hpp"
 #include "bssrdf/advise/reference_profile.hpp"
 #include "bssrdf/lut/gaussian_mixture_table.hpp"
-#include "bssrdf/lut/radial_table.hpp"
 #include "bssrdf/lut/preintegrated_table.hpp"
 #include "bssrdf/lut/projected_profile.hpp"
+#include "bssrdf/lut/radial_table.hpp"
 #include "bssrdf/lut/separable_kernel.hpp"
 #include "bssrdf/medium.hpp"
 #include "bssrdf/model.hpp"
@@ -77,36 +77,44 @@ struct SeparableChoice {
 };
 // The image of a built kernel (per channel: taps at offset x range, the model's total as colour).
 std::vector<PatternImage> render_separable(const ImageErrorMeter& meter, const SeparableKernel& kernel);
-SeparableChoice choose_separable_kernel(const Medium& medium, const std::vector<std::optional<ProjectedProfile>>& profiles,
+SeparableChoice choose_separable_kernel(const Medium& medium,
+                                        const std::vector<std::optional<ProjectedProfile>>& profiles,
                                         const RealtimeJudge& judge, double tolerance);
 
 struct PreintegratedChoice {
-  std::size_t size = 0;        // N x N
-  ImageError image;            // the larger of the flat patterns' and the table's
-  double table_error = 0;      // the bilinear interpolation's, code values
-  double curvature_max = 0;    // 1/mm, as the table is built
+  std::size_t size = 0;      // N x N
+  ImageError image;          // the larger of the flat patterns' and the table's
+  double table_error = 0;    // the bilinear interpolation's, code values
+  double curvature_max = 0;  // 1/mm, as the table is built
   bool meets_tolerance = false;
 };
 // The interpolation error of `table` against `finer` (the same model, twice the size, the same
 // curvature_max), in code values of albedo x D, largest over texels and channels.
-double preintegrated_table_error(const PreintegratedTable& table, const PreintegratedTable& finer, const std::vector<double>& albedo);
+double preintegrated_table_error(const PreintegratedTable& table, const PreintegratedTable& finer,
+                                 const std::vector<double>& albedo);
 // stop_at_flat_error: stop growing once the interpolation error is below the flat patterns' (the
 // candidate cannot meet the tolerance then; `advise`); false: grow until the interpolation alone is
 // within the tolerance (`lut --kind preintegrated`, whose LUT is wanted for curvature anyway).
-PreintegratedChoice choose_preintegrated_table(const Medium& medium, const std::vector<std::optional<ProjectedProfile>>& profiles,
-                                               const RealtimeJudge& judge, double tolerance, bool stop_at_flat_error = true);
+PreintegratedChoice choose_preintegrated_table(const Medium& medium,
+                                               const std::vector<std::optional<ProjectedProfile>>& profiles,
+                                               const RealtimeJudge& judge, double tolerance,
+                                               bool stop_at_flat_error = true);
 
 struct CountChoice {
   std::size_t count = 0;  // Gaussians, or radii
   ImageError image;
   bool meets_tolerance = false;
 };
-CountChoice choose_gaussian_count(const Medium& medium, const Model& model, const RealtimeJudge& judge, double tolerance);
-CountChoice choose_radial_table_size(const Medium& medium, const Model& model, const RealtimeJudge& judge, double tolerance);
+CountChoice choose_gaussian_count(const Medium& medium, const Model& model, const RealtimeJudge& judge,
+                                  double tolerance);
+CountChoice choose_radial_table_size(const Medium& medium, const Model& model, const RealtimeJudge& judge,
+                                     double tolerance);
 
 // The profiles on the judge's annuli of K fitted Gaussians and of an N-radius table.
-std::vector<AnnularProfile> gaussian_sum_profiles(const Medium& medium, const Model& model, int count, const std::vector<double>& edges);
-std::vector<AnnularProfile> radial_table_profiles(const Medium& medium, const Model& model, std::size_t radii, const std::vector<double>& edges);
+std::vector<AnnularProfile> gaussian_sum_profiles(const Medium& medium, const Model& model, int count,
+                                                  const std::vector<double>& edges);
+std::vector<AnnularProfile> radial_table_profiles(const Medium& medium, const Model& model, std::size_t radii,
+                                                  const std::vector<double>& edges);
 
 // `bssrdf lut --pixel P [--tolerance T]`: how wrong a written table looks, and (with T) its size
 // chosen by it. The judge is the model the table tabulates (ModelReference): the table's own error
@@ -125,7 +133,7 @@ struct RadialToleranceChoice {
   ImageError image;
   bool meets_tolerance = false;
 };
-RadialToleranceChoice choose_radial_tolerance(const Medium& medium, const Model& model, const RealtimeJudge& judge, double tolerance,
-                                              RadialTableOptions options);
+RadialToleranceChoice choose_radial_tolerance(const Medium& medium, const Model& model, const RealtimeJudge& judge,
+                                              double tolerance, RadialTableOptions options);
 
 }  // namespace bssrdf

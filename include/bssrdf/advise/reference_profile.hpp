@@ -46,7 +46,7 @@ std::vector<double> reference_annuli(const Medium& medium, std::size_t bins_per_
 struct MonteCarloReferenceOptions {
   std::uint64_t photons = 200'000;  // per channel
   std::uint64_t seed = 1;
-  unsigned threads = 0;             // 0: all; never changes the result
+  unsigned threads = 0;  // 0: all; never changes the result
 };
 
 // The radiative-transfer Monte Carlo solution of the half-space (montecarlo.hpp), binned on the annuli.

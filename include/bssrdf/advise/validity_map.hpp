@@ -26,9 +26,9 @@ namespace bssrdf {
 struct ValidityMapOptions {
   std::string over = "albedo,eta";  // or "albedo,g"
   std::string metric = "profile";   // "total", "profile" or "image"
-  double tolerance = 0.05;          // relative error (total, profile) or code values (image), for the cheapest-model map
-  double pixel = 1;                 // image: pixel size in transport mean free paths
-  std::string extension = ".svg";   // ".svg" or ".png"
+  double tolerance = 0.05;         // relative error (total, profile) or code values (image), for the cheapest-model map
+  double pixel = 1;                // image: pixel size in transport mean free paths
+  std::string extension = ".svg";  // ".svg" or ".png"
 };
 
 // Throws InvalidInput naming "--over", "--metric", "--tolerance", "--pixel" or "--map" for values

@@ -20,31 +20,31 @@ struct FitParameter {
 
 struct FitResidual {
   std::string channel;
-  double x = 0;         // radius, or the index of the quantity fitted
+  double x = 0;  // radius, or the index of the quantity fitted
   double measured = 0;
   double model = 0;
   double weighted = 0;  // (model - measured) / sigma
 };
 
 struct FitReport {
-  std::string kind;        // "profile", "albedo", "slab", "gaussians", "burley"
-  std::string model;       // forward model
-  std::string data_source; // the data file, or a description of the inputs
+  std::string kind;         // "profile", "albedo", "slab", "gaussians", "burley"
+  std::string model;        // forward model
+  std::string data_source;  // the data file, or a description of the inputs
   std::vector<FitParameter> parameters;
   std::vector<FitResidual> residuals;
-  double residual_rms = 0;        // of the weighted residuals
-  double relative_rms = 0;        // RMS of (model - measured)/measured over the points
+  double residual_rms = 0;  // of the weighted residuals
+  double relative_rms = 0;  // RMS of (model - measured)/measured over the points
   int iterations = 0;
-  std::string termination;        // "CONVERGENCE", "exact", ...
+  std::string termination;  // "CONVERGENCE", "exact", ...
   bool converged = false;
   double seconds = 0;
   std::vector<std::string> warnings;
-  std::string solver_report;      // Ceres' FullReport, when Ceres was used
+  std::string solver_report;  // Ceres' FullReport, when Ceres was used
 
   const FitParameter* find(const std::string& name, const std::string& channel = "") const;
 
   std::string full_report() const;  // for people
-  std::string to_json() const;      // {"kind", "model", ..., "channels": [{"name", "sigma_a": {"value","stderr"}, ...}]}
+  std::string to_json() const;  // {"kind", "model", ..., "channels": [{"name", "sigma_a": {"value","stderr"}, ...}]}
 };
 
 }  // namespace bssrdf

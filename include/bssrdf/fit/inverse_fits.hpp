@@ -36,7 +36,7 @@ AlbedoInversion invert_albedo(const std::string& model, double total, double dis
 
 struct ChannelInput {
   std::string name;
-  double value;  // albedo (fit_albedo)
+  double value;     // albedo (fit_albedo)
   double distance;  // in `unit`
   double g = 0;
 };
@@ -48,8 +48,8 @@ struct SlabMeasurement {
   std::string name;
   double reflectance, transmittance;  // per incident flux: diffuse R (specular excluded), total T (ballistic included)
   double reflectance_stderr, transmittance_stderr;
-  double g = 0;                        // held, or the start value when g is fitted
-  double unscattered = -1;             // unscattered transmittance per incident flux; < 0: not measured
+  double g = 0;             // held, or the start value when g is fitted
+  double unscattered = -1;  // unscattered transmittance per incident flux; < 0: not measured
   double unscattered_stderr = 0;
 };
 
@@ -66,7 +66,8 @@ FitReport fit_slab(const std::vector<SlabMeasurement>& channels, double thicknes
 
 // The measurable totals of a slab under the multipole plus the exact ballistic beam (both faces,
 // multiple reflections), per incident flux: what fit_slab matches.
-std::pair<double, double> slab_measurables(double sigma_a, double sigma_s_prime, double g, double eta, double thickness_mm);
+std::pair<double, double> slab_measurables(double sigma_a, double sigma_s_prime, double g, double eta,
+                                           double thickness_mm);
 
 struct NamedProfile {
   std::string name;
@@ -76,8 +77,8 @@ struct NamedProfile {
 // `totals`: when given (one per channel), the weights of each channel are also held to sum to it
 // (a stiff penalty residual): a mixture that conserves the profile's energy even where the
 // sampled radii miss part of it (profiles singular at r = 0).
-FitReport fit_gaussians(const std::vector<NamedProfile>& channels, int count, LengthUnit unit, const std::string& source,
-                        const std::vector<double>& totals = {});
+FitReport fit_gaussians(const std::vector<NamedProfile>& channels, int count, LengthUnit unit,
+                        const std::string& source, const std::vector<double>& totals = {});
 // `totals`: when given (one per channel, in (0, 1]), Burley's A is held at it (the energy of the
 // profile, e.g. the physical model's total reflectance) and only d is fitted; without them A is
 // fitted too and absorbs the shape's misfit (for measured profiles of unknown scale).

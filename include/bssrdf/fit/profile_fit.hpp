@@ -25,13 +25,13 @@ namespace bssrdf {
 
 struct ProfileFitOptions {
   std::string model = "better-dipole";
-  double eta = 1.3;            // fixed, or the starting value when fit_eta
+  double eta = 1.3;  // fixed, or the starting value when fit_eta
   bool fit_eta = false;
   double eta_min = 1.0, eta_max = 2.0;
-  bool fit_scale = false;      // an unknown overall scale (uncalibrated camera)
-  std::vector<double> g;       // per channel (fixed; the profile cannot separate g from sigma_s); empty: 0
-  std::string loss = "none";   // "none", "huber" or "cauchy" (robust to outliers)
-  double loss_scale = 1.0;     // in units of the weighted residual
+  bool fit_scale = false;     // an unknown overall scale (uncalibrated camera)
+  std::vector<double> g;      // per channel (fixed; the profile cannot separate g from sigma_s); empty: 0
+  std::string loss = "none";  // "none", "huber" or "cauchy" (robust to outliers)
+  double loss_scale = 1.0;    // in units of the weighted residual
   int max_iterations = 200;
 
   void validate(std::size_t channels) const;  // throws InvalidInput

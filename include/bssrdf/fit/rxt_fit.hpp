@@ -22,7 +22,7 @@ namespace bssrdf {
 struct RxtFitOptions {
   double g = 0;
   double reflectance_stderr = 0.002, transmittance_stderr = 0.002, unscattered_stderr = 0.002;
-  bool lost_light = false;              // Monte Carlo lost-light correction (needs a sphere)
+  bool lost_light = false;  // Monte Carlo lost-light correction (needs a sphere)
   std::uint64_t lost_light_photons = 100'000;
 };
 

@@ -38,9 +38,9 @@ std::string_view to_string(CyclesMapping mapping);
 std::string_view blender_method_identifier(CyclesMapping mapping, int blender_major);
 
 // Cycles' kernel functions.
-float cycles_random_walk_alpha(float albedo_color, float g);    // subsurface_random_walk_remap
-float cycles_dipole_alpha_prime(float total, float eta);        // bssrdf_dipole_compute_alpha_prime
-float cycles_burley_scaling(float A);                           // bssrdf_burley_fitting
+float cycles_random_walk_alpha(float albedo_color, float g);  // subsurface_random_walk_remap
+float cycles_dipole_alpha_prime(float total, float eta);      // bssrdf_dipole_compute_alpha_prime
+float cycles_burley_scaling(float A);                         // bssrdf_burley_fitting
 // R_eff / R for one channel (bssrdf_setup_radius); eta is clamped to [1.01, 3.8] first.
 float cycles_radius_factor(CyclesMapping mapping, float albedo_color, float eta);
 
@@ -64,7 +64,7 @@ struct CyclesInputs {
   // What Cycles will simulate with these inputs (cycles_simulated), and what we asked for.
   CyclesSimulated simulated;
   std::vector<double> target_sigma_t, target_alpha;  // after g was moved into [0, 0.9] (1/unit)
-  std::vector<std::string> notes;  // where Cycles cannot represent the medium, one line each
+  std::vector<std::string> notes;                    // where Cycles cannot represent the medium, one line each
 };
 CyclesInputs cycles_inputs(const Medium& medium, const DerivedQuantities& derived, CyclesMapping mapping,
                            double millimetres_per_unit);

@@ -29,7 +29,7 @@
 namespace bssrdf {
 
 struct LayersFile {
-  LayerStack stack;  // mm, 1/mm
+  LayerStack stack;                          // mm, 1/mm
   LengthUnit unit = LengthUnit::millimetre;  // the unit the file uses (outputs default to it)
 };
 

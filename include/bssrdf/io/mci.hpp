@@ -26,13 +26,13 @@
 namespace bssrdf {
 
 struct MciRun {
-  std::string output_file;    // as given; informational
+  std::string output_file;  // as given; informational
   char output_format = 'A';
   std::uint64_t photons = 0;
-  double dz = 0, dr = 0;      // mm
+  double dz = 0, dr = 0;  // mm
   int nz = 0, nr = 0, na = 0;
-  LayerStack stack;           // one channel named "mcml"; mm, 1/mm
-  int line = 0;               // line of the run's first record
+  LayerStack stack;  // one channel named "mcml"; mm, 1/mm
+  int line = 0;      // line of the run's first record
 };
 
 struct MciFile {

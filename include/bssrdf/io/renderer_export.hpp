@@ -1,5 +1,5 @@
-// Materials in the form each renderer reads (conventions read from each renderer's own source and documentation; README, "Exports"), every number labelled with
-// its unit and distance convention:
+// Materials in the form each renderer reads (conventions read from each renderer's own source and documentation;
+// README, "Exports"), every number labelled with its unit and distance convention:
 //   json       a bssrdf materials file (materials/README.md), coefficients in 1/unit: loads back
 //   pbrt-v4    `subsurface` materials: sigma_a, sigma_s (1/scene unit), g, eta
 //   mitsuba3   `homogeneous` media (albedo, sigma_t, hg g) and `dielectric` boundaries (int_ior)

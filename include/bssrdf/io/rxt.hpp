@@ -35,7 +35,7 @@ struct RxtRow {
   int line = 0;
   double wavelength = 0;  // the row number (1, 2, ...) when the file has no wavelength column
   double m_r = 0, m_t = 0;
-  double m_u = -1;        // < 0: not measured
+  double m_u = -1;  // < 0: not measured
 };
 
 struct RxtFile {

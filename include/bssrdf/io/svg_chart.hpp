@@ -9,15 +9,15 @@
 namespace bssrdf {
 
 struct ChartPoint {
-  std::string label;    // written beside the point (may be empty)
-  double x = 0, y = 0;  // > 0 (log axes)
+  std::string label;             // written beside the point (may be empty)
+  double x = 0, y = 0;           // > 0 (log axes)
   double y_low = 0, y_high = 0;  // whisker ends; 0: none
 };
 
 struct ChartSeries {
-  std::string name;    // legend entry
-  std::string colour;  // SVG colour, e.g. "#1f77b4"
-  bool square = false; // marker: square instead of circle
+  std::string name;     // legend entry
+  std::string colour;   // SVG colour, e.g. "#1f77b4"
+  bool square = false;  // marker: square instead of circle
   std::vector<ChartPoint> points;
 };
 

@@ -48,13 +48,13 @@ struct AlbedoRadiusTable {
   double g = 0, eta = 1;
   AlbedoRadiusLayout layout;
   int quadrature_order = 0;
-  double tolerance = 0;  // the quadrature tolerance it was built for
-  double seconds = 0;    // time to build
-  std::vector<double> profile;            // [i * radii + j]: 2 pi r_j R(r_j) at albedo_i, 1/mfp
+  double tolerance = 0;         // the quadrature tolerance it was built for
+  double seconds = 0;           // time to build
+  std::vector<double> profile;  // [i * radii + j]: 2 pi r_j R(r_j) at albedo_i, 1/mfp
   // Per row: the Catmull-Rom integral of the row (as pbrt; consistent with the CDF). Within 2 % of
   // the model's total up to rho = 0.999; above, pbrt's layout (203 mfp) truncates the profile (-9 %).
   std::vector<double> effective_albedo;
-  std::vector<double> cdf;                // [i * radii + j]: row CDF, 1 at the last radius
+  std::vector<double> cdf;  // [i * radii + j]: row CDF, 1 at the last radius
 
   std::size_t rows() const { return layout.albedo.size(); }
   std::size_t columns() const { return layout.radius.size(); }
@@ -82,7 +82,8 @@ AdaptiveAlbedoRadiusLayout adaptive_albedo_radius_layout(double g, double eta, d
 
 // Channels "profile" (2 pi r R), "cdf", "radius", "albedo", "effective_albedo" (per-row values repeated
 // along the row); width = radii, height = albedos.
-LookupTable to_lookup_table(const AlbedoRadiusTable& table, const TableContext& context, const std::string& layout_name);
+LookupTable to_lookup_table(const AlbedoRadiusTable& table, const TableContext& context,
+                            const std::string& layout_name);
 // A few lines for people: the grid, the quadrature, the time and the effective-albedo range.
 std::string summary(const AlbedoRadiusTable& table, const std::string& layout_name);
 // One line on an adaptive layout: the tolerance and the worst midpoint errors found.

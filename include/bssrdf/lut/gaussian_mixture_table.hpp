@@ -29,7 +29,7 @@ struct GaussianMixtureTable {
   std::vector<std::vector<double>> variance;  // [channel][k], mm^2 (all rows equal when shared)
   std::vector<std::vector<double>> weight;    // [channel][k]
   std::vector<double> total_reflectance;      // [channel]: the model's int 2 pi r R dr
-  std::vector<double> conservation_error;    // [channel]: sum_k w / total - 1
+  std::vector<double> conservation_error;     // [channel]: sum_k w / total - 1
   std::vector<double> relative_l2_error;      // [channel]: (int r (R - fit)^2 dr / int r R^2 dr)^(1/2); fits only
   double seconds = 0;
 
@@ -40,7 +40,8 @@ GaussianMixtureTable quantized_mixture_table(const Medium& medium, const quantiz
 // The mixture of any model that has its own (model_registry.hpp: own_gaussians); InvalidInput if it has none.
 GaussianMixtureTable own_mixture_table(const Medium& medium, const Model& model);
 // count: 1 to 32; the profile is sampled on `samples` radii (default_radii_mm of profile_report.hpp).
-GaussianMixtureTable fitted_mixture_table(const Medium& medium, const Model& model, int count, std::size_t samples = 128);
+GaussianMixtureTable fitted_mixture_table(const Medium& medium, const Model& model, int count,
+                                          std::size_t samples = 128);
 
 // width = count(), height = 1. Shared variances: channels "variance" (unit^2) then one weight
 // channel per colour channel (the layout of GPU Gems 3's table). Per-channel variances: for each

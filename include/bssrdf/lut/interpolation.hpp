@@ -11,8 +11,8 @@
 #include <array>
 #include <functional>
 #include <span>
-#include <vector>
 #include <string_view>
+#include <vector>
 
 namespace bssrdf {
 

@@ -19,8 +19,8 @@
 namespace bssrdf {
 
 struct TableChannel {
-  std::string name;         // OpenEXR channel name, e.g. "R", "radius", "cdf.R"
-  std::string description;  // what it holds, with its unit
+  std::string name;            // OpenEXR channel name, e.g. "R", "radius", "cdf.R"
+  std::string description;     // what it holds, with its unit
   std::vector<double> values;  // row-major, width * height
 };
 
@@ -34,7 +34,7 @@ struct TableAttribute {
 // The coordinate of every column (x) or row (y) of a 2D table, for plots: written by CSV and JSON
 // beside the channels (OpenEXR records the axes as attributes).
 struct TableAxis {
-  std::string name;  // e.g. "n_dot_l", "curvature (1/mm)"
+  std::string name;            // e.g. "n_dot_l", "curvature (1/mm)"
   std::vector<double> values;  // width (x) or height (y) entries; empty: no axis
 };
 
@@ -47,8 +47,8 @@ struct LookupTable {
 
   // Throws InvalidInput when the size does not match width * height or the name repeats.
   void add_channel(std::string name, std::string description, std::vector<double> values);
-  void set(const std::string& name, AttributeValue value);  // replaces an existing attribute
-  const TableChannel& channel(const std::string& name) const;  // throws InvalidInput
+  void set(const std::string& name, AttributeValue value);         // replaces an existing attribute
+  const TableChannel& channel(const std::string& name) const;      // throws InvalidInput
   const AttributeValue* attribute(const std::string& name) const;  // nullptr when absent
 };
 

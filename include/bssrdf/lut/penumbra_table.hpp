@@ -40,12 +40,12 @@ struct PenumbraOptions {
 struct PenumbraTable {
   PenumbraOptions options;  // width_max resolved
   std::vector<std::string> channel_names;
-  std::vector<double> shadow;                // [i], width
-  std::vector<double> penumbra_width;        // [j], height, mm
-  std::vector<std::vector<double>> value;    // [channel][j * width + i]: D
-  std::vector<bool> scatters;                // [channel]: false for sigma_s = 0, whose D is s
-  bool width_from_widest = false;            // width_max was 0: 8 widest_r50
-  double widest_r50 = 0;                     // mm
+  std::vector<double> shadow;              // [i], width
+  std::vector<double> penumbra_width;      // [j], height, mm
+  std::vector<std::vector<double>> value;  // [channel][j * width + i]: D
+  std::vector<bool> scatters;              // [channel]: false for sigma_s = 0, whose D is s
+  bool width_from_widest = false;          // width_max was 0: 8 widest_r50
+  double widest_r50 = 0;                   // mm
 };
 
 PenumbraTable build_penumbra_table(const Medium& medium, const Model& model, const PenumbraOptions& options);

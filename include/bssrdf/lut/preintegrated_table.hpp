@@ -2,7 +2,8 @@
 // shading of a curved surface of radius r = 1/curvature lit at angle theta (u = N.L = cos theta),
 // with light scattered around the ring:
 //
-//   D(theta, r) = int_{-pi}^{pi} max(0, cos(theta + x)) R_ring(2 r sin(x/2)) dx / int_{-pi}^{pi} R_ring(2 r sin(x/2)) dx
+//   D(theta, r) = int_{-pi}^{pi} max(0, cos(theta + x)) R_ring(2 r sin(x/2)) dx / int_{-pi}^{pi} R_ring(2 r sin(x/2))
+//   dx
 //
 // (Penner & Borshukov 2011, GPU Pro 2) where R_ring is the profile's cross-section through the ring,
 // the line projection of R (ProjectedProfile::line: for a sum of Gaussians, the 1D-normalised
@@ -42,16 +43,18 @@ struct PreintegratedOptions {
 struct PreintegratedTable {
   PreintegratedOptions options;  // curvature_max resolved
   std::vector<std::string> channel_names;
-  std::vector<double> n_dot_l;    // [i], width
-  std::vector<double> curvature;  // [j], height, 1/mm
+  std::vector<double> n_dot_l;             // [i], width
+  std::vector<double> curvature;           // [j], height, 1/mm
   std::vector<std::vector<double>> value;  // [channel][j * width + i]: D
-  double widest_r50 = 0;          // mm: the default curvature_max is its inverse
-  std::vector<bool> scatters;     // [channel]: false for sigma_s = 0, whose D is max(0, N.L)
+  double widest_r50 = 0;                   // mm: the default curvature_max is its inverse
+  std::vector<bool> scatters;              // [channel]: false for sigma_s = 0, whose D is max(0, N.L)
 };
 
-PreintegratedTable build_preintegrated_table(const Medium& medium, const Model& model, const PreintegratedOptions& options);
+PreintegratedTable build_preintegrated_table(const Medium& medium, const Model& model,
+                                             const PreintegratedOptions& options);
 // The same from the channels' projections (project_channels), for callers that build several sizes.
-PreintegratedTable build_preintegrated_table(const Medium& medium, const std::vector<std::optional<ProjectedProfile>>& profiles,
+PreintegratedTable build_preintegrated_table(const Medium& medium,
+                                             const std::vector<std::optional<ProjectedProfile>>& profiles,
                                              const PreintegratedOptions& options);
 
 // Channels: one per colour channel (D). Attributes record the axes, sampling and curvature range.

@@ -33,9 +33,9 @@ class ProjectedProfile {
   ProjectedProfile(const Model& model, const Reduced<double>& m);
 
   double total() const { return total_; }
-  double reflectance(double r) const;     // R(r); R(r_min) below the grid, 0 beyond it
-  double line(double x) const;            // even in x
-  double half_plane(double x) const;      // signed x: total - half_plane(-x) for x < 0
+  double reflectance(double r) const;  // R(r); R(r_min) below the grid, 0 beyond it
+  double line(double x) const;         // even in x
+  double half_plane(double x) const;   // signed x: total - half_plane(-x) for x < 0
   double strip(double a, double b) const { return half_plane(a) - half_plane(b); }
   double half_plane_integral(double x) const;  // int_0^x half_plane, x >= 0
   // The radius holding `fraction` of total() (0 < fraction < 1).
@@ -48,7 +48,7 @@ class ProjectedProfile {
   double r_max() const;
 
  private:
-  double u0_ = 0, h_ = 0;  // nodes u_j = u0 + j h, u = ln r
+  double u0_ = 0, h_ = 0;                                           // nodes u_j = u0 + j h, u = ln r
   std::vector<double> log_R_, log_line_, half_plane_, cumulative_;  // cumulative: int_0^{r_j} 2 pi r R dr
   std::vector<double> half_plane_integral_;                         // int_0^{x_j} half_plane
   double total_ = 0, half_plane_0_ = 0;

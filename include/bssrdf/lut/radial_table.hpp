@@ -43,17 +43,17 @@ struct RadialTable {
   // Grid: uniform in x = ln r + r / L from r_min to r_max (ln of r in mm): logarithmic in the near
   // field, linear in the exponential tail, L = the shortest local decay length -1/(d ln R/dr) of
   // the channels at their r_hi.
-  double decay_length = 1;                        // L, mm
-  std::vector<double> radius;                     // mm
-  std::vector<std::vector<double>> reflectance;   // [channel][j]: R(r_j), 1/mm^2, per entered flux
-  std::vector<std::vector<double>> ring;          // 2 pi r_j R(r_j), 1/mm
-  std::vector<std::vector<double>> cdf;           // int_0^{r_j} 2 pi r R dr / table_reflectance
-  std::vector<double> u;                          // j / (N - 1)
-  std::vector<std::vector<double>> inverse_cdf;   // [channel][j]: r with cdf(r) = u_j, mm
-  std::vector<double> total_reflectance;          // int_0^inf 2 pi r R dr
-  std::vector<double> table_reflectance;          // int_0^{r_max} 2 pi r R dr
-  std::vector<double> range_min, range_max;       // per channel, mm
-  double max_error = 0;  // worst relative error at the check points, over channels in their ranges
+  double decay_length = 1;                       // L, mm
+  std::vector<double> radius;                    // mm
+  std::vector<std::vector<double>> reflectance;  // [channel][j]: R(r_j), 1/mm^2, per entered flux
+  std::vector<std::vector<double>> ring;         // 2 pi r_j R(r_j), 1/mm
+  std::vector<std::vector<double>> cdf;          // int_0^{r_j} 2 pi r R dr / table_reflectance
+  std::vector<double> u;                         // j / (N - 1)
+  std::vector<std::vector<double>> inverse_cdf;  // [channel][j]: r with cdf(r) = u_j, mm
+  std::vector<double> total_reflectance;         // int_0^inf 2 pi r R dr
+  std::vector<double> table_reflectance;         // int_0^{r_max} 2 pi r R dr
+  std::vector<double> range_min, range_max;      // per channel, mm
+  double max_error = 0;         // worst relative error at the check points, over channels in their ranges
   std::size_t evaluations = 0;  // model evaluations spent (all channels)
 
   std::size_t size() const { return radius.size(); }
@@ -73,8 +73,9 @@ std::string summary(const RadialTable& table, const TableContext& context);
 // The importance-sampling channels every radial table writes, in this order: "ring.<c>" (2 pi r R,
 // 1/unit), "cdf.<c>" (described by cdf_description), "u" and "inverse_cdf.<c>" (unit); lengths
 // given in mm.
-void add_sampling_channels(LookupTable& out, const std::vector<std::string>& channel_names, const std::vector<std::vector<double>>& ring,
-                           const std::vector<std::vector<double>>& cdf, const std::vector<double>& u,
-                           const std::vector<std::vector<double>>& inverse_cdf, const std::string& cdf_description, LengthUnit unit);
+void add_sampling_channels(LookupTable& out, const std::vector<std::string>& channel_names,
+                           const std::vector<std::vector<double>>& ring, const std::vector<std::vector<double>>& cdf,
+                           const std::vector<double>& u, const std::vector<std::vector<double>>& inverse_cdf,
+                           const std::string& cdf_description, LengthUnit unit);
 
 }  // namespace bssrdf

@@ -35,16 +35,16 @@ struct ReferenceRadialOptions {
 struct ReferenceRadialTable {
   ReferenceRadialOptions options;
   std::vector<std::string> channel_names;
-  std::vector<double> r_inner, r_outer, radius;    // mm; radius: the bin's centre (geometric; r_min/2 for the first)
-  std::vector<std::vector<double>> reflectance;    // [channel][bin]: bin average of R, 1/mm^2, per entered flux
+  std::vector<double> r_inner, r_outer, radius;  // mm; radius: the bin's centre (geometric; r_min/2 for the first)
+  std::vector<std::vector<double>> reflectance;  // [channel][bin]: bin average of R, 1/mm^2, per entered flux
   std::vector<std::vector<double>> reflectance_stderr;
-  std::vector<std::vector<double>> ring;           // 2 pi radius R
-  std::vector<std::vector<double>> cdf;            // at r_outer, over the table (last = 1)
-  std::vector<double> u;                           // j / (bins - 1)
-  std::vector<std::vector<double>> inverse_cdf;    // radius where the CDF reaches u_j, mm
-  std::vector<double> total_reflectance;           // diffuse reflectance, all radii
+  std::vector<std::vector<double>> ring;         // 2 pi radius R
+  std::vector<std::vector<double>> cdf;          // at r_outer, over the table (last = 1)
+  std::vector<double> u;                         // j / (bins - 1)
+  std::vector<std::vector<double>> inverse_cdf;  // radius where the CDF reaches u_j, mm
+  std::vector<double> total_reflectance;         // diffuse reflectance, all radii
   std::vector<double> total_stderr;
-  std::vector<double> table_reflectance;           // within r_outer.back()
+  std::vector<double> table_reflectance;  // within r_outer.back()
 
   std::size_t size() const { return radius.size(); }
 };

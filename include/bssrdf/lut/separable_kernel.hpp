@@ -35,8 +35,8 @@ namespace bssrdf {
 
 struct SeparableKernelOptions {
   int taps = 17;
-  double range = 0;    // mm, half-width; 0: the band holding `band` of the widest channel's light
-  double band = 0.95;  // 0 < band < 1
+  double range = 0;       // mm, half-width; 0: the band holding `band` of the widest channel's light
+  double band = 0.95;     // 0 < band < 1
   void validate() const;  // throws InvalidInput naming the option
 };
 
@@ -47,17 +47,18 @@ struct SeparableKernel {
   SeparableKernelOptions options;  // range resolved
   bool range_from_band = false;    // the range was chosen to hold options.band of the widest channel
   std::vector<std::string> channel_names;
-  std::vector<double> offset;                 // [i] in units of the range: -1 .. 1, centre first
-  std::vector<std::vector<double>> weight;    // [channel][i], each channel sums to 1
-  std::vector<std::vector<double>> strip;     // [channel][i], before normalisation: light per unit entered flux
-  std::vector<double> total_reflectance;      // [channel]: int 2 pi r R dr
-  std::vector<double> captured;               // [channel]: sum of strip / total_reflectance (1 without scattering)
-  std::vector<double> projection_error;       // [channel]: ProjectedProfile::conservation_error()
+  std::vector<double> offset;               // [i] in units of the range: -1 .. 1, centre first
+  std::vector<std::vector<double>> weight;  // [channel][i], each channel sums to 1
+  std::vector<std::vector<double>> strip;   // [channel][i], before normalisation: light per unit entered flux
+  std::vector<double> total_reflectance;    // [channel]: int 2 pi r R dr
+  std::vector<double> captured;             // [channel]: sum of strip / total_reflectance (1 without scattering)
+  std::vector<double> projection_error;     // [channel]: ProjectedProfile::conservation_error()
 };
 
 SeparableKernel build_separable_kernel(const Medium& medium, const Model& model, const SeparableKernelOptions& options);
 // The same from the channels' projections (project_channels), for callers that build many kernels.
-SeparableKernel build_separable_kernel(const Medium& medium, const std::vector<std::optional<ProjectedProfile>>& profiles,
+SeparableKernel build_separable_kernel(const Medium& medium,
+                                       const std::vector<std::optional<ProjectedProfile>>& profiles,
                                        const SeparableKernelOptions& options);
 
 // Channels: the weights under the medium's channel names, "offset" (units of the range); the range

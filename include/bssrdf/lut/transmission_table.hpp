@@ -1,11 +1,11 @@
 // The transmission table: total diffuse transmittance of a slab of the material against its
-// thickness, per channel (options.model "adding-doubling": exact at every thickness, nothing omitted), for thin-object translucency in real-time engines (Unreal's 32-texel
-// transmission profile, Unity's thickness remap). Values come from the multipole (Donner & Jensen
-// 2005) where it holds; where it does not (thinner than 2 transport mean free paths, negative
-// transmittance: the slab's own "invalid" codes, as `bssrdf transmission` uses them) the thickness is
-// either filled from the Monte Carlo reference (options.reference) or omitted with a recorded note:
-// never a wrong number. The medium's other validity notes (e.g. low_albedo, which concerns the
-// diffusion approximation's accuracy at every thickness) are recorded, not acted on.
+// thickness, per channel (options.model "adding-doubling": exact at every thickness, nothing omitted), for thin-object
+// translucency in real-time engines (Unreal's 32-texel transmission profile, Unity's thickness remap). Values come from
+// the multipole (Donner & Jensen 2005) where it holds; where it does not (thinner than 2 transport mean free paths,
+// negative transmittance: the slab's own "invalid" codes, as `bssrdf transmission` uses them) the thickness is either
+// filled from the Monte Carlo reference (options.reference) or omitted with a recorded note: never a wrong number. The
+// medium's other validity notes (e.g. low_albedo, which concerns the diffusion approximation's accuracy at every
+// thickness) are recorded, not acted on.
 //
 // Convention: per unit flux that entered the slab through the top face, light that scattered at
 // least once and left through the bottom face; the ballistic (unscattered) beam e^{-sigma_t d} is
@@ -43,13 +43,13 @@ std::string_view to_string(TransmissionSource source);
 struct TransmissionTable {
   TransmissionTableOptions options;
   std::vector<std::string> channel_names;
-  std::vector<double> thickness;                     // mm, increasing: the thicknesses kept
-  std::vector<std::vector<double>> transmittance;    // [channel][j]
-  std::vector<std::vector<double>> standard_error;   // [channel][j]; 0 where the multipole gave it
-  std::vector<TransmissionSource> source;            // [j]: one source per thickness, all channels
-  std::vector<double> omitted_thickness;             // mm: invalid under the multipole, no reference
-  std::vector<std::string> omitted_reason;           // "thin_slab (G, B)"
-  std::vector<std::string> validity;                 // [channel]: the multipole's other warnings
+  std::vector<double> thickness;                    // mm, increasing: the thicknesses kept
+  std::vector<std::vector<double>> transmittance;   // [channel][j]
+  std::vector<std::vector<double>> standard_error;  // [channel][j]; 0 where the multipole gave it
+  std::vector<TransmissionSource> source;           // [j]: one source per thickness, all channels
+  std::vector<double> omitted_thickness;            // mm: invalid under the multipole, no reference
+  std::vector<std::string> omitted_reason;          // "thin_slab (G, B)"
+  std::vector<std::string> validity;                // [channel]: the multipole's other warnings
   double monte_carlo_seconds = 0;
 
   std::size_t size() const { return thickness.size(); }

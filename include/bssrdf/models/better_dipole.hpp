@@ -4,7 +4,8 @@
 // separately). z_r = 1/sigma_t', z_v = -(z_r + 4 A D_G) (image_source.hpp).
 //
 //   R(r) = alpha'^2 { C_phi [fluence(z_r) - fluence(z_v)] + C_E [flux(z_r) - flux(z_v)] }
-//   R_total = (alpha'^2/2) e^{-sigma_tr z_r} [ C_E (1 + e^{-4 A sigma_tr D}) + (C_phi/(sigma_tr D)) (1 - e^{-4 A sigma_tr D}) ]
+//   R_total = (alpha'^2/2) e^{-sigma_tr z_r} [ C_E (1 + e^{-4 A sigma_tr D}) + (C_phi/(sigma_tr D)) (1 - e^{-4 A
+//   sigma_tr D}) ]
 #pragma once
 
 #include <cmath>

@@ -22,11 +22,11 @@ struct DiffusionLimits {
   // Highest band first; below the last band's bound the error is unknown (reported invalid).
   // Measured at g = 0 (used for g < 0.5, negative g included) and at g = 0.9 (used for g >= 0.5).
   std::vector<AccuracyBand> isotropic_bands, forward_bands;
-  double warn_above_error = 0.03;        // a warning where the band's worst error exceeds this
-  double invalid_above_error = 0.3;      // invalid where it exceeds this
+  double warn_above_error = 0.03;           // a warning where the band's worst error exceeds this
+  double invalid_above_error = 0.3;         // invalid where it exceeds this
   double invalid_below_albedo_prime = 0.1;  // diffusion needs scattering to dominate absorption
-  double eta_min = 1.0, eta_max = 1.4;   // range of eta the bands were measured over
-  std::string context;                   // appended to the error figure, e.g. what it omits
+  double eta_min = 1.0, eta_max = 1.4;      // range of eta the bands were measured over
+  std::string context;                      // appended to the error figure, e.g. what it omits
 };
 
 // The measured accuracy of a model by its command-line name ("dipole", "better-dipole+ss", ...): its
@@ -42,11 +42,11 @@ ValidityReport diffusion_validity(const Reduced<double>& m, const DiffusionLimit
 
 // What a slab model (multipole) found for one channel; slab_validity() turns it into the report.
 struct SlabState {
-  double thickness_over_ell = 0;       // d / ell
-  double total_transmittance = 0;      // of the pairs used
+  double thickness_over_ell = 0;                      // d / ell
+  double total_transmittance = 0;                     // of the pairs used
   double min_reflectance = 0, min_transmittance = 0;  // smallest R(r), T(r) over a radius grid
-  double truncation_error = 0;         // |R_rest| + |T_rest| of the pairs not used
-  double tolerance = 0;                // what the pair count was chosen for
+  double truncation_error = 0;                        // |R_rest| + |T_rest| of the pairs not used
+  double tolerance = 0;                               // what the pair count was chosen for
   bool converged = true;
 };
 

@@ -35,8 +35,8 @@ T reflectance(const Reduced<T>& m, T r) {
 template <class T>
 T cumulative_reflectance(const Reduced<T>& m, T r) {
   const auto s = sources(m);
-  return m.albedo_prime * (point_source::flux_cumulative(s.z_r, s.sigma_tr, r) -
-                           point_source::flux_cumulative(s.z_v, s.sigma_tr, r));
+  return m.albedo_prime *
+         (point_source::flux_cumulative(s.z_r, s.sigma_tr, r) - point_source::flux_cumulative(s.z_v, s.sigma_tr, r));
 }
 
 // Depends only on alpha' and eta (the profile's shape scales with ell).

@@ -48,7 +48,8 @@ struct PhotonBeam {
   template <class T>
   void operator()(const Reduced<T>& m, const std::vector<double>& radii, T* out) const {
     const auto b = improved_boundary(m.eta);
-    for (std::size_t i = 0; i < radii.size(); ++i) out[i] = photon_beam_diffusion::reflectance(m, b, T(radii[i]), samples);
+    for (std::size_t i = 0; i < radii.size(); ++i)
+      out[i] = photon_beam_diffusion::reflectance(m, b, T(radii[i]), samples);
   }
 };
 

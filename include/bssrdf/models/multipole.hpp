@@ -142,11 +142,12 @@ struct Spectra {
 // 0 by 0 as s -> 0 (its limit there is a / L); requires |a| < L.
 template <class T>
 T image_tail(T a, T period, T s) {
+  using point_source::one_minus_exp_over_x;
   using std::abs;
   using std::exp;
-  using point_source::one_minus_exp_over_x;
   const T b = abs(a);
-  const T value = exp(-(period - b) * s) * b * one_minus_exp_over_x(T(2) * b * s) / (period * one_minus_exp_over_x(period * s));
+  const T value =
+      exp(-(period - b) * s) * b * one_minus_exp_over_x(T(2) * b * s) / (period * one_minus_exp_over_x(period * s));
   return a < T(0) ? -value : value;
 }
 

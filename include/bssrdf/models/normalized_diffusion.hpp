@@ -52,8 +52,10 @@ template <class T>
 T scaling_factor(Scaling scaling, T A) {
   using std::abs;
   switch (scaling) {
-    case Scaling::searchlight_mfp: return T(1.85) - A + T(7) * abs(A - T(0.8)) * (A - T(0.8)) * (A - T(0.8));
-    case Scaling::diffuse_mfp: return T(1.9) - A + T(3.5) * (A - T(0.8)) * (A - T(0.8));
+    case Scaling::searchlight_mfp:
+      return T(1.85) - A + T(7) * abs(A - T(0.8)) * (A - T(0.8)) * (A - T(0.8));
+    case Scaling::diffuse_mfp:
+      return T(1.9) - A + T(3.5) * (A - T(0.8)) * (A - T(0.8));
     case Scaling::searchlight_dmfp: {
       const T x = A - T(0.33);
       return T(3.5) + T(100) * x * x * x * x;

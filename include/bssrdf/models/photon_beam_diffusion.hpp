@@ -51,7 +51,8 @@ T multiple_scattering(const Reduced<T>& m, const ImprovedBoundary<T>& b, T r, in
     const T e_r = exp(-sigma_tr * d_r) / d_r, e_v = exp(-sigma_tr * d_v) / d_v;
     const T kappa = T(1) - exp(T(-2) * sigma_tp * (d_r + t));
     const T phi = (e_r - e_v) * inv_4pi / D;
-    const T E = (t * (T(1) + sigma_tr * d_r) * e_r / (d_r * d_r) - z_v * (T(1) + sigma_tr * d_v) * e_v / (d_v * d_v)) * inv_4pi;
+    const T E =
+        (t * (T(1) + sigma_tr * d_r) * e_r / (d_r * d_r) - z_v * (T(1) + sigma_tr * d_v) * e_v / (d_v * d_v)) * inv_4pi;
     return sigma_tp * exp(-sigma_tp * t) * kappa * (b.C_phi * phi + b.C_E * E) * dt_dv;
   };
   return m.albedo_prime * m.albedo_prime *

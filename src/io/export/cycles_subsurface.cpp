@@ -9,12 +9,11 @@
 namespace bssrdf {
 namespace {
 constexpr float kPi = 3.14159265358979323846f;
-constexpr double kMinAlpha = 0.2;     // Cycles raises lower single-scattering albedos to this
+constexpr double kMinAlpha = 0.2;    // Cycles raises lower single-scattering albedos to this
 constexpr double kMaxBounces = 256;  // BSSRDF_MAX_BOUNCES: Cycles ends a walk after this many events
-const std::pair<CyclesMapping, const char*> kMappings[] = {
-    {CyclesMapping::fixed_radius, "fixed-radius"},
-    {CyclesMapping::radius_remap, "radius-remap"},
-    {CyclesMapping::burley, "burley"}};
+const std::pair<CyclesMapping, const char*> kMappings[] = {{CyclesMapping::fixed_radius, "fixed-radius"},
+                                                           {CyclesMapping::radius_remap, "radius-remap"},
+                                                           {CyclesMapping::burley, "burley"}};
 }  // namespace
 
 CyclesMapping parse_cycles_mapping(std::string_view text, std::string_view field) {
@@ -34,9 +33,12 @@ std::string_view to_string(CyclesMapping mapping) {
 
 std::string_view blender_method_identifier(CyclesMapping mapping, int blender_major) {
   switch (mapping) {
-    case CyclesMapping::fixed_radius: return blender_major >= 4 ? "RANDOM_WALK" : "RANDOM_WALK_FIXED_RADIUS";
-    case CyclesMapping::radius_remap: return blender_major >= 4 ? "RANDOM_WALK_SKIN" : "RANDOM_WALK";
-    case CyclesMapping::burley: return "BURLEY";
+    case CyclesMapping::fixed_radius:
+      return blender_major >= 4 ? "RANDOM_WALK" : "RANDOM_WALK_FIXED_RADIUS";
+    case CyclesMapping::radius_remap:
+      return blender_major >= 4 ? "RANDOM_WALK_SKIN" : "RANDOM_WALK";
+    case CyclesMapping::burley:
+      return "BURLEY";
   }
   return "?";
 }
@@ -45,23 +47,23 @@ float cycles_random_walk_alpha(float albedo, float g) {
   const float g2 = g * g, g3 = g2 * g, g4 = g3 * g, g5 = g4 * g, g6 = g5 * g, g7 = g6 * g;
   const float A = 1.8260523782f + -1.28451056436f * g + -1.79904629312f * g2 + 9.19393289202f * g3 +
                   -22.8215585862f * g4 + 32.0234874259f * g5 + -23.6264803333f * g6 + 7.21067002658f * g7;
-  const float B = 4.98511194385f + 0.127355959438f * std::exp(31.1491581433f * g + -201.847017512f * g2 +
-                                                              841.576016723f * g3 + -2018.09288505f * g4 +
-                                                              2731.71560286f * g5 + -1935.41424244f * g6 +
-                                                              559.009054474f * g7);
+  const float B =
+      4.98511194385f + 0.127355959438f * std::exp(31.1491581433f * g + -201.847017512f * g2 + 841.576016723f * g3 +
+                                                  -2018.09288505f * g4 + 2731.71560286f * g5 + -1935.41424244f * g6 +
+                                                  559.009054474f * g7);
   const float C = 1.09686102424f + -0.394704063468f * g + 1.05258115941f * g2 + -8.83963712726f * g3 +
                   28.8643230661f * g4 + -46.8802913581f * g5 + 38.5402837518f * g6 + -12.7181042538f * g7;
   const float D = 0.496310210422f + 0.360146581622f * g + -2.15139309747f * g2 + 17.8896899217f * g3 +
                   -55.2984010333f * g4 + 82.065982243f * g5 + -58.5106008578f * g6 + 15.8478295021f * g7;
-  const float E = 4.23190299701f + 0.00310603949088f * std::exp(76.7316253952f * g + -594.356773233f * g2 +
-                                                                2448.8834203f * g3 + -5576.68528998f * g4 +
-                                                                7116.60171912f * g5 + -4763.54467887f * g6 +
-                                                                1303.5318055f * g7);
+  const float E =
+      4.23190299701f + 0.00310603949088f * std::exp(76.7316253952f * g + -594.356773233f * g2 + 2448.8834203f * g3 +
+                                                    -5576.68528998f * g4 + 7116.60171912f * g5 + -4763.54467887f * g6 +
+                                                    1303.5318055f * g7);
   const float F = 2.40602999408f + -2.51814844609f * g + 9.18494908356f * g2 + -79.2191708682f * g3 +
                   259.082868209f * g4 + -403.613804597f * g5 + 302.85712436f * g6 + -87.4370473567f * g7;
   const float blend = std::pow(albedo, 0.25f);
-  const float alpha = (1.0f - blend) * A * std::pow(std::atan(B * albedo), C) +
-                      blend * D * std::pow(std::atan(E * albedo), F);
+  const float alpha =
+      (1.0f - blend) * A * std::pow(std::atan(B * albedo), C) + blend * D * std::pow(std::atan(E * albedo), F);
   return std::clamp(alpha, 0.0f, 0.999999f);
 }
 
@@ -119,8 +121,7 @@ CyclesInputs cycles_inputs(const Medium& medium, const DerivedQuantities& derive
   CyclesInputs in;
   in.mapping = mapping;
   in.eta = std::clamp(medium.eta, 1.01, 3.8);
-  if (in.eta != medium.eta)
-    in.notes.push_back("eta " + format_number(medium.eta) + " clamped to Cycles' 1.01-3.8");
+  if (in.eta != medium.eta) in.notes.push_back("eta " + format_number(medium.eta) + " clamped to Cycles' 1.01-3.8");
   // One g (the channels' mean, sigma_s rescaled to keep sigma_s'), then into Cycles' [0, 0.9] the same way.
   const auto one = single_g(medium);
   in.g = std::clamp(one.g, 0.0, 0.9);
@@ -160,8 +161,8 @@ CyclesInputs cycles_inputs(const Medium& medium, const DerivedQuantities& derive
                          " < 0.2: Cycles walks with alpha 0.2 and scales the throughput by alpha / 0.2 instead "
                          "(total roughly kept, halo too wide)");
     else if (alpha > 1 - 1.0 / kMaxBounces)
-      in.notes.push_back(name + ": alpha " + format_number(alpha) + ": walks last up to 1/(1 - alpha) = " +
-                         format_number(std::round(1 / (1 - alpha))) +
+      in.notes.push_back(name + ": alpha " + format_number(alpha) +
+                         ": walks last up to 1/(1 - alpha) = " + format_number(std::round(1 / (1 - alpha))) +
                          " scattering events before absorption, beyond Cycles' 256-event walk limit: the light that "
                          "travels farthest is lost (less bleed and a lower total than the medium's)");
     if (alpha >= kMinAlpha && std::abs(reached - alpha) > 1e-4)

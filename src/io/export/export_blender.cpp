@@ -22,8 +22,10 @@ std::string py_string(const std::string& text) {
   std::string out = "\"";
   for (char c : text) {
     if (c == '\\' || c == '"') out += '\\';
-    if (c == '\n') out += "\\n";
-    else out += c;
+    if (c == '\n')
+      out += "\\n";
+    else
+      out += c;
   }
   return out + "\"";
 }
@@ -48,32 +50,44 @@ std::string export_blender(const std::vector<ExportEntry>& entries, LengthUnit u
       methods += std::string(methods.empty() ? "" : ", ") + std::to_string(major) + ": '" +
                  std::string(blender_method_identifier(mapping, major)) + "'";
   const std::string radius_rule =
-      mapping == CyclesMapping::fixed_radius
-          ? "R / (4 pi) = 1 / (sigma_t (1 - g))"
-          : mapping == CyclesMapping::radius_remap
-                ? "R sqrt(3 (1 - alpha'(C, IOR))) = 1 / (sigma_t (1 - g)), alpha' Cycles' 12-step dipole inversion of C"
-                : "R / (4 pi) / (1.9 - C + 3.5 (C - 0.8)^2) = Burley's d fitted to the physical profile, C = its A";
+      mapping == CyclesMapping::fixed_radius ? "R / (4 pi) = 1 / (sigma_t (1 - g))"
+      : mapping == CyclesMapping::radius_remap
+          ? "R sqrt(3 (1 - alpha'(C, IOR))) = 1 / (sigma_t (1 - g)), alpha' Cycles' 12-step dipole inversion of C"
+          : "R / (4 pi) / (1.9 - C + 3.5 (C - 0.8)^2) = Burley's d fitted to the physical profile, C = its A";
   std::string out =
-      "# Blender Principled BSDF materials exported by bssrdf " BSSRDF_VERSION "\n"
-      "# Cycles subsurface method: " + std::string(to_string(mapping)) + " (Blender " +
-      (options.blender_version ? std::to_string(options.blender_version) + ".x" : std::string("3.x and 4.x, chosen when run")) + ").\n"
+      "# Blender Principled BSDF materials exported by bssrdf " BSSRDF_VERSION
+      "\n"
+      "# Cycles subsurface method: " +
+      std::string(to_string(mapping)) + " (Blender " +
+      (options.blender_version ? std::to_string(options.blender_version) + ".x"
+                               : std::string("3.x and 4.x, chosen when run")) +
+      ").\n"
       "# Chosen so that Cycles simulates our medium (Cycles' kernel: closure/bssrdf.h bssrdf_setup_radius,\n"
-      "# integrator/subsurface_random_walk.h subsurface_random_walk_remap), per channel, in " + u + ":\n"
+      "# integrator/subsurface_random_walk.h subsurface_random_walk_remap), per channel, in " +
+      u +
+      ":\n"
       "#   R = Subsurface Radius x Subsurface (3.x; here 1) or x Subsurface Scale (4.x; here 1)\n"
-      "#   " + radius_rule + "\n" +
+      "#   " +
+      radius_rule + "\n" +
       (mapping == CyclesMapping::burley
-           ? std::string("#   Christensen-Burley is a profile, not a medium: R(r) = C (e^{-r/d} + e^{-r/3d}) / (8 pi d r).\n")
-           : std::string("#   C = Base Color (and 3.x Subsurface Color) chosen so that Cycles' fit alpha(C, g) equals our\n"
-                         "#   single-scattering albedo sigma_s / sigma_t; g = Subsurface Anisotropy (Cycles clamps to [0, 0.9]).\n"
-                         "#   Cycles raises alpha below 0.2 to 0.2 (scaling the throughput instead) and stops walks after\n"
-                         "#   256 scattering events; the boundary is index-matched for the walk (3.x enters along a cosine\n"
-                         "#   lobe; 4.x refracts through IOR), so Subsurface IOR only matters to the radius remap.\n")) +
-      "# One Blender unit = 1 " + u + " (Blender's default scene unit is the metre: export with --unit m, the default).\n"
+           ? std::string(
+                 "#   Christensen-Burley is a profile, not a medium: R(r) = C (e^{-r/d} + e^{-r/3d}) / (8 pi d r).\n")
+           : std::string(
+                 "#   C = Base Color (and 3.x Subsurface Color) chosen so that Cycles' fit alpha(C, g) equals our\n"
+                 "#   single-scattering albedo sigma_s / sigma_t; g = Subsurface Anisotropy (Cycles clamps to [0, "
+                 "0.9]).\n"
+                 "#   Cycles raises alpha below 0.2 to 0.2 (scaling the throughput instead) and stops walks after\n"
+                 "#   256 scattering events; the boundary is index-matched for the walk (3.x enters along a cosine\n"
+                 "#   lobe; 4.x refracts through IOR), so Subsurface IOR only matters to the radius remap.\n")) +
+      "# One Blender unit = 1 " + u +
+      " (Blender's default scene unit is the metre: export with --unit m, the default).\n"
       "# Also set: 3.x Specular = ((eta - 1)/(eta + 1))^2 / 0.08 (the Fresnel reflectance of eta), 4.x IOR = eta.\n"
       "# 3.x adds a retro-reflection lobe at grazing angles that is not part of the medium.\n"
       "# Run in Blender: blender --python THIS_FILE (or paste into the Text Editor and Run Script).\n"
       "import bpy\n\n"
-      "METHODS = {" + methods + "}\n\n\n"
+      "METHODS = {" +
+      methods +
+      "}\n\n\n"
       "def make_material(name, albedo_color, radius, ior, anisotropy):\n"
       "    major = bpy.app.version[0]\n"
       "    if major not in METHODS:\n"
@@ -110,8 +124,8 @@ std::string export_blender(const std::vector<ExportEntry>& entries, LengthUnit u
       out += "#   Burley d [" + u + "] " + join(d, ", ") + ", A " + join(in.albedo_color, ", ") +
              "; relative L2 error of the fit to " + e.derived.physical_model + ": " + join(error, ", ") + "\n";
     } else {
-      out += "#   medium: sigma_t [1/" + u + "] " + join(in.target_sigma_t, ", ") + ", alpha " + join(in.target_alpha, ", ") +
-             ", g " + num(in.g) + "\n";
+      out += "#   medium: sigma_t [1/" + u + "] " + join(in.target_sigma_t, ", ") + ", alpha " +
+             join(in.target_alpha, ", ") + ", g " + num(in.g) + "\n";
       out += "#   Cycles simulates: sigma_t [1/" + u + "] " + join(in.simulated.sigma_t, ", ") + ", alpha " +
              join(in.simulated.alpha, ", ") + "\n";
     }

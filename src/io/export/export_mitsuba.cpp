@@ -1,8 +1,8 @@
 // Mitsuba 3: volumetric path tracing of a `homogeneous` medium (albedo = sigma_s/sigma_t,
 // sigma_t in 1/scene unit, scale 1, `hg` phase) inside a `dielectric` boundary (int_ior = eta).
 // Mitsuba's hg takes one g: see single_g().
-#include "export_common.hpp"
 #include "../xml_escape.hpp"
+#include "export_common.hpp"
 
 namespace bssrdf::export_detail {
 namespace {
@@ -16,14 +16,16 @@ std::string comment(std::string text) {
 std::string export_mitsuba3(const std::vector<ExportEntry>& entries, LengthUnit unit) {
   require_rgb(entries, "mitsuba3");
   const std::string u(symbol(unit));
-  std::string out = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n" +
-                    comment("Mitsuba 3 media exported by bssrdf " BSSRDF_VERSION ". Units: sigma_t in 1/" + u +
-                            " (one scene unit = 1 " + u + "), scale 1; albedo = sigma_s/sigma_t (single-scattering, "
-                            "unreduced). Distance convention: mean free path 1/sigma_t. Use: <shape ...><ref id=\"NAME_boundary\"/>"
-                            "<ref name=\"interior\" id=\"NAME_medium\"/></shape>. Media render only with a volumetric integrator: "
-                            "volpath (or volpathmis), as set below; the default path integrator ignores them.") +
-                    "\n<scene version=\"3.0.0\">\n"
-                    "  <integrator type=\"volpath\">\n    <integer name=\"max_depth\" value=\"-1\"/>\n  </integrator>\n";
+  std::string out =
+      "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n" +
+      comment("Mitsuba 3 media exported by bssrdf " BSSRDF_VERSION ". Units: sigma_t in 1/" + u +
+              " (one scene unit = 1 " + u +
+              "), scale 1; albedo = sigma_s/sigma_t (single-scattering, "
+              "unreduced). Distance convention: mean free path 1/sigma_t. Use: <shape ...><ref id=\"NAME_boundary\"/>"
+              "<ref name=\"interior\" id=\"NAME_medium\"/></shape>. Media render only with a volumetric integrator: "
+              "volpath (or volpathmis), as set below; the default path integrator ignores them.") +
+      "\n<scene version=\"3.0.0\">\n"
+      "  <integrator type=\"volpath\">\n    <integer name=\"max_depth\" value=\"-1\"/>\n  </integrator>\n";
   for (const auto& e : entries) {
     const auto& m = e.material.medium;
     const auto one = single_g(m);
@@ -35,9 +37,10 @@ std::string export_mitsuba3(const std::vector<ExportEntry>& entries, LengthUnit 
       mfp.push_back(1 / sigma_t.back());
     }
     const std::string id = identifier(e.material.name);
-    std::string note = e.material.name + " (" + e.material.source + "): mean free path 1/sigma_t [" + u + "] " + join(mfp, ", ") + "; " +
-                       validity_summary(e.derived);
-    if (!one.exact) note += "; per-channel g (" + join(m.g, ", ") + ") replaced by their mean, sigma_s rescaled to keep sigma_s'";
+    std::string note = e.material.name + " (" + e.material.source + "): mean free path 1/sigma_t [" + u + "] " +
+                       join(mfp, ", ") + "; " + validity_summary(e.derived);
+    if (!one.exact)
+      note += "; per-channel g (" + join(m.g, ", ") + ") replaced by their mean, sigma_s rescaled to keep sigma_s'";
     out += "  " + comment(note) + "\n";
     out += "  <medium type=\"homogeneous\" id=\"" + xml_escape(id) + "_medium\">\n";
     out += "    <rgb name=\"albedo\" value=\"" + join(albedo, ", ") + "\"/>\n";

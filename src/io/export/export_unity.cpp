@@ -49,11 +49,16 @@ std::string export_unity_hdrp(const std::vector<ExportEntry>& entries, LengthUni
   doc["tool"] = "bssrdf " BSSRDF_VERSION;
   doc["conventions"] = {
       {"scatteringDistance", "Burley d per channel divided by scatteringDistanceMultiplier (max channel = 1)"},
-      {"scatteringDistanceMultiplier", "mm: scatteringDistance x multiplier = Burley d in mm, R(r) = A (e^{-r/d} + e^{-r/3d}) / (8 pi d r)"},
+      {"scatteringDistanceMultiplier",
+       "mm: scatteringDistance x multiplier = Burley d in mm, R(r) = A (e^{-r/d} + e^{-r/3d}) / (8 pi d r)"},
       {"worldScale", "metres per scene unit (from --unit " + std::string(symbol(unit)) + ")"},
       {"ior", "eta clamped to HDRP's 1-2"},
-      {"thicknessRemapMillimeters", "suggestion: 0 to where transmission falls to 1 % for the widest channel (12.95 d_max), at most the object size"},
-      {"burleyFit", "d and A least-squares fitted to the physical model's R(r); relativeL2Error = sqrt(int r (fit - R)^2 dr / int r R^2 dr)"}};
+      {"thicknessRemapMillimeters",
+       "suggestion: 0 to where transmission falls to 1 % for the widest channel (12.95 d_max), at most the object "
+       "size"},
+      {"burleyFit",
+       "d and A least-squares fitted to the physical model's R(r); relativeL2Error = sqrt(int r (fit - R)^2 dr / int r "
+       "R^2 dr)"}};
   doc["profiles"] = json::array();
   for (const auto& e : entries) {
     const auto p = unity_profile(e, unit);
@@ -69,7 +74,8 @@ std::string export_unity_hdrp(const std::vector<ExportEntry>& entries, LengthUni
         {"thicknessRemapMillimeters", {0.0, p.thickness_max}},
         {"transmissionTint", {1.0, 1.0, 1.0}},
         {"surfaceAlbedo", p.A},
-        {"burleyFit", {{"physicalModel", e.derived.physical_model}, {"burleyDMillimeters", p.d}, {"relativeL2Error", errors}}},
+        {"burleyFit",
+         {{"physicalModel", e.derived.physical_model}, {"burleyDMillimeters", p.d}, {"relativeL2Error", errors}}},
         {"diffusionValid", p.valid},
         {"validity", validity_summary(e.derived)}};
     doc["profiles"].push_back(profile);
@@ -85,19 +91,22 @@ std::string export_unity_hdrp_editor(const std::vector<ExportEntry>& entries, Le
     const auto p = unity_profile(e, unit);
     std::string name;
     for (char c : e.material.name) name += (c == '"' || c == '\\') ? '_' : c;
-    calls += "        // " + e.material.name + " (" + e.material.source + "): Burley d [mm] " + join(p.d, ", ") +
-             "; " + validity_summary(e.derived) + "\n";
+    calls += "        // " + e.material.name + " (" + e.material.source + "): Burley d [mm] " + join(p.d, ", ") + "; " +
+             validity_summary(e.derived) + "\n";
     calls += "        Make(\"" + name + "\", new Color(" + f(p.color[0]) + ", " + f(p.color[1]) + ", " + f(p.color[2]) +
              "), " + f(p.d_max) + ", " + f(p.world_scale) + ", " + f(p.ior) + ", " + f(p.thickness_max) + ");\n";
   }
-  return "// Unity HDRP diffusion profiles exported by bssrdf " BSSRDF_VERSION ".\n"
+  return "// Unity HDRP diffusion profiles exported by bssrdf " BSSRDF_VERSION
+         ".\n"
          "// Put this file in an Editor folder (e.g. Assets/Editor/) and run the menu item\n"
          "// bssrdf > Create Diffusion Profiles: it writes Assets/DiffusionProfiles/<name>.asset (HDRP's\n"
          "// DiffusionProfileSettings), then assign them in the HDRP Global Settings' Diffusion Profile List.\n"
          "// Scattering Distance (linear colour, largest channel 1) x Multiplier = Burley's d in mm at\n"
-         "// World Scale 1 (HDRP's convention); World Scale = metres per scene unit (--unit " + std::string(symbol(unit)) +
+         "// World Scale 1 (HDRP's convention); World Scale = metres per scene unit (--unit " +
+         std::string(symbol(unit)) +
          ");\n"
-         "// d fitted to the physical profile; Thickness Remap 0 to 12.95 d_max (1 % transmission), IOR clamped to 1-2.\n"
+         "// d fitted to the physical profile; Thickness Remap 0 to 12.95 d_max (1 % transmission), IOR clamped to "
+         "1-2.\n"
          "using UnityEditor;\n"
          "using UnityEngine;\n"
          "using UnityEngine.Rendering.HighDefinition;\n\n"
@@ -105,10 +114,12 @@ std::string export_unity_hdrp_editor(const std::vector<ExportEntry>& entries, Le
          "{\n"
          "    [MenuItem(\"bssrdf/Create Diffusion Profiles\")]\n"
          "    public static void CreateAll()\n"
-         "    {\n" + calls +
+         "    {\n" +
+         calls +
          "        AssetDatabase.SaveAssets();\n"
          "    }\n\n"
-         "    static void Make(string name, Color scatteringColor, float multiplierMillimeters, float worldScale, float ior,\n"
+         "    static void Make(string name, Color scatteringColor, float multiplierMillimeters, float worldScale, "
+         "float ior,\n"
          "                     float thicknessMaxMillimeters)\n"
          "    {\n"
          "        System.IO.Directory.CreateDirectory(\"Assets/DiffusionProfiles\");\n"
@@ -128,10 +139,12 @@ std::string export_unity_hdrp_editor(const std::vector<ExportEntry>& entries, Le
          "        }\n"
          "        else  // HDRP before the colour/multiplier split: one HDR colour in mm\n"
          "        {\n"
-         "            profile.FindPropertyRelative(\"scatteringDistance\").colorValue = scatteringColor * multiplierMillimeters;\n"
+         "            profile.FindPropertyRelative(\"scatteringDistance\").colorValue = scatteringColor * "
+         "multiplierMillimeters;\n"
          "        }\n"
          "        profile.FindPropertyRelative(\"transmissionTint\").colorValue = Color.white;\n"
-         "        profile.FindPropertyRelative(\"thicknessRemap\").vector2Value = new Vector2(0f, thicknessMaxMillimeters);\n"
+         "        profile.FindPropertyRelative(\"thicknessRemap\").vector2Value = new Vector2(0f, "
+         "thicknessMaxMillimeters);\n"
          "        profile.FindPropertyRelative(\"worldScale\").floatValue = worldScale;\n"
          "        profile.FindPropertyRelative(\"ior\").floatValue = ior;\n"
          "        profile.serializedObject.ApplyModifiedPropertiesWithoutUndo();\n"

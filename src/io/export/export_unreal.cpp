@@ -46,8 +46,9 @@ std::string export_unreal(const std::vector<ExportEntry>& entries) {
   doc["tool"] = "bssrdf " BSSRDF_VERSION;
   doc["conventions"] = {
       {"SurfaceAlbedo", "Burley A fitted to the physical profile (total diffuse reflectance of the fit)"},
-      {"MeanFreePathDistance", "cm (Unreal's unit); MeanFreePathColor x MeanFreePathDistance = Burley d x s(A), "
-                               "s(A) = 1.85 - A + 7|A - 0.8|^3, so that UE's d = mfp / s(A) equals the fitted d"},
+      {"MeanFreePathDistance",
+       "cm (Unreal's unit); MeanFreePathColor x MeanFreePathDistance = Burley d x s(A), "
+       "s(A) = 1.85 - A + 7|A - 0.8|^3, so that UE's d = mfp / s(A) equals the fitted d"},
       {"WorldUnitScale", "cm per Unreal unit: 1 (UE's documented unit; UE's default asset has 0.1)"},
       {"burleyDCentimeters", "the fitted Burley d itself, cm"},
       {"IOR", "eta"}};
@@ -73,7 +74,8 @@ std::string export_unreal(const std::vector<ExportEntry>& entries) {
 std::string export_unreal_python(const std::vector<ExportEntry>& entries) {
   require_rgb(entries, "unreal-python");
   std::string out =
-      "# Unreal Engine 5 subsurface profiles exported by bssrdf " BSSRDF_VERSION ".\n"
+      "# Unreal Engine 5 subsurface profiles exported by bssrdf " BSSRDF_VERSION
+      ".\n"
       "# Run in the Unreal Editor (Python Editor Script Plugin): Tools > Execute Python Script, or\n"
       "# `py \"THIS_FILE\"` in the console. Creates (or updates) /Game/SubsurfaceProfiles/<name>.\n"
       "# SurfaceAlbedo = Burley A fitted to the physical profile; MeanFreePathColor x MeanFreePathDistance (cm)\n"
@@ -86,7 +88,8 @@ std::string export_unreal_python(const std::vector<ExportEntry>& entries) {
       "    if unreal.EditorAssetLibrary.does_asset_exist(path):\n"
       "        asset = unreal.EditorAssetLibrary.load_asset(path)\n"
       "    else:\n"
-      "        asset = unreal.AssetToolsHelpers.get_asset_tools().create_asset(name, FOLDER, unreal.SubsurfaceProfile, None)\n"
+      "        asset = unreal.AssetToolsHelpers.get_asset_tools().create_asset(name, FOLDER, unreal.SubsurfaceProfile, "
+      "None)\n"
       "    settings = asset.get_editor_property('settings')\n"
       "    settings.set_editor_property('enable_burley', True)\n"
       "    settings.set_editor_property('enable_mean_free_path', True)  # UE 5.1+\n"

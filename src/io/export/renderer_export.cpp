@@ -7,11 +7,14 @@
 
 namespace bssrdf {
 namespace {
-const std::pair<RendererTarget, const char*> kTargets[] = {
-    {RendererTarget::json, "json"},         {RendererTarget::pbrt_v4, "pbrt-v4"},
-    {RendererTarget::mitsuba3, "mitsuba3"}, {RendererTarget::blender, "blender"},
-    {RendererTarget::unity_hdrp, "unity-hdrp"}, {RendererTarget::unity_hdrp_editor, "unity-hdrp-editor"},
-    {RendererTarget::unreal, "unreal"}, {RendererTarget::unreal_python, "unreal-python"}};
+const std::pair<RendererTarget, const char*> kTargets[] = {{RendererTarget::json, "json"},
+                                                           {RendererTarget::pbrt_v4, "pbrt-v4"},
+                                                           {RendererTarget::mitsuba3, "mitsuba3"},
+                                                           {RendererTarget::blender, "blender"},
+                                                           {RendererTarget::unity_hdrp, "unity-hdrp"},
+                                                           {RendererTarget::unity_hdrp_editor, "unity-hdrp-editor"},
+                                                           {RendererTarget::unreal, "unreal"},
+                                                           {RendererTarget::unreal_python, "unreal-python"}};
 }  // namespace
 
 std::vector<std::string> renderer_target_names() {
@@ -64,14 +67,22 @@ std::string export_materials(RendererTarget target, const std::vector<ExportEntr
       throw InvalidInput("export: derived quantities missing for " + e.material.name);
   }
   switch (target) {
-    case RendererTarget::json: return export_json(entries, unit);
-    case RendererTarget::pbrt_v4: return export_pbrt_v4(entries, unit);
-    case RendererTarget::mitsuba3: return export_mitsuba3(entries, unit);
-    case RendererTarget::blender: return export_blender(entries, unit, options);
-    case RendererTarget::unity_hdrp: return export_unity_hdrp(entries, unit);
-    case RendererTarget::unity_hdrp_editor: return export_unity_hdrp_editor(entries, unit);
-    case RendererTarget::unreal: return export_unreal(entries);
-    case RendererTarget::unreal_python: return export_unreal_python(entries);
+    case RendererTarget::json:
+      return export_json(entries, unit);
+    case RendererTarget::pbrt_v4:
+      return export_pbrt_v4(entries, unit);
+    case RendererTarget::mitsuba3:
+      return export_mitsuba3(entries, unit);
+    case RendererTarget::blender:
+      return export_blender(entries, unit, options);
+    case RendererTarget::unity_hdrp:
+      return export_unity_hdrp(entries, unit);
+    case RendererTarget::unity_hdrp_editor:
+      return export_unity_hdrp_editor(entries, unit);
+    case RendererTarget::unreal:
+      return export_unreal(entries);
+    case RendererTarget::unreal_python:
+      return export_unreal_python(entries);
   }
   return "";
 }
@@ -88,8 +99,10 @@ std::string identifier(const std::string& name) {
 std::string validity_summary(const DerivedQuantities& derived) {
   std::string valid, invalid;
   for (const auto& c : derived.channels) {
-    if (c.diffusion_valid) valid += (valid.empty() ? "" : ", ") + c.name;
-    else invalid += (invalid.empty() ? "" : "; ") + c.name + ": " + c.reason;
+    if (c.diffusion_valid)
+      valid += (valid.empty() ? "" : ", ") + c.name;
+    else
+      invalid += (invalid.empty() ? "" : "; ") + c.name + ": " + c.reason;
   }
   if (invalid.empty()) return "diffusion valid in every channel (object size " + num(derived.object_size_mm) + " mm)";
   return "diffusion valid in " + (valid.empty() ? std::string("no channel") : valid) + "; not in " + invalid;
