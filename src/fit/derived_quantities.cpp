@@ -4,12 +4,12 @@
 #include <cmath>
 #include <limits>
 
-#include "bssrdf/adding_doubling/slab.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/fit/inverse_fits.hpp"
 #include "bssrdf/model.hpp"
 #include "bssrdf/models/exact.hpp"
 #include "bssrdf/profile.hpp"
+#include "bssrdf/transport_total.hpp"
 
 namespace bssrdf {
 
@@ -18,22 +18,6 @@ std::vector<double> burley_fit_radii_mm(const Reduced<double>& m, std::size_t co
   const double r_min = 1e-3 * std::min(m.ell, r_max / 16);
   return log_spaced(r_min, r_max, count);
 }
-
-namespace {
-
-// The total diffuse reflectance of the semi-infinite medium per entered flux, by adding-doubling
-// (exact radiative transfer with the Henyey-Greenstein phase function and Fresnel boundary).
-double exact_total_reflectance(const Reduced<double>& m) {
-  adding_doubling::Slab slab;
-  slab.layers = {{m.sigma_a, m.sigma_s, m.g}};
-  slab.n = m.eta;
-  const auto t = adding_doubling::solve(slab, adding_doubling::Incidence::collimated);
-  // Without absorption the total is 1 exactly; the quadrature can exceed it by its error estimate.
-  const double total = t.diffuse_reflectance * t.entered_scale();
-  return total > 1 && total - 1 <= t.error_estimate ? 1.0 : total;
-}
-
-}  // namespace
 
 DerivedQuantities derive_quantities(const Medium& medium, const DerivationOptions& options) {
   medium.validate();
@@ -88,7 +72,7 @@ DerivedQuantities derive_quantities(const Medium& medium, const DerivationOption
       } else if (model_total > 1) {
         // The physical model creates energy here (its validity says so above): the surface albedo
         // is the exact radiative-transfer total instead, which conserves it.
-        ch.surface_albedo = exact_total_reflectance(m);
+        ch.surface_albedo = transport_total(m).value;
         reasons.push_back("surface albedo and Burley A are the exact total " +
                           format_number(std::round(ch.surface_albedo * 1e5) / 1e5) + " (adding-doubling), not " +
                           ch.physical_model + "'s " + format_number(std::round(model_total * 1e5) / 1e5));
