@@ -2,6 +2,7 @@
 // In the fitting library: the Gaussian kind fits, and the image checks weigh fitted representations.
 #include "bssrdf/lut/table_kinds.hpp"
 
+#include <array>
 #include <cmath>
 #include <memory>
 
@@ -96,16 +97,8 @@ BuiltTable tabulate_reference_radial(const LayerStack& stack, const std::string&
 }
 
 std::string to_string(AlbedoRadiusLayoutRule layout) {
-  switch (layout) {
-    case AlbedoRadiusLayoutRule::pbrt:
-      return "pbrt";
-    case AlbedoRadiusLayoutRule::family:
-      return "family";
-    case AlbedoRadiusLayoutRule::adaptive:
-      return "adaptive";
-  }
-  BSSRDF_CHECK(false);
-  return {};
+  static constexpr std::array<const char*, 3> kNames = {"pbrt", "family", "adaptive"};  // in the enum's order
+  return kNames.at(static_cast<std::size_t>(layout));
 }
 
 BuiltTable tabulate_albedo_radius(const AlbedoRadiusKindOptions& o) {
