@@ -3,6 +3,7 @@
 // command only parses its flags into these options), and its summary says what it built and how well.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -11,6 +12,7 @@
 #include "bssrdf/lut/table_kinds.hpp"
 #include "bssrdf/materials.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/models/exact.hpp"
 #include "cli_runner.hpp"
 
 namespace {
@@ -101,6 +103,35 @@ TEST(TableKinds, AlbedoRadiusFamilyLayout) {
   EXPECT_EQ(built.table.width, 10u);
   EXPECT_EQ(built.table.height, 12u);
   EXPECT_EQ(built.summary.rfind("albedo-radius table (family layout): 12 albedos x 10 radii", 0), 0u) << built.summary;
+}
+
+// `--model exact`: the rows from the exact model, and the header says so; the default records that
+// its rows carry the radiative-transfer total; other models are refused in one line.
+TEST(TableKinds, AlbedoRadiusExactRowsAndTheRecordedEnergy) {
+  AlbedoRadiusKindOptions options;
+  options.g = 0.5;
+  options.eta = 1.4;
+  options.table.shape = RowShape::exact;
+  const auto built = tabulate_albedo_radius(options);
+  EXPECT_EQ(to_json(built.table), written_by_cli("--kind albedo-radius --model exact --g 0.5 --eta 1.4"));
+  EXPECT_EQ(std::get<std::string>(*built.table.attribute("bssrdf:model")), "exact");
+  EXPECT_NE(std::get<std::string>(*built.table.attribute("bssrdf:profile")).find("exact model"), npos);
+  std::size_t inside = 0;
+  for (double rho : AlbedoRadiusLayout::pbrt().albedo) {
+    const auto m = reduced_unit_extinction(rho, 0.5, 1.4);
+    inside += rho > 0 && exact_domain(bundled_exact_table(), m.albedo_prime, m.g, m.eta).empty();
+  }
+  EXPECT_GE(inside, 97u);
+  EXPECT_NE(built.summary.find("the exact model (radiative transfer) in " + std::to_string(inside) + " of 100 rows"),
+            npos)
+      << built.summary;
+  const auto pbd = tabulate_albedo_radius({});
+  EXPECT_NE(std::get<std::string>(*pbd.table.attribute("bssrdf:effective_albedo")).find("radiative-transfer total"),
+            npos);
+  const auto r = test_cli::run("lut --kind albedo-radius --model dipole -o " + test_cli::temp("refused.json").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("pbd (photon beam diffusion, as pbrt) or exact"), npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(test_cli::temp("refused.json")));
 }
 
 TEST(TableKinds, TransmissionSaysWhichSolverMadeIt) {

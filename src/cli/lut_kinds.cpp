@@ -74,8 +74,10 @@ BuiltTable build_albedo_radius(const LutOptions& o) {
     if (!o.medium.g.empty()) options.g = parse_number(o.medium.g, "--g");
     if (!o.medium.eta.empty()) options.eta = parse_number(o.medium.eta, "--eta");
   }
-  if (o.model != "pbd")
-    throw InvalidInput("--model", "'" + o.model + "'", "pbd for --kind albedo-radius (photon beam diffusion, as pbrt)");
+  if (o.model != "pbd" && o.model != "exact")
+    throw InvalidInput("--model", "'" + o.model + "'",
+                       "pbd (photon beam diffusion, as pbrt) or exact for --kind albedo-radius");
+  if (o.model == "exact") options.table.shape = RowShape::exact;
   if (!o.tolerance.empty()) options.table.tolerance = positive_fraction(o.tolerance, "--tolerance");
   options.table.threads = o.threads;
   if (o.layout == "pbrt") {

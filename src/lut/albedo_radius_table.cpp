@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
 
@@ -98,7 +99,7 @@ AlbedoRadiusTable build_albedo_radius_table(const AlbedoRadiusLayout& layout, do
   t.cdf.assign(rows * cols, 0.0);
   t.effective_albedo.assign(rows, 0.0);
   t.energy = options.energy;
-  std::vector<double> scale(rows, 1.0);
+  std::vector<double> scale(rows, std::numeric_limits<double>::quiet_NaN());  // NaN: row not scaled
   std::vector<char> at_model_energy(rows, 0), exact_row(rows, 0);
   t.shape = options.shape;
   const auto exact = make_exact_model();
@@ -144,8 +145,13 @@ AlbedoRadiusTable build_albedo_radius_table(const AlbedoRadiusLayout& layout, do
     for (std::size_t j = 0; j < cols; ++j) t.cdf[i * cols + j] = cum.back() > 0 ? cum[j] / cum.back() : 0.0;
   });
   if (options.energy == RowEnergy::transport) {
-    t.smallest_scale = *std::min_element(scale.begin(), scale.end());
-    t.largest_scale = *std::max_element(scale.begin(), scale.end());
+    std::vector<double> applied;
+    for (double f : scale)
+      if (std::isfinite(f)) applied.push_back(f);
+    if (!applied.empty()) {
+      t.smallest_scale = *std::min_element(applied.begin(), applied.end());
+      t.largest_scale = *std::max_element(applied.begin(), applied.end());
+    }
     t.rows_at_model_energy = static_cast<std::size_t>(std::count(at_model_energy.begin(), at_model_energy.end(), 1));
   }
   t.exact_rows = static_cast<std::size_t>(std::count(exact_row.begin(), exact_row.end(), 1));
@@ -272,9 +278,10 @@ std::string energy_text(const AlbedoRadiusTable& t) {
   return "the radiative-transfer total (exact model inside its domain, adding-doubling outside); rows scaled by " +
          format_number(std::round(t.smallest_scale * 1e4) / 1e4) + " to " +
          format_number(std::round(t.largest_scale * 1e4) / 1e4) + " from the model's integral" +
-         (t.rows_at_model_energy ? "; " + std::to_string(t.rows_at_model_energy) +
-                                       " rows at the model's integral (adding-doubling not converged)"
-                                 : "");
+         (t.rows_at_model_energy
+              ? "; " + std::to_string(t.rows_at_model_energy) + (t.rows_at_model_energy == 1 ? " row" : " rows") +
+                    " at the model's integral (adding-doubling not converged)"
+              : "");
 }
 
 }  // namespace
@@ -327,6 +334,10 @@ std::string summary(const AlbedoRadiusTable& t, const std::string& layout_name) 
     << "); table in " << format_number(std::round(t.seconds * 1e5) / 100)
     << " ms\n  effective albedo: " << format_number(t.effective_albedo.front()) << " (rho = 0) to "
     << format_number(t.effective_albedo.back()) << " (rho = 1): " << energy_text(t) << "\n";
+  if (t.shape == RowShape::pbd && t.energy == RowEnergy::transport &&
+      (t.largest_scale > 1.5 || t.smallest_scale < 0.67))
+    s << "  pbd's multiple scattering is off by more than 1.5x in some rows here: --model exact tabulates the "
+         "radiative-transfer profile\n";
   return s.str();
 }
 

@@ -121,7 +121,7 @@ BuiltTable tabulate_albedo_radius(const AlbedoRadiusKindOptions& o) {
   AlbedoRadiusOptions options = o.table;
   options.progress = nullptr;  // the search's, not the table's
   const auto t = build_albedo_radius_table(layout, o.g, o.eta, options);
-  const auto model = make_model("pbd");
+  const auto model = make_model(o.table.shape == RowShape::exact ? "exact" : "pbd");
   const std::string layout_name = to_string(o.layout);
   auto table = to_lookup_table(t, {o.material, nullptr, model.get(), LengthUnit::millimetre}, layout_name);
   auto lines = summary(t, layout_name);
