@@ -117,6 +117,6 @@ TEST(SingleScattering, ForwardScatteringAndMismatchedIndexReduceIt) {
   EXPECT_LT(single_scattering_total(0.9, 0.9, 1.0), single_scattering_total(0.9, 0.0, 1.0));
   EXPECT_LT(single_scattering_total(0.9, 0.0, 1.4), single_scattering_total(0.9, 0.0, 1.0));
   EXPECT_GT(single_scattering_total(0.9, -0.5, 1.0), single_scattering_total(0.9, 0.0, 1.0));
-  // MODELS.md section 10: eta = 1.3, g = 0, alpha = 0.99: Monte Carlo single scattering 0.075.
+  // tests/data/REFERENCE_CHECKS.md: eta = 1.3, g = 0, alpha = 0.99: Monte Carlo single scattering 0.075.
   EXPECT_NEAR(single_scattering_total(0.99, 0.0, 1.3), 0.075, 0.0015);
 }

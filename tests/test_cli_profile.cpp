@@ -170,7 +170,8 @@ TEST(CliTransmission, TotalTransmittanceAgainstThickness) {
   ASSERT_EQ(doc["rows"].size(), 3u);
   EXPECT_TRUE(doc["rows"][0]["total_transmittance"][0].is_null());  // 0.5 ell: invalid, no number
   EXPECT_EQ(doc["rows"][0]["invalid"][0], "source_outside_slab");
-  EXPECT_NEAR(doc["rows"][1]["total_transmittance"][0].get<double>(), 0.464, 1e-3);  // MODELS.md slab check
+  // Donner & Jensen 2005's slab check (tests/data/REFERENCE_CHECKS.md).
+  EXPECT_NEAR(doc["rows"][1]["total_transmittance"][0].get<double>(), 0.464, 1e-3);
   EXPECT_NEAR(doc["rows"][2]["total_transmittance"][0].get<double>(), 0.142, 1e-3);
   const auto table = run("transmission --material Skin1 --samples 5");
   EXPECT_EQ(table.status, 0) << table.err;

@@ -105,7 +105,8 @@ TEST(SingleScattering, ProfileIntegratesToTheTotal) {
 }
 
 TEST(SingleScattering, QuadratureConvergesWithSamples) {
-  // Against an independent adaptive integration of the raw integrand in t (MODELS.md section 5).
+  // Against an independent adaptive integration of the raw integrand in t (Habel, Christensen & Jarosz 2013: the
+  // single-scattering integral).
   const auto m = reduce(0.1, 0.9, 0.9, 1.4);
   for (double r : {1e-3, 0.1, 1.0, 5.0}) {
     const double t_c = r * std::sqrt(1.4 * 1.4 - 1);
@@ -152,10 +153,10 @@ TEST(PhotonBeamDiffusion, ConvergesWithTheQuadratureOrderAndReportsIt) {
 }
 
 TEST(PhotonBeamDiffusion, PublishedReferenceCheckAndEnergyReport) {
-  // MODELS.md section 10: eta = 1.3, g = 0, alpha = 0.99: PBD total 0.687.
+  // tests/data/REFERENCE_CHECKS.md: eta = 1.3, g = 0, alpha = 0.99: PBD total 0.687.
   const auto model = make_model("pbd");
   EXPECT_NEAR(model->total_reflectance(reduce(0.01, 0.99, 0.0, 1.3)), 0.687, 5e-4);
-  // MODELS.md section 5: its total exceeds 1 at eta = 1, alpha = 0.999; the tool says so.
+  // tests/data/REFERENCE_CHECKS.md: its total exceeds 1 at eta = 1, alpha = 0.999; the tool says so.
   const auto m = reduce(0.001, 0.999, 0.0, 1.0);
   EXPECT_GT(model->total_reflectance(m), 1.0);
   EXPECT_TRUE(has_note(model->validity(m), "energy"));

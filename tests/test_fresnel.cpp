@@ -1,4 +1,7 @@
-// Fresnel reflectance and moments against the exact values of reference/MODELS.md section 1.
+// Fresnel reflectance and its angular moments C_n = int_0^1 F(mu) mu^n dmu: the exact moments by
+// quadrature of the unpolarised Fresnel formula, to five decimals, and d'Eon & Irving's (2011,
+// "A quantized-diffusion model for rendering translucent materials", Appendix) polynomial fits of
+// 2C1 and 3C2 in eta, tabulated below.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -26,7 +29,8 @@ TEST(Fresnel, TotalInternalReflectionBeyondTheCriticalAngle) {
 struct MomentRow {
   double eta, two_c1_internal, fit_two_c1, two_c1_external, three_c2_internal, fit_three_c2;
 };
-// reference/MODELS.md, "Exact moments by quadrature", five decimals.
+// Exact moments by adaptive quadrature of the Fresnel formula (five decimals) and the polynomial
+// fits at the same eta: 2C1 inside (eta) and outside (1/eta), 3C2 inside.
 const MomentRow kMoments[] = {
     {1.3, 0.44446, 0.44529, 0.06113, 0.30027, 0.29745},
     {1.4, 0.52899, 0.52988, 0.07681, 0.38878, 0.38635},
@@ -86,7 +90,8 @@ TEST(Fresnel, FitsStayWithinTheirDocumentedError) {
 }
 
 TEST(Fresnel, BoundaryParameterMatchesThePublishedValues) {
-  // MODELS.md: A = 2.602 (classical) and 2.341 (improved) at eta = 1.3.
+  // A = 2.602 (classical) and 2.341 (improved) at eta = 1.3 (Jensen et al. 2001; d'Eon 2012;
+  // tests/data/REFERENCE_CHECKS.md).
   EXPECT_NEAR(boundary_A_classical(1.3), 2.602, 5e-4);
   EXPECT_NEAR(improved_boundary(1.3).A, 2.341, 5e-4);
   const auto b = improved_boundary(1.0);

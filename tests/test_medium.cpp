@@ -1,4 +1,4 @@
-// Medium validation, units and the reduced quantities of MODELS.md section 0.
+// Medium validation, units and the reduced quantities (notation in tests/data/REFERENCE_CHECKS.md).
 #include <gtest/gtest.h>
 
 #include <cmath>

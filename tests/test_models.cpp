@@ -134,7 +134,7 @@ INSTANTIATE_TEST_SUITE_P(Dipoles, EachModel, ::testing::Values("dipole", "better
 });
 
 TEST(Models, PublishedReferenceChecks) {
-  // MODELS.md section 10: semi-infinite, eta = 1.3, g = 0, alpha = 0.99, per entered flux.
+  // tests/data/REFERENCE_CHECKS.md: semi-infinite, eta = 1.3, g = 0, alpha = 0.99, per entered flux.
   EXPECT_NEAR(classical_dipole::total_reflectance(0.99, 1.3), 0.645, 5e-4);
   EXPECT_NEAR(better_dipole::total_reflectance(0.99, 1.3), 0.642, 5e-4);
 }

@@ -101,7 +101,8 @@ TEST(Multipole, ThickAlbedoHighSlabsWithinThreePercent) {
 }
 
 TEST(Multipole, ReferenceChecksOfModelsMd) {
-  // MODELS.md section 4: eta = 1.3, alpha' = 0.99, g = 0, lengths in ell.
+  // Donner & Jensen 2005's slab check (tests/data/REFERENCE_CHECKS.md): eta = 1.3, alpha' = 0.99, g = 0, lengths in
+  // ell.
   const auto m = reduced_optical(0.99, 1.3);
   const auto check = [&](double d, double R, double T) {
     const multipole::Model model(d);

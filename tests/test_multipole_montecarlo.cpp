@@ -80,7 +80,7 @@ void compare(const char* label, std::vector<Layer> layers, double r_max, Documen
 }  // namespace
 
 TEST(MultipoleMonteCarlo, SlabAtTwoTransportMeanFreePaths) {
-  // eta 1.3, alpha' 0.99, g 0, ell = 1 mm (MODELS.md section 4's slab check).
+  // eta 1.3, alpha' 0.99, g 0, ell = 1 mm (the multipole slab check of tests/data/REFERENCE_CHECKS.md).
   compare("slab d = 2 ell", {layer(0.01, 0.99, 1.3, 2.0, "slab")}, 8.0, {0.04, 0.31, 0.23, 0.39});
 }
 

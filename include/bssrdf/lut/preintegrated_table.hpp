@@ -7,8 +7,8 @@
 //
 // (Penner & Borshukov 2011, GPU Pro 2) where R_ring is the profile's cross-section through the ring,
 // the line projection of R (ProjectedProfile::line: for a sum of Gaussians, the 1D-normalised
-// Gaussians of MODELS.md), evaluated at the chord length. D is per channel, in [0, 1], and tends
-// to max(0, N.L) as the curvature goes to 0; the diffuse colour is applied separately.
+// Gaussians exp(-x^2/2v)/sqrt(2 pi v) of d'Eon & Luebke 2007), evaluated at the chord length. D is per channel, in [0,
+// 1], and tends to max(0, N.L) as the curvature goes to 0; the diffuse colour is applied separately.
 //
 // Layout: width columns over u = N.L, height rows over curvature, sampled at texel centres:
 // u_i = -1 + 2 (i + 0.5) / width, curvature_j = curvature_max (j + 0.5) / height (1/mm). The ring

@@ -1,4 +1,4 @@
-// Layer stacks under the multipole (Donner & Jensen 2005, MODELS.md section 4): every finite layer
+// Layer stacks under the multipole (Donner & Jensen 2005): every finite layer
 // is a multipole slab whose faces take their A from the index ratio across each interface, a
 // semi-infinite last layer is a dipole, and the layers combine by the adding equations on their
 // 2D Fourier (zero-order Hankel) spectra, exact in closed form (multipole::spectra):
