@@ -93,7 +93,8 @@ TEST(CliAdvise, BadInputExitsTwoWithOneLine) {
        {"--material Skin1 --pixel -1mm", "--material Skin1 --pixel 0.1furlong", "--material Skin1 --pixel 0",
         "--material Skin1 --pixel 0.1 --tolerance 0", "--material Skin1 --pixel 0.1 --tolerance nan",
         "--material Skin1 --pixel 0.1 --target mobile", "--material Skin1 --pixel 0.1 --object-size -3",
-        "--material Skin1", "--material Skin1 --pixel 0.1 -n 5", "--all --material Skin1 --pixel 1"}) {
+        "--material Skin1", "--material Skin1 --pixel 0.1 -n 5", "--all --material Skin1 --pixel 1",
+        "--material Spectralon --pixel 1 --reference exact"}) {
     const auto r = run(std::string("advise ") + args);
     EXPECT_EQ(r.status, 2) << args << ": " << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;
