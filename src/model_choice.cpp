@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 
 #include "bssrdf/error.hpp"
@@ -115,23 +116,35 @@ std::optional<std::vector<ModelErrorEstimate>> tabulated_model_errors(const Redu
   return out;
 }
 
-std::optional<std::vector<ModelErrorEstimate>> model_errors_vs_exact(const Reduced<double>& m) {
-  const ExactTable& table = bundled_exact_table();
-  if (!exact_domain(table, m.albedo_prime, m.g, m.eta).empty()) return std::nullopt;
-  const ExactProfile exact(table, m.albedo_prime, m.g, m.eta);
-  const auto bins = detail::exact_bins(exact);
-  std::vector<ModelErrorEstimate> out;
-  for (const auto& c : candidates()) {
-    ModelErrorEstimate est = estimate_for(*c.entry, m, "exact");
-    if (!c.entry->reference_accuracy) {  // measured even where invalid (shown, never chosen)
-      const auto error = detail::error_vs_exact(*c.entry->make(), m, bins);
-      est.total_error = error.total;
-      est.profile_error = error.profile();
-      est.near_error = error.near;
-      est.far_error = error.far;
-    }
-    out.push_back(est);
+namespace {
+
+bool inside_exact_domain(const Reduced<double>& m) {
+  return exact_domain(bundled_exact_table(), m.albedo_prime, m.g, m.eta).empty();
+}
+
+// One candidate against the exact bins at m; a reference (exact) carries its own band instead.
+ModelErrorEstimate measured_vs_exact(const ModelEntry& entry, const Reduced<double>& m,
+                                     const std::function<const detail::ExactBins&()>& bins) {
+  ModelErrorEstimate est = estimate_for(entry, m, "exact");
+  if (!entry.reference_accuracy) {  // measured even where invalid (shown, never chosen)
+    const auto error = detail::error_vs_exact(*entry.make(), m, bins());
+    est.total_error = error.total;
+    est.profile_error = error.profile();
+    est.near_error = error.near;
+    est.far_error = error.far;
   }
+  return est;
+}
+
+}  // namespace
+
+std::optional<std::vector<ModelErrorEstimate>> model_errors_vs_exact(const Reduced<double>& m) {
+  if (!inside_exact_domain(m)) return std::nullopt;
+  const auto bins = detail::exact_bins(ExactProfile(bundled_exact_table(), m.albedo_prime, m.g, m.eta));
+  std::vector<ModelErrorEstimate> out;
+  for (const auto& c : candidates())
+    out.push_back(measured_vs_exact(
+        *c.entry, m, [&]() -> const auto& { return bins; }));
   sort_by_cost(out);
   return out;
 }
@@ -139,6 +152,23 @@ std::optional<std::vector<ModelErrorEstimate>> model_errors_vs_exact(const Reduc
 std::optional<std::vector<ModelErrorEstimate>> estimate_model_errors(const Reduced<double>& m) {
   if (auto live = model_errors_vs_exact(m)) return live;
   return tabulated_model_errors(m);
+}
+
+std::optional<ModelErrorEstimate> estimate_model_error(const std::string& model, const Reduced<double>& m) {
+  const auto c = std::find_if(candidates().begin(), candidates().end(),
+                              [&](const Candidate& candidate) { return candidate.entry->name == model; });
+  if (c == candidates().end()) return std::nullopt;
+  if (inside_exact_domain(m)) {
+    std::optional<detail::ExactBins> bins;  // built only for a model measured against it
+    return measured_vs_exact(*c->entry, m, [&]() -> const detail::ExactBins& {
+      if (!bins) bins = detail::exact_bins(ExactProfile(bundled_exact_table(), m.albedo_prime, m.g, m.eta));
+      return *bins;
+    });
+  }
+  if (const auto table = tabulated_model_errors(m))
+    for (const auto& e : *table)
+      if (e.model == model) return e;
+  return std::nullopt;
 }
 
 std::vector<MeasuredModel> measured_models() {

@@ -8,7 +8,7 @@
 
 namespace bssrdf::detail {
 
-inline constexpr std::size_t kCandidateModels = 10;
+inline constexpr std::size_t kCandidateModels = 9;
 
 struct MeasuredError {
   double total;    // |relative error of the total reflectance|

@@ -9,7 +9,10 @@
 #include "bssrdf/fresnel.hpp"
 #include "bssrdf/lut/albedo_radius_table.hpp"
 #include "bssrdf/lut/interpolation.hpp"
+#include "bssrdf/model.hpp"
+#include "bssrdf/models/exact.hpp"
 #include "bssrdf/models/photon_beam_diffusion.hpp"
+#include "bssrdf/transport_total.hpp"
 
 using namespace bssrdf;
 
@@ -30,6 +33,7 @@ TEST(AlbedoRadiusTable, CellsMatchTheConvergedModelAndAreFinite) {
   for (const auto& [g, eta] : {std::pair{0.0, 1.3}, std::pair{0.9, 1.4}, std::pair{0.0, 1.0}}) {
     AlbedoRadiusOptions options;
     options.tolerance = 1e-3;
+    options.energy = RowEnergy::model;  // pbrt's construction: the cells are the model's
     const auto t = build_albedo_radius_table(AlbedoRadiusLayout::pbrt(), g, eta, options);
     const auto b = improved_boundary(eta);
     for (double v : t.profile) EXPECT_TRUE(std::isfinite(v));
@@ -58,6 +62,60 @@ TEST(AlbedoRadiusTable, CellsMatchTheConvergedModelAndAreFinite) {
     }
     for (std::size_t i = 1; i < t.rows(); ++i) EXPECT_GT(t.effective_albedo[i], t.effective_albedo[i - 1]);
   }
+}
+
+// The default energy: each row's effective albedo is the radiative-transfer total (exact inside
+// its domain, adding-doubling outside, 1 at rho = 1), never above 1 and increasing; pbd's single
+// scattering (the exact integral) is left as it is, only its multiple scattering is scaled.
+TEST(AlbedoRadiusTable, RowsCarryTheRadiativeTransferTotal) {
+  for (const auto& [g, eta] : {std::pair{0.0, 1.3}, std::pair{0.9, 1.4}, std::pair{0.5, 1.0}}) {
+    const auto t = build_albedo_radius_table(AlbedoRadiusLayout::pbrt(), g, eta, {});
+    const auto model = [&] {
+      AlbedoRadiusOptions o;
+      o.energy = RowEnergy::model;
+      return build_albedo_radius_table(AlbedoRadiusLayout::pbrt(), g, eta, o);
+    }();
+    EXPECT_EQ(t.rows_at_model_energy, 0u) << g << " " << eta;
+    EXPECT_EQ(t.effective_albedo.back(), 1.0);  // rho = 1: no absorption
+    // pbd's own (for contrast): 1.023 at g = 0, far below 1 at g = 0.9 (its tail passes 203 mfp).
+    EXPECT_GT(std::abs(model.effective_albedo.back() - 1.0), 0.02) << g << " " << eta;
+    for (std::size_t i = 1; i < t.rows(); ++i) {
+      const auto total = transport_total(reduced_unit_extinction(t.layout.albedo[i], g, eta));
+      EXPECT_NEAR(t.effective_albedo[i], total.value, 1e-9 * total.value) << g << " " << eta << " " << i;
+      EXPECT_LE(t.effective_albedo[i], 1.0);
+      EXPECT_GT(t.effective_albedo[i], t.effective_albedo[i - 1]) << i;
+      EXPECT_NEAR(t.cdf[(i + 1) * t.columns() - 1], 1.0, 1e-12);
+    }
+    EXPECT_GT(std::max(1 - t.smallest_scale, t.largest_scale - 1), 0.05) << g << " " << eta;
+    // At the smallest radius single scattering dominates: the cell changes far less than the row.
+    const std::size_t mid = t.rows() / 2;
+    EXPECT_NEAR(t.profile[mid * t.columns() + 1] / model.profile[mid * t.columns() + 1], 1.0, 0.05);
+  }
+}
+
+// RowShape::exact: the rows inside the exact model's domain are its 2 pi r R (scaled to its own
+// total by at most the Catmull-Rom truncation), the others pbd's.
+TEST(AlbedoRadiusTable, ExactRowsAreTheExactProfile) {
+  AlbedoRadiusOptions options;
+  options.shape = RowShape::exact;
+  const double g = 0.6, eta = 1.33;
+  const auto t = build_albedo_radius_table(AlbedoRadiusLayout::pbrt(), g, eta, options);
+  const auto exact = make_model("exact");
+  std::size_t inside = 0;
+  for (std::size_t i = 1; i < t.rows(); ++i) {
+    const auto m = reduced_unit_extinction(t.layout.albedo[i], g, eta);
+    if (!exact_domain(bundled_exact_table(), m.albedo_prime, m.g, m.eta).empty()) continue;
+    ++inside;
+    for (std::size_t j = 1; j < t.columns(); j += 7) {
+      const double r = t.layout.radius[j];
+      const double want = 2 * std::numbers::pi * r * exact->reflectance(m, r);
+      if (r < 100) {
+        EXPECT_NEAR(t.profile[i * t.columns() + j] / want, 1.0, 0.01) << i << " " << r;
+      }
+    }
+  }
+  EXPECT_EQ(t.exact_rows, inside);
+  EXPECT_GE(inside, 97u);  // all but rho = 0 and rho = 1 at g = 0.6 (alpha' 0.9999 < rho = 1)
 }
 
 TEST(AlbedoRadiusTable, AlbedoInversionRoundTrips) {

@@ -2,13 +2,17 @@
 #include <gtest/gtest.h>
 
 #include <unistd.h>
+#include <array>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 
 #include "bssrdf/derived_quantities.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/io/renderer_export.hpp"
 #include "bssrdf/materials.hpp"
+#include "bssrdf/model.hpp"
+#include "bssrdf/models/exact.hpp"
 #include "cli_runner.hpp"
 #include "json_schema_subset.hpp"
 #include "reference_data.hpp"
@@ -274,7 +278,7 @@ TEST(DerivedQuantities, MatchHandComputedValues) {
   EXPECT_DOUBLE_EQ(r.mfp, 1 / 0.772);
   EXPECT_DOUBLE_EQ(r.transport_mfp, 1 / 0.772);
   EXPECT_NEAR(r.diffuse_mfp, 1 / std::sqrt(3 * 0.032 * 0.772), 1e-12);
-  EXPECT_EQ(q.physical_model, "pbd");
+  EXPECT_EQ(q.physical_model, "exact");  // every channel inside the exact model's domain
   for (const auto& c : q.channels) EXPECT_TRUE(c.diffusion_valid) << c.name << ": " << c.reason;
   // Lowfat Milk B (Narasimhan 2006): sigma_s 17.9572, sigma_a 0.0115, g 0.859.
   q = derive_quantities(db.find("Lowfat Milk").medium);
@@ -292,6 +296,64 @@ TEST(DerivedQuantities, MatchHandComputedValues) {
     EXPECT_GT(c.burley_error, 0);
     EXPECT_GT(c.surface_albedo, 0);
     EXPECT_LT(c.surface_albedo, 1);
+  }
+}
+
+// Burley's d is fitted to the exact profile inside its domain: against that profile it is at least
+// as close as the d fitted to pbd (what the database gave before), and channels outside the
+// domain fall back to pbd, named per channel.
+TEST(DerivedQuantities, BurleyDIsFittedToTheExactProfileInsideItsDomain) {
+  const auto db = MaterialDatabase::load(default_materials_dir());
+  const auto exact = make_model("exact");
+  // sqrt(int r (burley - exact)^2 dr / int r exact^2 dr) by the trapezoid rule in r.
+  const auto error_vs_exact = [&](const Reduced<double>& m, double A, double d) {
+    const auto r = burley_fit_radii_mm(m, 400);
+    double num = 0, den = 0;
+    for (std::size_t i = 0; i + 1 < r.size(); ++i) {
+      const auto term = [&](double x) {
+        const double R = exact->reflectance(m, x);
+        const double B = A * (std::exp(-x / d) + std::exp(-x / (3 * d))) / (8 * std::numbers::pi * d * x);
+        return std::array{x * (B - R) * (B - R), x * R * R};
+      };
+      const auto a = term(r[i]), b = term(r[i + 1]);
+      num += 0.5 * (a[0] + b[0]) * (r[i + 1] - r[i]);
+      den += 0.5 * (a[1] + b[1]) * (r[i + 1] - r[i]);
+    }
+    return std::sqrt(num / den);
+  };
+  DerivationOptions pbd;
+  pbd.physical_model = "pbd";
+  for (const char* name : {"Skin1", "Marble", "Wholemilk", "Ketchup"}) {
+    const auto& medium = db.find(name).medium;
+    const auto q = derive_quantities(medium), old = derive_quantities(medium, pbd);
+    EXPECT_EQ(q.physical_model, "exact") << name;
+    EXPECT_EQ(old.physical_model, "pbd") << name;
+    for (std::size_t c = 0; c < medium.channels(); ++c) {
+      const auto m = medium.reduced(c);
+      const auto& now = q.channels[c];
+      EXPECT_EQ(now.physical_model, "exact");
+      const double e_exact = error_vs_exact(m, now.surface_albedo, now.burley_d);
+      const double e_pbd = error_vs_exact(m, now.surface_albedo, old.channels[c].burley_d);
+      EXPECT_LE(e_exact, e_pbd * 1.001) << name << " " << now.name;
+      EXPECT_NEAR(e_exact, now.burley_error, 0.1 * now.burley_error) << name << " " << now.name;
+      std::printf("[ measured ] %s %s: Burley d %.4g mm (exact) vs %.4g mm (pbd); L2 vs exact %.3f vs %.3f\n", name,
+                  now.name.c_str(), now.burley_d, old.channels[c].burley_d, e_exact, e_pbd);
+    }
+  }
+  // Coke: every channel below alpha' 0.001 falls back; a mixed material names its fallen channels.
+  EXPECT_EQ(derive_quantities(db.find("Coke").medium).physical_model, "pbd");
+  for (const auto& m : db.all()) {
+    const auto q = derive_quantities(m.medium);
+    int outside = 0;
+    for (std::size_t c = 0; c < m.medium.channels(); ++c) {
+      const auto r = m.medium.reduced(c);
+      const bool inside = exact_domain(bundled_exact_table(), r.albedo_prime, r.g, r.eta).empty();
+      EXPECT_EQ(q.channels[c].physical_model, inside ? "exact" : "pbd") << m.name << " " << q.channels[c].name;
+      outside += !inside;
+    }
+    if (outside > 0 && outside < static_cast<int>(m.medium.channels())) {
+      EXPECT_NE(q.physical_model.find("exact (pbd for "), std::string::npos) << m.name << ": " << q.physical_model;
+    }
   }
 }
 

@@ -190,6 +190,17 @@ TEST(ModelChoice, CommandLineAutoSaysWhichModelAndWhy) {
   }
 }
 
+// 0.07 is not exactly representable: 100 * 0.07 = 7.000000000000001, which the percentages once printed.
+TEST(ModelChoice, AccuracyPercentagesPrintAsGiven) {
+  for (const std::string args : {"models --material Skin1 --accuracy 0.07",
+                                 "profile --material Skin1 --model auto --accuracy 0.07 --samples 8"}) {
+    const auto r = test_cli::run(args);
+    ASSERT_EQ(r.status, 0) << args << ": " << r.err;
+    EXPECT_NE(r.out.find("within 7 %"), std::string::npos) << args << ": " << r.out;
+    EXPECT_EQ(r.out.find("7.0000"), std::string::npos) << args << ": " << r.out;
+  }
+}
+
 // The speed-against-accuracy chart: an SVG with every model, placed left to right by cost.
 TEST(ModelChoice, SpeedAgainstAccuracyChart) {
   const auto file = test_cli::temp("chart.svg");

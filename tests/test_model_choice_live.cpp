@@ -140,6 +140,28 @@ TEST(ModelChoiceLive, ALooserAccuracyNeverServesFewerMaterials) {
 
 // Its speed (every candidate measured live) is a benchmark row: tools/bench/bench_exact.
 
+// estimate_model_error (what a fit's report uses: one model measured, not every candidate) gives
+// the very estimate estimate_model_errors lists, live inside the exact domain and from the table
+// outside it; a name that is no candidate has none.
+TEST(ModelChoiceLive, OneModelsEstimateIsTheSameAsInTheList) {
+  const Reduced<double> inside = reduce(0.05, 2.0, 0.4, 1.33), table_only = reduce(0.0, 1.0, 0.0, 1.3);
+  for (const auto& m : {inside, table_only}) {
+    const auto all = estimate_model_errors(m);
+    ASSERT_TRUE(all.has_value());
+    for (const auto& e : *all) {
+      const auto one = estimate_model_error(e.model, m);
+      ASSERT_TRUE(one.has_value()) << e.model;
+      EXPECT_EQ(one->source, e.source) << e.model;
+      EXPECT_DOUBLE_EQ(one->total_error, e.total_error) << e.model;
+      EXPECT_DOUBLE_EQ(one->profile_error, e.profile_error) << e.model;
+      EXPECT_EQ(one->invalid, e.invalid) << e.model;
+    }
+  }
+  EXPECT_EQ((*estimate_model_errors(inside))[0].source, "exact");
+  EXPECT_EQ((*estimate_model_errors(table_only))[0].source, "table");
+  EXPECT_FALSE(estimate_model_error("no-such-model", inside).has_value());
+}
+
 TEST(ModelChoiceLive, RefusalOutsideTheDomainNamesTheChannelAndACommandThatWorks) {
   const auto r = test_cli::run("profile --material Coke --model auto");  // channel R: alpha' 0.00089
   EXPECT_EQ(r.status, 2);

@@ -1,16 +1,18 @@
 // What a material's coefficients imply, per channel: albedos, the four distance conventions
 // renderers use (mfp 1/sigma_t, transport mfp 1/sigma_t', dmfp 1/sigma_tr, Burley's d), the surface albedo and Burley's
-// d fitted to a physical profile, and whether diffusion applies at all. Computed from the coefficients on demand, never
-// stored in material files, so they cannot disagree with them.
+// d fitted to a physical profile (the exact model's inside its domain), and whether diffusion applies at all. Computed
+// from the coefficients on demand, never stored in material files, so they cannot disagree with them.
 //
-//   const auto q = bssrdf::derive_quantities(material.medium);      // pbd, object size 10 mm
+//   const auto q = bssrdf::derive_quantities(material.medium);      // exact (pbd outside), object size 10 mm
 //   for (const auto& c : q.channels) if (!c.diffusion_valid) std::cout << c.reason;
 //
 //   mfp            1/sigma_t     (unreduced; Blender's Random Walk radius, Mitsuba's sigma_t)
 //   transport_mfp  ell = 1/sigma_t'
 //   diffuse_mfp    ell_d = 1/sigma_tr, sigma_tr = sqrt(3 sigma_a sigma_t') (classical)
 //   burley_d       d of R(r) = A (e^{-r/d} + e^{-r/3d}) / (8 pi d r), A = the surface albedo, d by
-//                  least squares against the physical model's R(r) (fit_burley), with its relative L2 error
+//                  least squares against the physical model's R(r) (fit_burley), with its relative L2 error;
+//                  the physical model is the exact one (the radiative-transfer solution, models/exact.hpp)
+//                  for every channel inside its domain and `fallback_model` for the others
 #pragma once
 
 #include <string>
@@ -35,17 +37,23 @@ struct DerivedChannel {
   // conserved: A <= 1), and the fit's relative L2 error sqrt(int r (fit - R)^2 dr / int r R^2 dr).
   // NaN when the channel does not scatter (sigma_s = 0).
   double burley_d = 0, burley_albedo = 0, burley_error = 0;
+  std::string physical_model;  // the profile this channel's Burley d is fitted to
   bool diffusion_valid = true;
   std::string reason;  // why diffusion does not apply (empty when it does)
 };
 
 struct DerivationOptions {
-  std::string physical_model = "pbd";  // the profile Burley's d is fitted to
-  double object_size_mm = 10;          // diffusion needs the transport mfp below this
-  std::size_t radii = 100;             // samples of the physical profile for the fit
+  // The profile Burley's d is fitted to; "exact" takes `fallback_model` for channels outside its
+  // domain (alpha' 0.001-0.9999, g 0-0.99, eta 1-1.6); with "exact", `fallback_model`'s validity
+  // decides diffusion_valid (whether diffusion applies is a diffusion model's verdict).
+  std::string physical_model = "exact";
+  std::string fallback_model = "pbd";
+  double object_size_mm = 10;  // diffusion needs the transport mfp below this
+  std::size_t radii = 100;     // samples of the physical profile for the fit
 };
 
 struct DerivedQuantities {
+  // The model every channel used ("exact", "pbd"), or "exact (pbd for R, G)" when some fell back.
   std::string physical_model;
   double object_size_mm = 0;
   std::vector<DerivedChannel> channels;

@@ -50,6 +50,9 @@ struct ModelErrorEstimate {
 // Every candidate model, cheapest first, with its estimated errors at these coefficients: live
 // against `exact` inside its domain, else from the table; nullopt outside both.
 std::optional<std::vector<ModelErrorEstimate>> estimate_model_errors(const Reduced<double>& m);
+// One model's estimate, as estimate_model_errors gives it, measuring only that model: nullopt
+// where that gives none or when `model` is not a candidate.
+std::optional<ModelErrorEstimate> estimate_model_error(const std::string& model, const Reduced<double>& m);
 // The two sources alone: nullopt outside the exact domain / outside the table's measured ranges
 // (alpha' < 0.5, eta outside [1, 1.5], g outside [0, 0.95]).
 std::optional<std::vector<ModelErrorEstimate>> model_errors_vs_exact(const Reduced<double>& m);

@@ -75,7 +75,7 @@ std::string render_validity_map(const ValidityMapOptions& options, const std::ve
         const std::vector<PatternImage> ref_image{meter.render(ref.channels.front())};
         const auto m = medium.reduced(0);
         for (std::size_t k = 0; k < models; ++k) {
-          // The measured table's columns include retired models (dipole+ss): no image for those.
+          // A column whose model has left the registry has no image.
           if (!find_model_entry(detail::kCandidateNames[k])) continue;
           const auto model = make_model(detail::kCandidateNames[k]);
           const auto profile = annuli_of(

@@ -59,13 +59,13 @@ void print_estimates(const MediumOptions& options, const std::string& accuracy_t
     char line[160];
     std::snprintf(line, sizeof line, "  %-18s %8.0f  %5.1f %%  %6.1f %%", e.model.c_str(), e.cost_ns,
                   100 * e.total_error, 100 * e.profile_error);
-    std::cout << line << (e.model == chosen ? "   <- cheapest within " + format_number(100 * accuracy) + " %" : "")
+    std::cout << line << (e.model == chosen ? "   <- cheapest within " + short_number(100 * accuracy) + " %" : "")
               << (e.invalid.empty()
                       ? ""
                       : "   invalid here (" + e.invalid.substr(0, e.invalid.find(": ", e.invalid.find(": ") + 2)) + ")")
               << '\n';
   }
-  if (chosen.empty()) std::cout << "no model is measured within " << format_number(100 * accuracy) << " % here\n";
+  if (chosen.empty()) std::cout << "no model is measured within " << short_number(100 * accuracy) << " % here\n";
 }
 
 // Cost against accuracy for every model: over all measured cases (median, whiskers from the best to

@@ -277,7 +277,7 @@ ChosenModel resolve_model(const std::string& name, const std::string& accuracy, 
   }
   const auto& chosen = *std::find_if(choice.estimates.begin(), choice.estimates.end(),
                                      [&](const auto& e) { return e.model == choice.model; });
-  return {choice.model, "auto: " + choice.model + ", the cheapest measured within " + format_number(a * 100) +
+  return {choice.model, "auto: " + choice.model + ", the cheapest measured within " + short_number(a * 100) +
                             " % of Monte Carlo for this medium (worst channel: total " +
                             format_number(std::round(chosen.total_error * 1000) / 10) + " %, profile L2 " +
                             format_number(std::round(chosen.profile_error * 1000) / 10) + " %)" +

@@ -1,6 +1,6 @@
 // bssrdf lut: lookup tables for renderers (radial, albedo-radius, transmission, pre-integrated,
 // penumbra, separable kernel, Gaussian mixture) as OpenEXR, JSON, CSV or shader arrays; --all for the
-// whole materials database, one file per material. The kinds themselves are in lut_kinds.cpp.
+// whole materials database, one file per material. The kinds are in lut_kinds.cpp, built by the library.
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -10,11 +10,6 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/io/atomic_file.hpp"
 #include "bssrdf/io/exr_table.hpp"
-#include "bssrdf/lut/albedo_radius_table.hpp"
-#include "bssrdf/lut/radial_table.hpp"
-#include "bssrdf/lut/reference_radial_table.hpp"
-#include "bssrdf/lut/separable_kernel.hpp"
-#include "bssrdf/lut/transmission_table.hpp"
 #include "bssrdf/parallel.hpp"
 #include "commands.hpp"
 #include "lut_kinds.hpp"
@@ -22,9 +17,9 @@
 namespace bssrdf::cli {
 namespace {
 
-std::string encode(const Built& built, const std::string& format, bool half) {
+std::string encode(const BuiltTable& built, const std::string& format, bool half) {
   const auto other = built.other_formats.find(format);
-  if (other != built.other_formats.end()) return other->second();
+  if (other != built.other_formats.end()) return with_flag_names({{"format", "--format"}}, other->second);
   if (format == "exr") return encode_exr(built.table, half ? ExrPixelType::half : ExrPixelType::float32);
   if (format == "json") return to_json(built.table);
   if (format == "csv") return to_csv(built.table);
@@ -236,7 +231,7 @@ Action register_lut(CLI::App& app) {
     if (o->output.empty()) throw InvalidInput("-o: give an output file (.exr, .json, .csv), or --preview FILE.png");
     const std::string format = format_for(*o, o->output);
     const auto start = std::chrono::steady_clock::now();
-    const Built built = kind.build(*o);
+    const BuiltTable built = kind.build(*o);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     write_file_atomically(o->output, encode(built, format, o->half));
     if (!o->quiet)

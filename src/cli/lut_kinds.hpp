@@ -1,20 +1,16 @@
-// The table kinds of `bssrdf lut`: each one parses its options into the library's option types
-// (whose defaults are the command's), builds its table and returns it with the library's summary.
-// Adding a kind is one builder in lut_kinds.cpp and one row of table_kinds().
+// The table kinds of `bssrdf lut`: each one parses its flags into the library's options
+// (lut/table_kinds.hpp, whose defaults are the command's) and calls the library's entry point for it.
+// Adding a kind is one entry point in the library, one parser in lut_kinds.cpp and one row of table_kinds().
 #pragma once
 
-#include "bssrdf/advise/realtime_tables.hpp"
-
-#include <optional>
-
 #include <cstdint>
-#include <functional>
-#include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 
-#include "bssrdf/lut/lookup_table.hpp"
+#include "bssrdf/lut/table_kinds.hpp"
 #include "cli_common.hpp"
 
 namespace bssrdf::cli {
@@ -47,26 +43,15 @@ struct LutOptions {
   bool taps_given = false, range_given = false, size_given = false, count_given = false;
 };
 
-// A table and the lines for people about it.
-struct Built {
-  LookupTable table;
-  std::string summary;
-  std::map<std::string, std::function<std::string()>> other_formats;  // e.g. "glsl", "hlsl" for kernels, on demand
-};
-
 struct TableKind {
   std::string_view name;
-  Built (*build)(const LutOptions&);
+  BuiltTable (*build)(const LutOptions&);
   std::string_view summary;  // one line for --help
 };
 std::span<const TableKind> table_kinds();
 // The kind named o.kind; throws InvalidInput naming --kind with the accepted names.
 const TableKind& table_kind(const std::string& name);
 
-// The PNG preview (any kind; the model is --model where given, else pbd) and a line about it.
-struct RenderedPreview {
-  std::string png, description;
-};
 // Option parsing shared by the kinds (lut_options.cpp).
 // "WxH" with each side a count in its range (parsed as signed: "-1x10" is refused, not wrapped).
 std::pair<std::size_t, std::size_t> parse_grid(const std::string& text, std::int64_t min_w, std::int64_t max_w,
@@ -76,21 +61,13 @@ void parse_size(const std::string& text, std::size_t& width, std::size_t& height
 double positive_fraction(const std::string& text, const std::string& field);  // 0 < value < 1
 // A length option in --unit, > 0, as mm.
 double positive_length_mm(const std::string& text, const std::string& field, LengthUnit unit);
-// --pixel [--tolerance] for the tabulated kinds: the image-space judge of the
-// tabulated model (advise/realtime_tables.hpp), the tolerance in code values (nullopt: none given),
-// and what a table records about its error.
-struct PixelJudge {
-  RealtimeJudge judge;
-  double pixel = 0;  // mm
-  std::optional<double> tolerance;
-};
-std::optional<PixelJudge> pixel_judge(const LutOptions& o, const MediumOptions::Resolved& resolved, const Model& model);
-// Records the table's image error (metadata and a summary line).
-void record_image_error(Built& b, const PixelJudge& j, const ImageError& e, const Model& model,
-                        const std::string& sized);
-// What sized a table by --tolerance, for its metadata and summary.
-std::string sized_note(const std::optional<double>& tolerance, bool meets, const std::string& what);
+// --pixel [--tolerance] for the kinds sized by an image error; nullopt without --pixel.
+std::optional<ImageErrorCheck> image_check(const LutOptions& o, LengthUnit unit);
 
+// The PNG preview (any kind; the model is --model where given, else pbd) and a line about it.
+struct RenderedPreview {
+  std::string png, description;
+};
 RenderedPreview render_preview(const LutOptions& o, const MediumOptions::Resolved& resolved);
 
 }  // namespace bssrdf::cli

@@ -44,8 +44,7 @@ double positive_length_mm(const std::string& text, const std::string& field, Len
   return v * millimetres_per(unit);
 }
 
-std::optional<PixelJudge> pixel_judge(const LutOptions& o, const MediumOptions::Resolved& resolved,
-                                      const Model& model) {
+std::optional<ImageErrorCheck> image_check(const LutOptions& o, LengthUnit unit) {
   if (o.pixel.empty()) {
     if (!o.tolerance.empty() && (o.kind == "separable" || o.kind == "preintegrated" || o.kind == "gaussians"))
       throw InvalidInput(
@@ -53,36 +52,16 @@ std::optional<PixelJudge> pixel_judge(const LutOptions& o, const MediumOptions::
           "a value only with --pixel for --kind " + o.kind + " (an image error, 8-bit sRGB code values)");
     return std::nullopt;
   }
-  const double pixel = parse_length(o.pixel, "--pixel") * millimetres_per(resolved.unit);
-  if (!(pixel > 0) || !std::isfinite(pixel)) throw InvalidInput("--pixel", o.pixel, "a pixel size > 0 in --unit");
-  std::optional<double> tolerance;
+  ImageErrorCheck check;
+  check.pixel = parse_length(o.pixel, "--pixel") * millimetres_per(unit);
+  if (!(check.pixel > 0) || !std::isfinite(check.pixel))
+    throw InvalidInput("--pixel", o.pixel, "a pixel size > 0 in --unit");
   if (!o.tolerance.empty()) {
-    tolerance = parse_number(o.tolerance, "--tolerance");
-    if (!(*tolerance > 0) || !std::isfinite(*tolerance))
+    check.tolerance = parse_number(o.tolerance, "--tolerance");
+    if (!(*check.tolerance > 0) || !std::isfinite(*check.tolerance))
       throw InvalidInput("--tolerance", o.tolerance, "> 0 (8-bit sRGB code values, with --pixel)");
   }
-  return PixelJudge{judge_against(resolved.medium, ModelReference(make_model(model.name())), pixel), pixel, tolerance};
-}
-
-// Records the table's image error (metadata and a summary line).
-void record_image_error(Built& b, const PixelJudge& j, const ImageError& e, const Model& model,
-                        const std::string& sized) {
-  b.table.set("bssrdf:image_error", e.error);
-  b.table.set("bssrdf:image_error_pixel_mm", j.pixel);
-  b.table.set("bssrdf:image_error_definition",
-              "largest 8-bit sRGB code-value difference between this table and the model " + model.name() +
-                  " it tabulates at a shadow edge, a one-pixel light line and a flat lit region, pixels of " +
-                  format_number(j.pixel) +
-                  " mm (bssrdf advise; the model's own error against the truth is not included)");
-  if (!sized.empty()) b.table.set("bssrdf:sized_by", sized);
-  b.summary += "  image error at " + format_number(j.pixel) +
-               " mm pixels: " + format_number(std::round(e.error * 1000) / 1000) + " code values against " +
-               model.name() + " (worst at the " + e.pattern + ")" + (sized.empty() ? "" : "; " + sized) + "\n";
-}
-
-std::string sized_note(const std::optional<double>& tolerance, bool meets, const std::string& what) {
-  return what + (meets ? " chosen for" : " (the most accurate tried: none meets") + " --tolerance " +
-         format_number(*tolerance) + " code values" + (meets ? "" : ")");
+  return check;
 }
 
 RenderedPreview render_preview(const LutOptions& o, const MediumOptions::Resolved& resolved) {

@@ -50,11 +50,12 @@ json show_json(const Material& m, const DerivedQuantities& q, LengthUnit unit) {
         {"diffuse_mfp", "ell_d = 1/sigma_tr, sigma_tr = sqrt(3 sigma_a sigma_t'), " + u + "; null without absorption"},
         {"burley_d",
          "d of R(r) = A (e^{-r/d} + e^{-r/3d})/(8 pi d r), A = surface_albedo, least-squares fitted to the " +
-             q.physical_model + " profile, " + u + "; burley_fit_error = sqrt(int r (fit - R)^2 dr / int r R^2 dr)"},
+             q.physical_model + " profile (each channel's physical_model), " + u +
+             "; burley_fit_error = sqrt(int r (fit - R)^2 dr / int r R^2 dr)"},
         {"surface_albedo",
-         "total diffuse reflectance of the " + q.physical_model +
-             " profile per entered flux; where that exceeds 1 (the model creates energy), the exact total by "
-             "adding-doubling, and the channel's reason says so"},
+         "total diffuse reflectance per entered flux: the exact model's inside its domain; outside it the "
+         "channel's physical model's, or where that exceeds 1 (the model creates energy) the exact total by "
+         "adding-doubling, and the channel's reason says so"},
         {"coefficients", per}}},
       {"notes", m.notes}};
   doc["channels"] = json::array();
@@ -74,6 +75,7 @@ json show_json(const Material& m, const DerivedQuantities& q, LengthUnit unit) {
                                {"burley_d", length(c.burley_d, unit)},
                                {"burley_albedo", value(c.burley_albedo)},
                                {"burley_fit_error", value(c.burley_error)},
+                               {"physical_model", c.physical_model},
                                {"surface_albedo", c.surface_albedo},
                                {"diffusion_valid", c.diffusion_valid},
                                {"reason", c.reason}});

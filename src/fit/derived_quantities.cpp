@@ -4,12 +4,12 @@
 #include <cmath>
 #include <limits>
 
-#include "bssrdf/adding_doubling/slab.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/fit/inverse_fits.hpp"
 #include "bssrdf/model.hpp"
 #include "bssrdf/models/exact.hpp"
 #include "bssrdf/profile.hpp"
+#include "bssrdf/transport_total.hpp"
 
 namespace bssrdf {
 
@@ -19,30 +19,16 @@ std::vector<double> burley_fit_radii_mm(const Reduced<double>& m, std::size_t co
   return log_spaced(r_min, r_max, count);
 }
 
-namespace {
-
-// The total diffuse reflectance of the semi-infinite medium per entered flux, by adding-doubling
-// (exact radiative transfer with the Henyey-Greenstein phase function and Fresnel boundary).
-double exact_total_reflectance(const Reduced<double>& m) {
-  adding_doubling::Slab slab;
-  slab.layers = {{m.sigma_a, m.sigma_s, m.g}};
-  slab.n = m.eta;
-  const auto t = adding_doubling::solve(slab, adding_doubling::Incidence::collimated);
-  // Without absorption the total is 1 exactly; the quadrature can exceed it by its error estimate.
-  const double total = t.diffuse_reflectance * t.entered_scale();
-  return total > 1 && total - 1 <= t.error_estimate ? 1.0 : total;
-}
-
-}  // namespace
-
 DerivedQuantities derive_quantities(const Medium& medium, const DerivationOptions& options) {
   medium.validate();
   if (!(options.object_size_mm > 0) || !std::isfinite(options.object_size_mm))
     throw InvalidInput("object size", format_number(options.object_size_mm), "> 0 and finite");
   if (options.radii < 8) throw InvalidInput("radii", std::to_string(options.radii), ">= 8");
-  const auto model = make_model(options.physical_model);
+  const auto requested = make_model(options.physical_model);
+  const auto fallback = make_model(options.fallback_model);
+  const ExactTable& table = bundled_exact_table();
   DerivedQuantities out;
-  out.physical_model = model->name();
+  std::string fell_back;  // the channels outside the exact model's domain
   out.object_size_mm = options.object_size_mm;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (std::size_t c = 0; c < medium.channels(); ++c) {
@@ -61,34 +47,41 @@ DerivedQuantities derive_quantities(const Medium& medium, const DerivationOption
     ch.transport_mfp = m.ell;
     ch.diffuse_mfp = m.sigma_tr > 0 ? m.ell_d : std::numeric_limits<double>::infinity();
 
+    const bool inside_exact = exact_domain(table, m.albedo_prime, m.g, m.eta).empty();
+    const bool falls_back = requested->name() == "exact" && !inside_exact;
+    const Model& model = falls_back ? *fallback : *requested;
+    ch.physical_model = model.name();
+    if (falls_back) fell_back += (fell_back.empty() ? "" : ", ") + ch.name;
+
     std::vector<std::string> reasons;
     if (m.sigma_s_prime > 0) {
-      const double model_total = model->total_reflectance(m);
+      const double model_total = model.total_reflectance(m);
       ch.surface_albedo = model_total;
-      for (const auto& note : model->validity(m))
+      // Whether diffusion applies is a diffusion model's verdict: the fallback's when exact is used.
+      const Model& diffusion = requested->name() == "exact" ? *fallback : model;
+      for (const auto& note : diffusion.validity(m))
         if (note.severity == Severity::invalid) reasons.push_back(note.message);
-      const ExactTable& table = bundled_exact_table();
-      if (exact_domain(table, m.albedo_prime, m.g, m.eta).empty()) {
+      if (inside_exact) {
         // Inside the exact model's domain the surface albedo is its total (the radiative-transfer
         // solution, <= 1), whatever the physical model's.
         ch.surface_albedo = exact_total(table, m.albedo_prime, m.g, m.eta);
         if (model_total > 1)
           reasons.push_back("surface albedo and Burley A are the exact model's total " +
-                            format_number(std::round(ch.surface_albedo * 1e5) / 1e5) + ", not " + out.physical_model +
+                            format_number(std::round(ch.surface_albedo * 1e5) / 1e5) + ", not " + ch.physical_model +
                             "'s " + format_number(std::round(model_total * 1e5) / 1e5));
       } else if (model_total > 1) {
         // The physical model creates energy here (its validity says so above): the surface albedo
         // is the exact radiative-transfer total instead, which conserves it.
-        ch.surface_albedo = exact_total_reflectance(m);
+        ch.surface_albedo = transport_total(m).value;
         reasons.push_back("surface albedo and Burley A are the exact total " +
                           format_number(std::round(ch.surface_albedo * 1e5) / 1e5) + " (adding-doubling), not " +
-                          out.physical_model + "'s " + format_number(std::round(model_total * 1e5) / 1e5));
+                          ch.physical_model + "'s " + format_number(std::round(model_total * 1e5) / 1e5));
       }
       // Burley's d fitted to the physical profile, his A held at the surface albedo: the fitted
       // profile carries exactly the surface albedo's energy (its error includes any excess of the
       // physical model's).
-      NamedProfile profile{ch.name, model->sample(m, burley_fit_radii_mm(m, options.radii))};
-      const auto fit = fit_burley({profile}, LengthUnit::millimetre, out.physical_model, {ch.surface_albedo});
+      NamedProfile profile{ch.name, model.sample(m, burley_fit_radii_mm(m, options.radii))};
+      const auto fit = fit_burley({profile}, LengthUnit::millimetre, ch.physical_model, {ch.surface_albedo});
       ch.burley_d = fit.find("burley_d", ch.name)->value;
       ch.burley_albedo = fit.find("surface_albedo", ch.name)->value;
       ch.burley_error = fit.find("relative_l2_error", ch.name)->value;
@@ -105,6 +98,13 @@ DerivedQuantities derive_quantities(const Medium& medium, const DerivationOption
     for (const auto& r : reasons) ch.reason += (ch.reason.empty() ? "" : "; ") + r;
     out.channels.push_back(std::move(ch));
   }
+  const auto used_fallback = std::count_if(out.channels.begin(), out.channels.end(), [&](const DerivedChannel& c) {
+    return c.physical_model != requested->name();
+  });
+  out.physical_model = used_fallback == 0 ? requested->name()
+                       : used_fallback == static_cast<long>(out.channels.size())
+                           ? fallback->name()
+                           : requested->name() + " (" + fallback->name() + " for " + fell_back + ")";
   return out;
 }
 

@@ -209,15 +209,14 @@ FitReport fit_profile(const MeasuredProfile& data, const ProfileFitOptions& opti
     // The 1-sigma are statistical: a diffusion model's own error against radiative transfer biases
     // the estimates beyond them (PBD on a Monte Carlo profile: sigma_a 7.6 % high, 12 sigma). Say
     // how large that error is here, measured against Monte Carlo (model_choice.hpp).
-    if (const auto estimates = estimate_model_errors(reduce(sa, ssp / (1 - channels[c].g), channels[c].g, eta)))
-      for (const auto& e : *estimates)
-        if (e.model == options.model && e.profile_error > 0.01)
-          report.warnings.push_back(
-              "channel " + name + ": the 1-sigma are statistical only; " + e.model +
-              " itself differs from radiative transfer by " + format_number(std::round(e.profile_error * 1000) / 10) +
-              " % in R(r) (L2) and " + format_number(std::round(e.total_error * 1000) / 10) +
-              " % in the total at these coefficients (measured against Monte Carlo), which biases "
-              "the fitted coefficients beyond them");
+    if (const auto e = estimate_model_error(options.model, reduce(sa, ssp / (1 - channels[c].g), channels[c].g, eta)))
+      if (e->profile_error > 0.01)
+        report.warnings.push_back("channel " + name + ": the 1-sigma are statistical only; " + e->model +
+                                  " itself differs from radiative transfer by " +
+                                  format_number(std::round(e->profile_error * 1000) / 10) + " % in R(r) (L2) and " +
+                                  format_number(std::round(e->total_error * 1000) / 10) +
+                                  " % in the total at these coefficients (measured against Monte Carlo), which biases "
+                                  "the fitted coefficients beyond them");
     if (std::abs(rho) > 0.99)
       report.warnings.push_back("channel " + name + ": sigma_a and sigma_s' are strongly correlated (rho = " +
                                 format_number(std::round(rho * 1000) / 1000) +

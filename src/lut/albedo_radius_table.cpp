@@ -10,9 +10,12 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/fresnel.hpp"
 #include "bssrdf/lut/interpolation.hpp"
+#include "bssrdf/model.hpp"
+#include "bssrdf/models/exact.hpp"
 #include "bssrdf/models/photon_beam_diffusion.hpp"
 #include "bssrdf/parallel.hpp"
 #include "bssrdf/single_scattering.hpp"
+#include "bssrdf/transport_total.hpp"
 
 namespace bssrdf {
 namespace {
@@ -90,24 +93,62 @@ AlbedoRadiusTable build_albedo_radius_table(const AlbedoRadiusLayout& layout, do
                   single_scattering_reflectance(unit_scattering, layout.radius[j], t.quadrature_order);
 
   BSSRDF_CHECK(rows >= 1 && cols >= 2 && std::is_sorted(layout.radius.begin(), layout.radius.end()));
+  const double single_integral = catmull_rom_cumulative(layout.radius, single.data()).back();
   t.profile.assign(rows * cols, 0.0);
   t.cdf.assign(rows * cols, 0.0);
   t.effective_albedo.assign(rows, 0.0);
+  t.energy = options.energy;
+  std::vector<double> scale(rows, 1.0);
+  std::vector<char> at_model_energy(rows, 0), exact_row(rows, 0);
+  t.shape = options.shape;
+  const auto exact = make_exact_model();
+  const ExactTable& exact_table = bundled_exact_table();
   parallel_for(rows, options.threads, [&](std::size_t i) {
     const double rho = layout.albedo[i];
     const auto m = reduced_unit_extinction(rho, g, eta);
     double* row = &t.profile[i * cols];
-    for (std::size_t j = 0; j < cols; ++j) {
+    exact_row[i] =
+        options.shape == RowShape::exact && rho > 0 && exact_domain(exact_table, m.albedo_prime, m.g, m.eta).empty();
+    for (std::size_t j = 0; j < cols && exact_row[i]; ++j) {
+      const double r = layout.radius[j];
+      row[j] = r > 0 ? kTwoPi * r * exact->reflectance(m, r) : 0.0;  // 2 pi r R -> 2 pi r R_ss, finite
+    }
+    for (std::size_t j = 0; j < cols && !exact_row[i]; ++j) {
       const double r = layout.radius[j];
       // 2 pi r R vanishes at r = 0 (R_ms is finite there; R_ss ~ 1/r is handled by the column factor).
       row[j] = rho * single[j] +
                (r > 0 && rho > 0 ? kTwoPi * r * photon_beam_diffusion::multiple_scattering(m, b, r, t.quadrature_order)
                                  : 0.0);
     }
-    const auto cum = catmull_rom_cumulative(layout.radius, row);
+    auto cum = catmull_rom_cumulative(layout.radius, row);
+    if (options.energy == RowEnergy::transport && cum.back() > 0) {
+      const auto total = transport_total(m);
+      // pbd's single scattering is exact: only its multiple scattering is scaled (which also keeps
+      // the rows linear in rho near rho = 0, where single scattering dominates, so they
+      // interpolate as well as before). Exact rows are scaled whole (by ~1).
+      const double single_energy = exact_row[i] ? 0.0 : rho * single_integral;
+      const double multiple_energy = cum.back() - single_energy;
+      if (total.reliable() && multiple_energy > 0 && total.value > single_energy) {
+        scale[i] = (total.value - single_energy) / multiple_energy;
+        for (std::size_t j = 0; j < cols; ++j) {
+          const double single_part = exact_row[i] ? 0.0 : rho * single[j];
+          row[j] = single_part + scale[i] * (row[j] - single_part);
+        }
+        cum = catmull_rom_cumulative(layout.radius, row);
+        cum.back() = total.value;  // equal up to rounding: exactly the total (never above 1)
+      } else {
+        at_model_energy[i] = 1;
+      }
+    }
     t.effective_albedo[i] = cum.back();
     for (std::size_t j = 0; j < cols; ++j) t.cdf[i * cols + j] = cum.back() > 0 ? cum[j] / cum.back() : 0.0;
   });
+  if (options.energy == RowEnergy::transport) {
+    t.smallest_scale = *std::min_element(scale.begin(), scale.end());
+    t.largest_scale = *std::max_element(scale.begin(), scale.end());
+    t.rows_at_model_energy = static_cast<std::size_t>(std::count(at_model_energy.begin(), at_model_energy.end(), 1));
+  }
+  t.exact_rows = static_cast<std::size_t>(std::count(exact_row.begin(), exact_row.end(), 1));
   t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return t;
 }
@@ -218,6 +259,26 @@ double AlbedoRadiusTable::albedo_from_effective_albedo(double rho_eff) const {
   return 0.5 * (lo + hi);
 }
 
+namespace {
+
+std::string shape_text(const AlbedoRadiusTable& t) {
+  if (t.shape == RowShape::pbd) return "photon beam diffusion";
+  return "the exact model (radiative transfer) in " + std::to_string(t.exact_rows) + " of " + std::to_string(t.rows()) +
+         " rows, photon beam diffusion outside its domain";
+}
+
+std::string energy_text(const AlbedoRadiusTable& t) {
+  if (t.energy == RowEnergy::model) return "the model's own row integral (pbrt's construction)";
+  return "the radiative-transfer total (exact model inside its domain, adding-doubling outside); rows scaled by " +
+         format_number(std::round(t.smallest_scale * 1e4) / 1e4) + " to " +
+         format_number(std::round(t.largest_scale * 1e4) / 1e4) + " from the model's integral" +
+         (t.rows_at_model_energy ? "; " + std::to_string(t.rows_at_model_energy) +
+                                       " rows at the model's integral (adding-doubling not converged)"
+                                 : "");
+}
+
+}  // namespace
+
 LookupTable to_lookup_table(const AlbedoRadiusTable& t, const TableContext& context, const std::string& layout_name) {
   LookupTable out;
   out.kind = "albedo-radius";
@@ -241,6 +302,8 @@ LookupTable to_lookup_table(const AlbedoRadiusTable& t, const TableContext& cont
   out.set("bssrdf:quadrature_order", t.quadrature_order);
   out.set("bssrdf:cdf",
           std::string("per row: Catmull-Rom integral of the profile from 0 to r_j over effective_albedo"));
+  out.set("bssrdf:effective_albedo", energy_text(t));
+  out.set("bssrdf:profile", shape_text(t));
   std::vector<double> radius, albedo, rho_eff;
   for (std::size_t i = 0; i < t.rows(); ++i)
     for (std::size_t j = 0; j < t.columns(); ++j) {
@@ -259,11 +322,11 @@ LookupTable to_lookup_table(const AlbedoRadiusTable& t, const TableContext& cont
 std::string summary(const AlbedoRadiusTable& t, const std::string& layout_name) {
   std::ostringstream s;
   s << "albedo-radius table (" << layout_name << " layout): " << t.rows() << " albedos x " << t.columns()
-    << " radii, g = " << format_number(t.g) << ", eta = " << format_number(t.eta) << ", photon beam diffusion with "
-    << t.quadrature_order << "-point Gauss-Legendre (tolerance " << format_number(t.tolerance) << "); table in "
-    << format_number(std::round(t.seconds * 1e5) / 100)
+    << " radii, g = " << format_number(t.g) << ", eta = " << format_number(t.eta) << ", " << shape_text(t)
+    << " (pbd: " << t.quadrature_order << "-point Gauss-Legendre, tolerance " << format_number(t.tolerance)
+    << "); table in " << format_number(std::round(t.seconds * 1e5) / 100)
     << " ms\n  effective albedo: " << format_number(t.effective_albedo.front()) << " (rho = 0) to "
-    << format_number(t.effective_albedo.back()) << " (rho = 1)\n";
+    << format_number(t.effective_albedo.back()) << " (rho = 1): " << energy_text(t) << "\n";
   return s.str();
 }
 

@@ -155,29 +155,57 @@ struct Lanes {
   bool active[kLanes];
 };
 
-}  // namespace
-
+// One batch traced in lanes: the batch's constants, the lanes and the random numbers of a step, with
+// the steps of trace_lanes as named functions. Every function is always inlined, so the SSE2 and AVX2
+// kernels (target attributes) each compile the whole loop as one function, as before it was split.
 template <bool kAnalog, class V>
-[[gnu::always_inline]] inline void trace_lanes(const ChannelGeometry& geo, const TraceSettings& settings,
-                                               Rng& batch_rng, std::uint64_t photons, BatchTally& tally) {
-  const LayerCoefficients* const layers = geo.layers.data();
-  const int layer_count = static_cast<int>(geo.layers.size());
-  const RadialBinning& binning = *settings.binning;
-  // Analog absorption never lowers the weight: no roulette.
-  const double threshold = kAnalog ? -1.0 : settings.roulette_threshold;
-  const double survival = settings.roulette_survival, inv_survival = 1 / survival;
-  const std::size_t depth_bins = settings.depth_bins;
-  const double inv_dz = settings.inv_depth_width;
-  const auto max_interactions = static_cast<double>(settings.max_interactions);  // exact below 2^53
-  const double start_weight = 1 - geo.specular;
-  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+struct LaneTracer {
+  using D = typename V::D;
+  using U = typename V::U;
+  using I = typename V::I;
+  static constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-  Xoshiro4 rng(batch_rng);
+  const ChannelGeometry& geo;
+  const TraceSettings& settings;
+  BatchTally& tally;
+  const LayerCoefficients* const layers;
+  const int layer_count;
+  const RadialBinning& binning;
+  const std::uint64_t photons;
+  // Analog absorption never lowers the weight: no roulette.
+  const double threshold, survival, inv_survival;
+  const std::size_t depth_bins;
+  const double inv_dz;
+  const double max_interactions;  // exact below 2^53
+  const double start_weight;
+
+  Xoshiro4 rng;
   Lanes L;
   std::uint64_t interactions = 0, launched = 0;
   int active = 0;
+  // One step's random bits, and what draw_steps derives from them.
+  alignas(64) std::uint64_t r_path[kLanes], r_angles[kLanes], r_absorb[kLanes];
+  alignas(64) double drawn_tau[kLanes], cos_theta[kLanes], cos_phi[kLanes], sin_phi[kLanes];
 
-  const auto enter_layer = [&](int j, int index) {
+  [[gnu::always_inline]] LaneTracer(const ChannelGeometry& geo_, const TraceSettings& settings_, Rng& batch_rng,
+                                    std::uint64_t photons_, BatchTally& tally_)
+      : geo(geo_),
+        settings(settings_),
+        tally(tally_),
+        layers(geo_.layers.data()),
+        layer_count(static_cast<int>(geo_.layers.size())),
+        binning(*settings_.binning),
+        photons(photons_),
+        threshold(kAnalog ? -1.0 : settings_.roulette_threshold),
+        survival(settings_.roulette_survival),
+        inv_survival(1 / settings_.roulette_survival),
+        depth_bins(settings_.depth_bins),
+        inv_dz(settings_.inv_depth_width),
+        max_interactions(static_cast<double>(settings_.max_interactions)),
+        start_weight(1 - geo_.specular),
+        rng(batch_rng) {}
+
+  [[gnu::always_inline]] void enter_layer(int j, int index) {
     const LayerCoefficients& l = layers[index];
     L.layer[j] = index;
     L.z_top[j] = l.z_top;
@@ -190,8 +218,9 @@ template <bool kAnalog, class V>
     L.hg_c[j] = l.hg_c;
     L.hg_2g[j] = l.hg_2g;
     L.hg_inv_2g[j] = l.hg_inv_2g;
-  };
-  const auto launch = [&](int j) {
+  }
+
+  [[gnu::always_inline]] void launch(int j) {
     L.x[j] = L.y[j] = 0;
     L.z[j] = geo.start_z;
     L.ux[j] = L.uy[j] = 0;
@@ -202,12 +231,15 @@ template <bool kAnalog, class V>
     L.scatterings[j] = 0;
     enter_layer(j, static_cast<int>(geo.start_layer));
     ++launched;
-  };
-  const auto deposit = [&](double z, double dw) {
+  }
+
+  [[gnu::always_inline]] void deposit(double z, double dw) {
     const auto i = static_cast<std::size_t>(z * inv_dz);
     if (i < depth_bins) tally.a_sum[i] += dw;
-  };
-  const auto escape = [&](int j, bool top) {
+  }
+
+  // The photon in lane j leaves through the top (reflected) or the bottom (transmitted): tallied once.
+  [[gnu::always_inline]] void escape(int j, bool top) {
     const double r = std::sqrt(L.x[j] * L.x[j] + L.y[j] * L.y[j]);
     const std::size_t bin = binning.index(r);
     const double w = L.w[j], w2 = w * w, scatterings = L.scatterings[j];
@@ -243,9 +275,10 @@ template <bool kAnalog, class V>
         tally.t_beyond += w;
       }
     }
-  };
+  }
+
   // The photon in lane j has ended: tally it, then launch the next one or retire the lane.
-  const auto finish = [&](int j) {
+  [[gnu::always_inline]] void finish(int j) {
     interactions += static_cast<std::uint64_t>(L.scatterings[j]);
     tally.sum[kAbsorbed] += L.absorbed[j];
     tally.sum_sq[kAbsorbed] += L.absorbed[j] * L.absorbed[j];
@@ -258,10 +291,11 @@ template <bool kAnalog, class V>
       L.absorb[j] = 0;
       --launched;
     }
-  };
+  }
+
   // The free path of lane j (optical depth L.tau[j]) reaches an interface of its layer: move there
   // and reflect, refract or leave. Returns false when the photon has ended.
-  const auto cross = [&](int j) -> bool {
+  [[gnu::always_inline]] bool cross(int j) {
     BSSRDF_DCHECK(L.layer[j] >= 0 && L.layer[j] < layer_count && L.w[j] >= 0);  // a live lane: in a layer, with weight
     const LayerCoefficients& l = layers[L.layer[j]];
     const double uz = L.uz[j];
@@ -296,43 +330,37 @@ template <bool kAnalog, class V>
     }
     enter_layer(j, next);
     return true;
-  };
+  }
 
-  for (int j = 0; j < kLanes; ++j) {
-    launch(j);
-    L.active[j] = launched <= photons;
-    if (L.active[j]) {
-      ++active;
-    } else {
-      L.absorb[j] = 0;
-      --launched;
+  // The first photon of every lane; lanes beyond the batch's photons start retired.
+  [[gnu::always_inline]] void launch_lanes() {
+    for (int j = 0; j < kLanes; ++j) {
+      launch(j);
+      L.active[j] = launched <= photons;
+      if (L.active[j]) {
+        ++active;
+      } else {
+        L.absorb[j] = 0;
+        --launched;
+      }
     }
   }
 
-  alignas(64) std::uint64_t r_path[kLanes], r_angles[kLanes], r_absorb[kLanes];
-  alignas(64) double drawn_tau[kLanes], cos_theta[kLanes], cos_phi[kLanes], sin_phi[kLanes];
-  while (active > 0) {
-    // Vector pass: every lane takes one free path; where it ends inside the layer, the photon
-    // interacts (absorption, then a new direction). Lanes whose path leaves the layer only keep
-    // the optical depth drawn; the lane-by-lane pass moves them to the interface.
+  // Vector pass, part 1, independent of the photons' state (so the processor can run it ahead): the
+  // free path's optical depth, the polar cosine and the azimuth of every lane, from the random bits.
+  // The divisions of the logarithm and of the Henyey-Greenstein inverse share one reciprocal of
+  // the product of their denominators (2 + f in [1.7, 2.5] and 1 - g + 2 g xi >= 1 - |g| > 0):
+  // each quotient within ~3 ulp of the correctly rounded one; in the logarithm that moves the
+  // result by a small fraction of an ulp (see log_finish), in the cosine by a few ulp.
+  // Bits: the free path takes the top 52 of one draw; the cosine the top 32 of the other and the
+  // azimuth its low 32 (xoshiro256+'s weak lowest bits, of low linear complexity, only pick among
+  // cells 2^-32 of a turn wide; the quadrant comes from bits 30-31).
+  [[gnu::always_inline]] void draw_steps() {
     rng.all(r_path);
     rng.all(r_angles);
     if constexpr (kAnalog) rng.all(r_absorb);
     // V::width lanes at a time as vectors (SSE2 or AVX2), both sides of every choice computed,
     // then selected.
-    using D = typename V::D;
-    using U = typename V::U;
-    using I = typename V::I;
-    I any_slow = {};
-    // Part 1, independent of the photons' state (so the processor can run it ahead): the free
-    // path's optical depth, the polar cosine and the azimuth of every lane, from the random bits.
-    // The divisions of the logarithm and of the Henyey-Greenstein inverse share one reciprocal of
-    // the product of their denominators (2 + f in [1.7, 2.5] and 1 - g + 2 g xi >= 1 - |g| > 0):
-    // each quotient within ~3 ulp of the correctly rounded one; in the logarithm that moves the
-    // result by a small fraction of an ulp (see log_finish), in the cosine by a few ulp.
-    // Bits: the free path takes the top 52 of one draw; the cosine the top 32 of the other and the
-    // azimuth its low 32 (xoshiro256+'s weak lowest bits, of low linear complexity, only pick among
-    // cells 2^-32 of a turn wide; the quadrant comes from bits 30-31).
     for (int g = 0; g < kLanes; g += V::width) {
       const U rp = load<U>(r_path + g), ra = load<U>(r_angles + g);
       const D xi = uniform_mid32(ra >> 32);
@@ -353,7 +381,13 @@ template <bool kAnalog, class V>
       store(cos_phi + g, cp);
       store(sin_phi + g, sp);
     }
-    // Part 2: move, absorb, turn.
+  }
+
+  // Vector pass, part 2: every lane takes its free path; where it ends inside the layer the photon
+  // interacts (absorption, then the new direction). Lanes whose path leaves the layer only keep the
+  // optical depth drawn. Returns whether any lane needs the lane-by-lane pass.
+  [[gnu::always_inline]] bool move_absorb_turn() {
+    I any_slow = {};
     for (int g = 0; g < kLanes; g += V::width) {
       const D tau_in = load<D>(L.tau + g);
       const D ux = load<D>(L.ux + g), uy = load<D>(L.uy + g), uz = load<D>(L.uz + g);
@@ -394,13 +428,19 @@ template <bool kAnalog, class V>
       }
       any_slow |= slow;
     }
-    if (depth_bins && !kAnalog)
-      for (int j = 0; j < kLanes; ++j)
-        if (L.inside[j] && L.active[j]) deposit(L.z[j], L.dw[j]);
     std::int64_t any = 0;
     for (int i = 0; i < V::width; ++i) any |= any_slow[i];
-    if (!any) continue;
-    // Lane-by-lane pass: interfaces, absorption (analog), roulette, the end of photons.
+    return any != 0;
+  }
+
+  // Implicit capture: the weight each interacting lane deposited, by depth.
+  [[gnu::always_inline]] void deposit_interactions() {
+    for (int j = 0; j < kLanes; ++j)
+      if (L.inside[j] && L.active[j]) deposit(L.z[j], L.dw[j]);
+  }
+
+  // Lane-by-lane pass: interfaces, absorption (analog), roulette, the end of photons.
+  [[gnu::always_inline]] void rare_events() {
     for (int j = 0; j < kLanes; ++j) {
       if (!L.active[j]) continue;
       if (!L.inside[j]) {
@@ -429,8 +469,23 @@ template <bool kAnalog, class V>
       }
     }
   }
+};
+
+}  // namespace
+
+template <bool kAnalog, class V>
+[[gnu::always_inline]] inline void trace_lanes(const ChannelGeometry& geo, const TraceSettings& settings,
+                                               Rng& batch_rng, std::uint64_t photons, BatchTally& tally) {
+  LaneTracer<kAnalog, V> t(geo, settings, batch_rng, photons, tally);
+  t.launch_lanes();
+  while (t.active > 0) {
+    t.draw_steps();
+    const bool slow = t.move_absorb_turn();
+    if (t.depth_bins && !kAnalog) t.deposit_interactions();
+    if (slow) t.rare_events();
+  }
   tally.photons += photons;
-  tally.interactions += interactions;
+  tally.interactions += t.interactions;
 }
 
 namespace {

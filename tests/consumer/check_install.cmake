@@ -38,6 +38,21 @@ if(has_links EQUAL -1 OR NOT core_ceres EQUAL -1)
   message(FATAL_ERROR "bssrdf::core should link OpenEXR and Threads but not Ceres:\n${core_block}")
 endif()
 
+# bssrdf::core names the installed include directory once (install(TARGETS ... INCLUDES DESTINATION) beside
+# its own $<INSTALL_INTERFACE:include> once listed it twice), and bssrdf::bssrdf lists none twice.
+foreach(target core bssrdf)
+  string(REGEX MATCH "set_target_properties\\(bssrdf::${target} [^)]*\\)" block "${exported}")
+  set(dirs "")
+  if(block MATCHES "INTERFACE_INCLUDE_DIRECTORIES \"([^\"]*)\"")
+    set(dirs "${CMAKE_MATCH_1}")
+  endif()
+  set(unique "${dirs}")
+  list(REMOVE_DUPLICATES unique)
+  if(NOT "${unique}" STREQUAL "${dirs}" OR (target STREQUAL "core" AND NOT dirs STREQUAL "\${_IMPORT_PREFIX}/include"))
+    message(FATAL_ERROR "bssrdf::${target}: include directories '${dirs}' (core: \${_IMPORT_PREFIX}/include once)")
+  endif()
+endforeach()
+
 # find_package
 run(${CMAKE_COMMAND} -S "${SOURCE_DIR}" -B "${WORK_DIR}/build" -DCMAKE_PREFIX_PATH=${prefix}
     -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_BUILD_TYPE=Release)

@@ -9,7 +9,7 @@ import sys
 root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 tsv = os.path.join(root, "tools", "validation", "models_vs_montecarlo_extended.tsv")
 out = os.path.join(root, "src", "model_error_table.cpp")
-models = ["dipole", "dipole+ss", "better-dipole", "better-dipole+ss", "pbd", "quantized", "quantized+ss",
+models = ["dipole", "better-dipole", "better-dipole+ss", "pbd", "quantized", "quantized+ss",
           "burley", "burley-diffuse", "burley-dmfp"]
 
 rows = [line.rstrip("\n").split("\t") for line in open(tsv)]

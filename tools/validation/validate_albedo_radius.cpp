@@ -2,7 +2,10 @@
 // reference, for the tables bench_lut times: pbrt's construction (100 + 100 midpoint samples per
 // cell, tools/bench/pbrt_style.hpp), ours at the default quadrature tolerance 1e-2 and at 1e-3, and
 // the same layout filled with the converged model (1024-point Gauss-Legendre: what any quadrature
-// converges to; the floor set by the model itself).
+// converges to; the floor set by the model itself) -- these four with the model's own row energy
+// (RowEnergy::model, pbrt's construction) -- and the default table, ours at 1e-2 with each row
+// scaled to the radiative-transfer total (RowEnergy::transport: "rt"), and the rows from the exact
+// model (RowShape::exact, `lut --kind albedo-radius --model exact`: "exact").
 //
 // For each (g, eta) and six stored albedo rows (nearest pbrt rows to 0.3, 0.6, 0.8, 0.9, 0.95,
 // 0.99), the Monte Carlo reference (semi-infinite medium, sigma_t = 1 /mm so mm = mean free paths,
@@ -58,7 +61,8 @@ int main(int argc, char** argv) {
   const std::size_t bins = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 50;
   const auto layout = AlbedoRadiusLayout::pbrt();
   const std::size_t cols = layout.radius.size();
-  const char* names[] = {"pbrt-style", "ours 1e-2", "ours 1e-3", "converged"};
+  constexpr int kTables = 6;
+  const char* names[kTables] = {"pbrt-style", "ours 1e-2", "ours 1e-3", "converged", "rt 1e-2", "exact"};
   std::printf(
       "pbrt-layout albedo-radius table (100 x 64, photon beam diffusion) against Monte Carlo, %llu photons per row, "
       "%zu log bins\n",
@@ -67,15 +71,21 @@ int main(int argc, char** argv) {
       "L2 and worst: bin-averaged 2 pi r R over the radii holding 99.9 %% of the row's energy; rho_eff: relative error "
       "of the row's effective albedo (%%)\n\n");
   std::printf(
-      "g    eta  rho     r_max   MC rho_eff       noise |  L2 %%: pbrt ours-2 ours-3   conv | noise | L2 ln %%: pbrt "
-      "ours-2 ours-3  conv | worst %%: pbrt ours-2 ours-3   conv | rho_eff %%: pbrt ours-2 ours-3   conv\n");
-  std::vector<double> all[4], all_log[4], all_eff[4];
+      "g    eta  rho     r_max   MC rho_eff       noise |  L2 %%: pbrt ours-2 ours-3   conv     rt  exact | noise | "
+      "L2 ln %%: pbrt ours-2 ours-3   conv     rt  exact | worst %%: pbrt ours-2 ours-3   conv     rt  exact | "
+      "rho_eff %%: pbrt ours-2 ours-3   conv     rt  exact\n");
+  std::vector<double> all[kTables], all_log[kTables], all_eff[kTables];
   const auto t0 = std::chrono::steady_clock::now();
   for (const auto& [g, eta] : {std::pair{0.0, 1.3}, std::pair{0.9, 1.3}, std::pair{0.0, 1.0}, std::pair{0.9, 1.0}}) {
-    AlbedoRadiusOptions o2, o3;
+    AlbedoRadiusOptions o2, o3, rt;
     o2.tolerance = 1e-2;
     o3.tolerance = 1e-3;
-    AlbedoRadiusTable tables[4];
+    o2.energy = o3.energy = RowEnergy::model;
+    AlbedoRadiusTable tables[kTables];
+    tables[4] = build_albedo_radius_table(layout, g, eta, rt);
+    AlbedoRadiusOptions exact;
+    exact.shape = RowShape::exact;
+    tables[5] = build_albedo_radius_table(layout, g, eta, exact);
     tables[1] = build_albedo_radius_table(layout, g, eta, o2);
     tables[2] = build_albedo_radius_table(layout, g, eta, o3);
     tables[0] = tables[1];
@@ -132,8 +142,8 @@ int main(int argc, char** argv) {
         norm_log += f_mc[n] * f_mc[n] * wl;
         noise_log += se_mc[n] * se_mc[n] * wl;
       }
-      Errors e[4];
-      for (int t = 0; t < 4; ++t) {
+      Errors e[kTables];
+      for (int t = 0; t < kTables; ++t) {
         const std::span<const double> f(&tables[t].profile[row * cols], cols);
         double sq = 0, sq_log = 0;
         for (std::size_t n = 0; n < bins; ++n) {
@@ -149,14 +159,16 @@ int main(int argc, char** argv) {
         all[t].push_back(e[t].l2);
         all_eff[t].push_back(std::abs(e[t].rho_eff));
       }
-      std::printf(
-          "%-4.1f %-4.1f %-6.4f %7.2f  %.4f±%.4f %5.2f |     %6.2f %6.2f %6.2f %6.2f | %5.2f |      %6.2f %6.2f %6.2f "
-          "%6.2f |     %6.2f %6.2f %6.2f %6.2f |        %+6.2f %+6.2f %+6.2f %+6.2f\n",
-          g, eta, rho, r_max, mc.diffuse_reflectance.value, mc.diffuse_reflectance.standard_error,
-          100 * std::sqrt(noise / norm), 100 * e[0].l2, 100 * e[1].l2, 100 * e[2].l2, 100 * e[3].l2,
-          100 * std::sqrt(noise_log / norm_log), 100 * e[0].l2_log, 100 * e[1].l2_log, 100 * e[2].l2_log,
-          100 * e[3].l2_log, 100 * e[0].worst, 100 * e[1].worst, 100 * e[2].worst, 100 * e[3].worst, 100 * e[0].rho_eff,
-          100 * e[1].rho_eff, 100 * e[2].rho_eff, 100 * e[3].rho_eff);
+      std::printf("%-4.1f %-4.1f %-6.4f %7.2f  %.4f±%.4f %5.2f |     ", g, eta, rho, r_max,
+                  mc.diffuse_reflectance.value, mc.diffuse_reflectance.standard_error, 100 * std::sqrt(noise / norm));
+      for (int t = 0; t < kTables; ++t) std::printf(" %6.2f", 100 * e[t].l2);
+      std::printf(" | %5.2f |      ", 100 * std::sqrt(noise_log / norm_log));
+      for (int t = 0; t < kTables; ++t) std::printf(" %6.2f", 100 * e[t].l2_log);
+      std::printf(" |     ");
+      for (int t = 0; t < kTables; ++t) std::printf(" %6.2f", 100 * e[t].worst);
+      std::printf(" |        ");
+      for (int t = 0; t < kTables; ++t) std::printf(" %+6.2f", 100 * e[t].rho_eff);
+      std::printf("\n");
       std::fflush(stdout);
     }
   }
@@ -165,7 +177,7 @@ int main(int argc, char** argv) {
     return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
   };
   std::printf("\nmedian over rows:\n");
-  for (int t = 0; t < 4; ++t)
+  for (int t = 0; t < kTables; ++t)
     std::printf("  %-11s  L2 %6.2f %%   L2 ln %6.2f %%   |rho_eff err| %5.2f %%   max L2 %6.2f %%\n", names[t],
                 100 * median(all[t]), 100 * median(all_log[t]), 100 * median(all_eff[t]),
                 100 * *std::max_element(all[t].begin(), all[t].end()));
@@ -184,7 +196,7 @@ int main(int argc, char** argv) {
         "better\n",
         names[t], what, better, v[0].size(), 100 * worse_by, 100 * better_by);
   };
-  for (int t = 1; t < 4; ++t) {
+  for (int t = 1; t < kTables; ++t) {
     paired("L2", all, t);
     paired("L2 ln", all_log, t);
     paired("|rho_eff err|", all_eff, t);

@@ -5,6 +5,20 @@
 // rho_eff = int 2 pi r R dr and CDF. Renderers scale radii by 1/sigma_t and invert rho_eff to find
 // rho from a surface colour (albedo_from_effective_albedo).
 //
+// Energy: photon beam diffusion's own total is 3-14 % off the radiative-transfer solution (above it
+// at g = 0, reaching 1.023 at rho = 1: more light out than in). By default each row is scaled so
+// that its integral, the effective albedo, is the radiative-transfer total (transport_total.hpp:
+// the exact model's inside its domain, adding-doubling outside): the inversion then finds the rho
+// that really gives a surface colour and the profile carries that energy. Only the multiple-
+// scattering part is scaled (pbd's single scattering is the exact integral already).
+// RowEnergy::model keeps pbrt's construction (the row's own integral).
+//
+// RowShape::exact fills every row inside the exact model's domain (models/exact.hpp: alpha' 0.001
+// to 0.9999 at g 0-0.99, eta 1-1.6) with the exact model's 2 pi r R instead of photon beam
+// diffusion's (the radiative-transfer solution; rows outside, rho = 1 and rho near 0 at large g,
+// stay pbd scaled to the transport total). Measured against Monte Carlo on pbrt's layout:
+// tools/validation/albedo_radius_vs_montecarlo.txt.
+//
 //   auto t = build_albedo_radius_table(AlbedoRadiusLayout::pbrt(), 0.0, 1.3, {});
 //   double rho = t.albedo_from_effective_albedo(0.5);
 //
@@ -36,9 +50,14 @@ struct AlbedoRadiusLayout {
   static AlbedoRadiusLayout family(std::size_t albedos, std::size_t radii, double r_max = 203.0);
 };
 
+enum class RowEnergy { transport, model };
+enum class RowShape { pbd, exact };
+
 struct AlbedoRadiusOptions {
   double tolerance = 1e-2;  // quadrature tolerance of the beam integral (relative): 8 points
-  unsigned threads = 0;     // 0: all hardware threads; results never depend on it
+  RowEnergy energy = RowEnergy::transport;
+  RowShape shape = RowShape::pbd;
+  unsigned threads = 0;  // 0: all hardware threads; results never depend on it
   // adaptive_albedo_radius_layout: called after each refinement step with (steps done, most steps
   // possible); each axis grows by 25 % a step from 12 to at most 2048 points, so at most 2 x 24 steps.
   std::function<void(std::uint64_t done, std::uint64_t total)> progress;
@@ -51,10 +70,21 @@ struct AlbedoRadiusTable {
   double tolerance = 0;         // the quadrature tolerance it was built for
   double seconds = 0;           // time to build
   std::vector<double> profile;  // [i * radii + j]: 2 pi r_j R(r_j) at albedo_i, 1/mfp
-  // Per row: the Catmull-Rom integral of the row (as pbrt; consistent with the CDF). Within 2 % of
-  // the model's total up to rho = 0.999; above, pbrt's layout (203 mfp) truncates the profile (-9 %).
+  // Per row: the Catmull-Rom integral of the row (as pbrt; consistent with the CDF). With
+  // RowEnergy::transport the radiative-transfer total the row was scaled to; with RowEnergy::model
+  // the model's own, within 2 % of its total up to rho = 0.999 (above, pbrt's layout, 203 mfp,
+  // truncates the profile: -9 %).
   std::vector<double> effective_albedo;
-  std::vector<double> cdf;  // [i * radii + j]: row CDF, 1 at the last radius
+  RowEnergy energy = RowEnergy::model;
+  // RowEnergy::transport: the factors applied to the rows' multiple scattering (what the
+  // radiative-transfer total leaves after single scattering, over the model's), and the rows left
+  // at the model's integral because adding-doubling did not converge there (transport_total.hpp:
+  // g near 1 with rho near 0).
+  double smallest_scale = 1, largest_scale = 1;
+  std::size_t rows_at_model_energy = 0;
+  RowShape shape = RowShape::pbd;
+  std::size_t exact_rows = 0;  // RowShape::exact: the rows filled from the exact model
+  std::vector<double> cdf;     // [i * radii + j]: row CDF, 1 at the last radius
 
   std::size_t rows() const { return layout.albedo.size(); }
   std::size_t columns() const { return layout.radius.size(); }
