@@ -3,24 +3,13 @@
 #include <chrono>
 #include <cmath>
 
-#include "bssrdf/adding_doubling/slab.hpp"
 #include "bssrdf/model_choice.hpp"
 #include "bssrdf/model_registry.hpp"
+#include "bssrdf/transport_total.hpp"
 #include "bssrdf/validity.hpp"
 
 namespace bssrdf {
 namespace {
-
-// The half-space's total diffuse reflectance per entered flux by adding-doubling (as
-// derive_quantities computes the surface albedo outside the exact table).
-double adding_doubling_total(const Reduced<double>& m) {
-  adding_doubling::Slab slab;
-  slab.layers = {{m.sigma_a, m.sigma_s, m.g}};
-  slab.n = m.eta;
-  const auto t = adding_doubling::solve(slab, adding_doubling::Incidence::collimated);
-  const double total = t.diffuse_reflectance * t.entered_scale();
-  return total > 1 && total - 1 <= t.error_estimate ? 1.0 : total;  // conservative: 1 up to its error
-}
 
 // The analytic model with the smallest measured profile error at m (the Monte Carlo table), if any.
 std::optional<ModelErrorEstimate> best_tabulated_shape(const Reduced<double>& m) {
@@ -85,12 +74,16 @@ ReferenceProfiles AutoReference::profiles(const Medium& medium) const {
       out.channels[c] = annuli_of(edges, source.reflectance, exact->total_reflectance(m));
     } else if (source.name != "montecarlo") {
       const Model* shape = models_.at(source.name).get();
-      const double total = adding_doubling_total(m), scale = total / shape->total_reflectance(m);
+      // Outside the exact table: adding-doubling, or 1 exactly without absorption (Spectralon).
+      const TransportTotal transport = transport_total(m);
+      const double total = transport.value, scale = total / shape->total_reflectance(m);
       source.total_band = kAddingDoublingTotalBand;
       source.profile_band = best_tabulated_shape(m)->profile_error;
       source.reflectance = [shape, m, scale](double r) { return scale * shape->reflectance(m, r); };
       out.channels[c] = annuli_of(edges, source.reflectance, total);
-      label = source.name + " shape, adding-doubling total";
+      label = source.name + " shape, " +
+              (transport.source == std::string("adding-doubling") ? "adding-doubling total"
+                                                                  : "total 1 (" + std::string(transport.source) + ")");
     } else {
       label =
           "Monte Carlo " + std::to_string(monte_carlo_.photons) + " photons, seed " + std::to_string(monte_carlo_.seed);

@@ -3,9 +3,9 @@
 //  - inside the exact model's table: the exact model (its band: the registry's measured accuracy);
 //  - near-conservative channels above the table (alpha' > 0.9999: Cream's red, Spectralon), where a
 //    Monte Carlo walk is long (Spectralon: 2000 photons took 5.5 s on 2 cores, 2.5 code values of
-//    noise): the adding-doubling total (exact radiative transfer; band 1e-3, above its measured
-//    agreement with Monte Carlo) with the shape of the model measured most accurate there against
-//    Monte Carlo (model_choice.hpp's table; band: that measured profile error);
+//    noise): the radiative-transfer total (transport_total.hpp: adding-doubling, band 1e-3, above its
+//    measured agreement with Monte Carlo; 1 without absorption) with the shape of the model measured most accurate
+//    there against Monte Carlo (model_choice.hpp's table; band: that measured profile error);
 //  - elsewhere (alpha' below the table: clear beverages; g or eta outside it): a Monte Carlo run of
 //    those channels alone, at the photons given (short walks: a few milliseconds below the table).
 // Every channel says which it got (ReferenceSources), and reference_uncertainty.hpp turns the bands
