@@ -12,16 +12,58 @@
 #include "bssrdf/model.hpp"
 #include "bssrdf/model_choice.hpp"
 #include "bssrdf/model_registry.hpp"
+#include "bssrdf/validity.hpp"
 
 namespace bssrdf {
 namespace {
 
 bool closed_form(const std::string& model) { return model_entry(model).closed_form; }
 
+// A Monte Carlo channel as a function: the mean R over the annulus holding r (0 beyond the last).
+std::function<double(double)> annulus_mean(const AnnularProfile& p) {
+  return [&p](double r) {
+    const auto i = static_cast<std::size_t>(std::upper_bound(p.edges.begin(), p.edges.end(), r) - p.edges.begin());
+    if (i == 0 || i >= p.edges.size()) return 0.0;
+    const double inner = p.edges[i - 1], outer = p.edges[i];
+    return p.energy[i - 1] / (std::numbers::pi * (outer * outer - inner * inner));
+  };
+}
+
+struct ReferenceTable {
+  std::vector<RadialTableNodes> nodes;
+  ImageError image;  // its tabulation error (against the reference), plus U in .error
+  std::size_t radii = 0;
+};
+
+// The reference with formula channels tabulated (a Monte Carlo channel of a mixed reference: its
+// annulus means, read at the same radii): the smallest N whose tabulation error plus U is within
+// the tolerance, else the most accurate tried.
+ReferenceTable tabulate_reference(const Medium& medium, const ReferenceProfiles& ref, const RealtimeJudge& judge,
+                                  double uncertainty, double tolerance) {
+  ReferenceTable best;
+  for (std::size_t n : kRadialTableSizes) {
+    if (uncertainty >= tolerance && n != kRadialTableSizes.back()) continue;  // none can meet it: the finest
+    ReferenceTable t;
+    t.radii = n;
+    std::vector<AnnularProfile> profiles;
+    for (std::size_t c = 0; c < medium.channels(); ++c) {
+      const auto& source = ref.sources[c];
+      t.nodes.push_back(radial_table_nodes(source.reflectance ? source.reflectance : annulus_mean(ref.channels[c]),
+                                           medium.reduced(c), n));
+      profiles.push_back(annuli_of(judge.meter.edges(), radial_table(t.nodes.back()), 0));  // no light beyond
+    }
+    t.image = judge.error(profiles);
+    t.image.error += uncertainty;
+    if (best.nodes.empty() || t.image.error < best.image.error) best = std::move(t);
+    if (best.image.error <= tolerance) break;
+  }
+  return best;
+}
+
 }  // namespace
 
-RadialTableNodes radial_table_nodes(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell,
-                                    double hi_ell) {
+RadialTableNodes radial_table_nodes(const std::function<double(double)>& reflectance, const Reduced<double>& m,
+                                    std::size_t n, double lo_ell, double hi_ell) {
   if (n < 2) throw InvalidInput("radial table radii", std::to_string(n), ">= 2");
   const double lo = lo_ell * m.ell;
   // By default as far as the reference's annuli reach (profile_extent: the light left out is invisible).
@@ -29,9 +71,14 @@ RadialTableNodes radial_table_nodes(const Model& model, const Reduced<double>& m
   RadialTableNodes nodes;
   for (std::size_t j = 0; j < n; ++j) {
     nodes.radius.push_back(lo * std::pow(hi / lo, static_cast<double>(j) / static_cast<double>(n - 1)));
-    nodes.value.push_back(model.reflectance(m, nodes.radius.back()));
+    nodes.value.push_back(reflectance(nodes.radius.back()));
   }
   return nodes;
+}
+
+RadialTableNodes radial_table_nodes(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell,
+                                    double hi_ell) {
+  return radial_table_nodes([&](double r) { return model.reflectance(m, r); }, m, n, lo_ell, hi_ell);
 }
 
 std::function<double(double)> radial_table(const RadialTableNodes& nodes) {
@@ -90,6 +137,15 @@ Advice advise(const Medium& medium, const ReferenceProfile& reference, const Adv
     judge.albedo.push_back(p.total());
   }
   advice.diffuse_reflectance = judge.albedo;
+  std::vector<double> near_radius;  // one transport mfp: where the exact band's near field ends
+  for (std::size_t c = 0; c < channels; ++c) near_radius.push_back(medium.reduced(c).ell);
+  advice.reference_uncertainty = reference_uncertainty(judge, ref, near_radius);
+  const double U = advice.reference_uncertainty.error();
+  for (const auto& source : ref.sources) advice.reference_sources.push_back(source.name);
+  // A model that is the source of any reference channel is judged against itself there: it carries U.
+  const auto is_reference = [&](const std::string& model) {
+    return std::any_of(ref.sources.begin(), ref.sources.end(), [&](const auto& s) { return s.name == model; });
+  };
 
   const auto add = [&](std::string name, const ImageError& image, double cost, std::size_t memory, bool realtime,
                        std::vector<std::pair<std::string, double>> parameters = {}) {
@@ -101,22 +157,31 @@ Advice advise(const Medium& medium, const ReferenceProfile& reference, const Adv
   for (double albedo : judge.albedo) lambertian.push_back(point_profile(edges, albedo));
   add("lambertian", judge.error(lambertian), 0, 0, true);
 
-  std::string best_model;
-  double best_error = INFINITY;
-  for (const auto& measured : measured_models()) {
-    const auto model = make_model(measured.model);
+  const auto add_model = [&](const std::string& name, double cost) {
+    const auto model = make_model(name);
     std::vector<AnnularProfile> profiles;
     for (std::size_t c = 0; c < channels; ++c) {
       const auto m = medium.reduced(c);
       profiles.push_back(annuli_of(
           edges, [&](double r) { return model->reflectance(m, r); }, model->total_reflectance(m)));
     }
-    add(measured.model, judge.error(profiles), measured.cost_ns, 0, closed_form(measured.model));
+    add(name, judge.error(profiles), cost, 0, closed_form(name));
+    if (is_reference(name)) advice.candidates.back().image.error = std::max(advice.candidates.back().image.error, U);
+  };
+  std::string best_model;
+  double best_error = INFINITY;
+  for (const auto& measured : measured_models()) {
+    add_model(measured.model, measured.cost_ns);
     if (advice.candidates.back().image.error < best_error) {
       best_error = advice.candidates.back().image.error;
       best_model = measured.model;
     }
   }
+  const auto exact = make_model("exact");
+  bool inside_exact = true;
+  for (std::size_t c = 0; c < channels; ++c)
+    inside_exact = inside_exact && worst(exact->validity(medium.reduced(c))) != Severity::invalid;
+  if (inside_exact) add_model("exact", model_entry("exact").cost_ns);
   // The real-time tables of the most accurate model, each sized by the tolerance (realtime_tables.hpp).
   const auto model = make_model(best_model);
   const std::string of = ":" + best_model;
@@ -138,8 +203,20 @@ Advice advise(const Medium& medium, const ReferenceProfile& reference, const Adv
       {{"size", static_cast<double>(preintegrated.size)},
        {"curvature_max_per_mm", preintegrated.curvature_max},
        {"table_error", preintegrated.table_error}});
-  add("reference-table", judge.error(ref.channels), kTableLookupNs, (edges.size() - 1) * channels * 4, true);
-  advice.candidates.back().image.error = 2 * advice.candidates.back().image.reference_noise;
+  const bool formula = std::any_of(ref.sources.begin(), ref.sources.end(),
+                                   [](const auto& s) { return static_cast<bool>(s.reflectance); });
+  if (formula) {
+    auto table = tabulate_reference(medium, ref, judge, U, options.tolerance);
+    std::size_t nodes = 0;
+    for (const auto& n : table.nodes) nodes = std::max(nodes, n.radius.size());
+    add("reference-table", table.image, kTableLookupNs, nodes * channels * 8, true,
+        {{"radii", static_cast<double>(table.radii)}});
+    advice.reference_table = std::move(table.nodes);
+  } else {  // its own annuli, exactly: no tabulation error
+    add("reference-table", judge.error(ref.channels), kTableLookupNs, (edges.size() - 1) * channels * 4, true,
+        {{"annuli", static_cast<double>(edges.size() - 1)}});
+    advice.candidates.back().image.error = U;
+  }
 
   std::stable_sort(advice.candidates.begin(), advice.candidates.end(), [](const auto& a, const auto& b) {
     return a.cost != b.cost ? a.cost < b.cost : a.memory_bytes < b.memory_bytes;
@@ -188,6 +265,9 @@ std::string to_json(const Advice& advice, const std::string& material) {
   doc["reference"] = advice.reference;
   doc["reference_seconds"] = advice.reference_seconds;
   doc["reference_noise"] = advice.reference_noise;
+  doc["reference_uncertainty"] = advice.reference_uncertainty.error();
+  doc["reference_band_error"] = advice.reference_uncertainty.band.error;
+  doc["reference_sources"] = advice.reference_sources;
   doc["profile_radius_mm"] = advice.profile_radius;
   doc["choice"] = advice.choice ? candidate(advice.candidates[*advice.choice]) : json(nullptr);
   doc["candidates"] = json::array();
@@ -203,7 +283,10 @@ std::string to_table(const Advice& advice, const std::string& material) {
       << format_number(advice.options.tolerance) << " (8-bit sRGB code values), target "
       << to_string(advice.options.target) << "\n";
   out << "reference: " << advice.reference << " (" << std::fixed << std::setprecision(2) << advice.reference_seconds
-      << " s), noise " << std::setprecision(3) << advice.reference_noise << " code values (1 standard error)\n\n";
+      << " s), noise " << std::setprecision(3) << advice.reference_noise << " code values (1 standard error)\n";
+  out << "reference uncertainty U = " << advice.reference_uncertainty.error() << " code values (its measured band "
+      << advice.reference_uncertainty.band.error << " + 2 x noise): what the reference itself may be off by; "
+      << "carried by the candidates that are the reference\n\n";
   out << std::left << std::setw(34) << "representation" << std::right << std::setw(10) << "error" << std::setw(10)
       << "cost_ns" << std::setw(10) << "bytes"
       << "  meets\n";

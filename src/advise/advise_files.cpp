@@ -45,15 +45,22 @@ std::filesystem::path write_advised_file(const std::filesystem::path& dir, const
     for (std::size_t c = 0; c < medium.channels(); ++c)
       table.add_channel(medium.channel_names[c], "diffuse reflectance (albedo), per unit entered flux",
                         {advice.diffuse_reflectance[c]});
-  } else if (head.rfind("radial-table-", 0) == 0) {
-    const auto n = static_cast<std::size_t>(std::stoul(head.substr(13)));
+  } else if (head.rfind("radial-table-", 0) == 0 ||
+             (representation == "reference-table" && !advice.reference_table.empty())) {
+    // The nodes of radial_table(), exactly as the advice judged them: of the model, or of the reference.
+    std::vector<RadialTableNodes> nodes;
+    if (representation == "reference-table")
+      nodes = advice.reference_table;
+    else
+      for (std::size_t c = 0; c < medium.channels(); ++c)
+        nodes.push_back(radial_table_nodes(*model, medium.reduced(c), std::stoul(head.substr(13))));
+    std::size_t n = 0;
+    for (const auto& channel : nodes) n = std::max(n, channel.radius.size());
     table = described_table("radial-log", n, 1, context);
     table.set("bssrdf:interpolation", "linear in (ln r, ln R); R(r_0) below r_0, 0 beyond r_{N-1}");
     for (std::size_t c = 0; c < medium.channels(); ++c) {
-      // The nodes of radial_table(), exactly as the advice judged them.
-      const auto nodes = radial_table_nodes(*model, medium.reduced(c), n);
-      table.add_channel("radius." + medium.channel_names[c], "radius, mm", nodes.radius);
-      table.add_channel(medium.channel_names[c], "R(r), 1/mm^2, per unit entered flux", nodes.value);
+      table.add_channel("radius." + medium.channel_names[c], "radius, mm", nodes[c].radius);
+      table.add_channel(medium.channel_names[c], "R(r), 1/mm^2, per unit entered flux", nodes[c].value);
     }
   } else if (head.rfind("separable-", 0) == 0 || head.rfind("preintegrated-", 0) == 0) {
     const auto parameter = [&](const std::string& key) {

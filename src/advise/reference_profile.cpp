@@ -7,6 +7,7 @@
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/layers.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/montecarlo.hpp"
 
 namespace bssrdf {
@@ -43,19 +44,18 @@ std::vector<double> reference_annuli(const Medium& medium, std::size_t bins_per_
   return edges;
 }
 
-ReferenceProfiles MonteCarloReference::profiles(const Medium& medium) const {
-  const auto start = std::chrono::steady_clock::now();
-  auto edges = reference_annuli(medium);
-  MonteCarloOptions mc = bins_for(edges);
-  mc.photons = options_.photons;
-  mc.seed = options_.seed;
-  mc.threads = options_.threads;
+std::vector<AnnularProfile> monte_carlo_annuli(const Medium& medium, const std::vector<double>& annuli,
+                                               const MonteCarloReferenceOptions& options) {
+  MonteCarloOptions mc = bins_for(annuli);
+  mc.photons = options.photons;
+  mc.seed = options.seed;
+  mc.threads = options.threads;
   const MonteCarloResult run = run_monte_carlo(LayerStack::half_space(medium), mc);
   // The tracer's geometric edges are its own; use them so the annuli are exactly its bins.
-  edges.assign(1, 0.0);
+  std::vector<double> edges{0.0};
   for (double r : run.bin_outer) edges.push_back(r);
   edges.push_back(2 * edges.back());
-  ReferenceProfiles out;
+  std::vector<AnnularProfile> out;
   for (const auto& raw : run.channels) {
     const ChannelResult ch = raw.per_entered_flux();
     AnnularProfile p{edges, {}, {}};
@@ -66,8 +66,16 @@ ReferenceProfiles MonteCarloReference::profiles(const Medium& medium) const {
     }
     p.energy.push_back(ch.reflectance_beyond);
     p.energy_stderr.push_back(0.0);  // tiny (30 ell); its error is in the total's
-    out.channels.push_back(std::move(p));
+    out.push_back(std::move(p));
   }
+  return out;
+}
+
+ReferenceProfiles MonteCarloReference::profiles(const Medium& medium) const {
+  const auto start = std::chrono::steady_clock::now();
+  ReferenceProfiles out;
+  out.channels = monte_carlo_annuli(medium, reference_annuli(medium), options_);
+  out.sources.assign(medium.channels(), ReferenceSource{"montecarlo", 0, 0, {}});
   out.description = "Monte Carlo, " + std::to_string(options_.photons) + " photons per channel, seed " +
                     std::to_string(options_.seed);
   out.seconds = seconds_since(start);
@@ -77,11 +85,20 @@ ReferenceProfiles MonteCarloReference::profiles(const Medium& medium) const {
 ReferenceProfiles ModelReference::profiles(const Medium& medium) const {
   const auto start = std::chrono::steady_clock::now();
   const auto edges = reference_annuli(medium);
+  const ModelEntry* entry = find_model_entry(model_->name());
+  double total_band = 0, profile_band = 0;  // exact's measured accuracy; none for a model taken as the truth
+  if (entry && entry->reference_accuracy) {
+    total_band = entry->reference_accuracy->total;
+    profile_band = entry->reference_accuracy->profile;
+  }
   ReferenceProfiles out;
   for (std::size_t c = 0; c < medium.channels(); ++c) {
     const auto m = medium.reduced(c);
     out.channels.push_back(annuli_of(
         edges, [&](double r) { return model_->reflectance(m, r); }, model_->total_reflectance(m)));
+    const Model* model = model_.get();
+    out.sources.push_back(
+        {model_->name(), total_band, profile_band, [model, m](double r) { return model->reflectance(m, r); }});
   }
   out.description = "model " + model_->name();
   out.seconds = seconds_since(start);

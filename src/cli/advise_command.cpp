@@ -4,13 +4,16 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "bssrdf/advise/advise.hpp"
 #include "bssrdf/advise/advise_files.hpp"
+#include "bssrdf/advise/auto_reference.hpp"
 #include "bssrdf/advise/reference_profile.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/parallel.hpp"
 #include "bssrdf/validity.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -66,7 +69,8 @@ Action register_advise(CLI::App& app) {
       ->check(file_name("--write"));
   sub->add_option("--reference", options->reference,
                   "What candidates are judged against: exact (the tabulated transport solution), montecarlo (a run per "
-                  "material), or auto: exact where every channel is inside its table, else montecarlo [auto]")
+                  "material), or auto: per channel exact inside its table, else the adding-doubling total with the "
+                  "best measured shape (alpha' above it) or a Monte Carlo run of the channel [auto]")
       ->check(CLI::IsMember({"auto", "exact", "montecarlo"}));
   add_count_option(*sub, "--photons,-n", options->photons, 1000, kMaxPhotons,
                    "Monte Carlo reference: photons per channel [200000]");
@@ -88,18 +92,17 @@ Action register_advise(CLI::App& app) {
     const MonteCarloReference monte_carlo({o.photons, o.seed, o.threads});
     const ModelReference exact(make_model("exact"));
     const auto exact_model = make_model("exact");
-    // The reference for one medium: the exact model inside its table (milliseconds instead of a
-    // Monte Carlo run), the Monte Carlo run elsewhere.
+    const AutoReference automatic({o.photons, o.seed, o.threads});
+    // auto: per channel, exact inside its table, else adding-doubling + a measured shape or a Monte Carlo
+    // run of that channel (auto_reference.hpp); exact: refuses media outside the table.
     const auto reference_for = [&](const Medium& medium) -> const ReferenceProfile& {
       if (o.reference == "montecarlo") return monte_carlo;
+      if (o.reference == "auto") return automatic;
       for (std::size_t c = 0; c < medium.channels(); ++c)
-        if (const auto report = exact_model->validity(medium.reduced(c)); worst(report) == Severity::invalid) {
-          if (o.reference == "exact")
-            throw InvalidInput("--reference", "exact",
-                               "media inside the exact table (channel " + medium.channel_names[c] + ": " +
-                                   report.front().message + "); use --reference montecarlo");
-          return monte_carlo;
-        }
+        if (const auto report = exact_model->validity(medium.reduced(c)); worst(report) == Severity::invalid)
+          throw InvalidInput("--reference", "exact",
+                             "media inside the exact table (channel " + medium.channel_names[c] + ": " +
+                                 report.front().message + "); use --reference auto or montecarlo");
       return exact;
     };
     const bool json = o.format == "json";
@@ -109,26 +112,33 @@ Action register_advise(CLI::App& app) {
       if (!o.medium.material.empty() || !o.medium.sigma_a.empty() || !o.medium.sigma_s.empty())
         throw InvalidInput("--all", "with a medium", "alone (it advises on every material of the database)");
       const auto database = MaterialDatabase::load_with_user(o.medium.db);
+      const auto& materials = database.all();
+      std::vector<std::optional<Advice>> advices(materials.size());  // in parallel, printed in order
+      parallel_for(materials.size(), o.threads, [&](std::size_t i) {
+        advices[i] = advise(materials[i].medium, reference_for(materials[i].medium), a);
+      });
       std::ostringstream out;
       if (json)
         out << "[\n";
       else
         out << std::left << std::setw(28) << "material" << std::setw(36) << "choice" << std::right << std::setw(8)
-            << "error" << std::setw(9) << "cost_ns" << std::setw(8) << "noise" << std::setw(8) << "ref_s"
-            << "\n";
-      bool first = true;
-      for (const auto& material : database.all()) {
-        const Advice advice = advise(material.medium, reference_for(material.medium), a);
+            << "error" << std::setw(9) << "cost_ns" << std::setw(8) << "U" << std::setw(8) << "ref_s"
+            << "  reference (per channel)\n";
+      for (std::size_t i = 0; i < materials.size(); ++i) {
+        const Advice& advice = *advices[i];
         if (json) {
-          out << (first ? "" : ",\n") << to_json(advice, material.name);
-        } else {
-          const auto* c = advice.choice ? &advice.candidates[*advice.choice] : nullptr;
-          out << std::left << std::setw(28) << material.name << std::setw(36) << (c ? c->representation : "(none)")
-              << std::right << std::fixed << std::setprecision(3) << std::setw(8) << (c ? c->image.error : 0.0)
-              << std::setprecision(0) << std::setw(9) << (c ? c->cost : 0.0) << std::setprecision(3) << std::setw(8)
-              << advice.reference_noise << std::setprecision(2) << std::setw(8) << advice.reference_seconds << "\n";
+          out << (i ? ",\n" : "") << to_json(advice, materials[i].name);
+          continue;
         }
-        first = false;
+        const auto* c = advice.choice ? &advice.candidates[*advice.choice] : nullptr;
+        std::string sources;
+        for (std::size_t k = 0; k < advice.reference_sources.size(); ++k)
+          sources += (k ? "," : "") + advice.reference_sources[k];
+        out << std::left << std::setw(28) << materials[i].name << std::setw(36) << (c ? c->representation : "(none)")
+            << std::right << std::fixed << std::setprecision(3) << std::setw(8) << (c ? c->image.error : 0.0)
+            << std::setprecision(0) << std::setw(9) << (c ? c->cost : 0.0) << std::setprecision(3) << std::setw(8)
+            << advice.reference_uncertainty.error() << std::setprecision(2) << std::setw(8) << advice.reference_seconds
+            << "  " << sources << "\n";
       }
       if (json) out << "]\n";
       std::cout << out.str();

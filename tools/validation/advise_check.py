@@ -14,9 +14,17 @@ separable` writes with the advised taps and range, rendered here as a screen-spa
 (each pixel: the taps at its centre plus their offsets, reading the irradiance linearly between
 pixel centres), times the kernel's recorded total reflectance.
 
-  /usr/bin/python3 tools/validation/advise_check.py build/bssrdf Skin1,Ketchup 0.01,0.1,1,10 [TOLERANCE]
+With a reference that has formula channels (--reference exact or auto), `reference-table` is written
+as the radial-log nodes it was judged on and checked like any radial table; its predicted error
+includes the reference's own uncertainty U (its measured band in image space), which the check,
+against Monte Carlo, measures directly.
+
+  /usr/bin/python3 tools/validation/advise_check.py build/bssrdf Skin1,Ketchup 0.01,0.1,1,10 [TOLERANCES [REFERENCE [PHOTONS]]]
+
+TOLERANCES: comma-separated (default 1); REFERENCE: auto, exact or montecarlo (default auto); PHOTONS:
+of the independent Monte Carlo truth (default 1000000, seed 2).
 """
-import csv, io, json, math, subprocess, sys
+import csv, io, json, math, os, subprocess, sys
 import numpy as np
 
 
@@ -145,36 +153,60 @@ def model_table(cli, material, model, channels, edges):
 
 def main():
     cli, materials, pixels = sys.argv[1], sys.argv[2].split(","), [float(p) for p in sys.argv[3].split(",")]
-    tolerance = sys.argv[4] if len(sys.argv) > 4 else "1"
-    print("material\tpixel_mm\tchoice\tpredicted\tchecked\treference_noise\tseparable\tpredicted\tchecked")
-    workdir = "/tmp/advise_check_%d" % __import__("os").getpid()
+    tolerances = sys.argv[4].split(",") if len(sys.argv) > 4 else ["1"]
+    reference_kind = sys.argv[5] if len(sys.argv) > 5 else "auto"
+    photons = int(sys.argv[6]) if len(sys.argv) > 6 else 1_000_000
+    # exact_checked: the exact model's own image error against the Monte Carlo truth (what U bounds).
+    print("material\tpixel_mm\ttolerance\tchoice\tpredicted\tchecked\tU\texact_checked\treference_noise\tseparable\tpredicted\tchecked")
+    workdir = "/tmp/advise_check_%d" % os.getpid()
     for material in materials:
-        advice = [json.loads(run(cli, "advise", "--material", material, "--pixel", "%gmm" % p, "--tolerance", tolerance, "-f", "json",
-                                 "--write", "%s/%g" % (workdir, p))) for p in pixels]
-        r_max = 10 * advice[0]["profile_radius_mm"]  # light beyond it (not in the CSV) is negligible
-        edges, channels, truth, _ = reference(cli, material, 1_000_000, 2, 1e-4, r_max)
-        table = reference(cli, material, 200_000, 1, 1e-4, r_max)[2]
-        for p, a in zip(pixels, advice):
-            name = a["choice"]["representation"] if a["choice"] else None
-            if name == "reference-table":
-                cand = table
-            elif name == "lambertian":  # its albedo as written
-                albedo = {c["name"]: c["values"][0] for c in json.load(open("%s/%g/%s.lambertian.json" % (workdir, p, material)))["channels"]}
-                cand = {c: np.concatenate([[albedo[c]], np.zeros(len(truth[c]) - 1)]) for c in channels}
-            elif name and ":" in name:
-                cand = written_table("%s/%g/%s.%s.json" % (workdir, p, material, name.replace(":", "_")), channels, edges)
-            elif name:
-                cand = model_table(cli, material, name, channels, edges)
-            kernel = next(c for c in a["candidates"] if c["representation"].startswith("separable-"))
-            path = "%s/%g/%s.kernel.json" % (workdir, p, material)
-            run(cli, "lut", "--kind", "separable", "--material", material, "--model", kernel["representation"].split(":")[1],
-                "--taps", "%d" % kernel["parameters"]["taps"], "--range", repr(kernel["parameters"]["range_mm"]), "-o", path, "-q")
-            separable = f"{kernel['representation']}\t{kernel['error']:.3f}\t{kernel_error(edges, truth, path, p):.3f}"
-            if not name or cand is None:
-                print(f"{material}\t{p:g}\t{name}\t-\t(not checked)\t\t{separable}")
-                continue
-            checked = code_error(edges, truth, cand, p)
-            print(f"{material}\t{p:g}\t{name}\t{a['choice']['error']:.3f}\t{checked:.3f}\t{a['reference_noise']:.3f}\t{separable}")
+        truth_edges = None
+        for tolerance in tolerances:
+            advice = []
+            for p in pixels:
+                out = subprocess.run([cli, "advise", "--material", material, "--pixel", "%gmm" % p, "--tolerance", tolerance,
+                                      "--reference", reference_kind, "-f", "json", "--write", "%s/%s/%g" % (workdir, tolerance, p)],
+                                     capture_output=True, text=True)
+                if out.returncode == 2:  # no choice: nothing to write; the advice again without --write
+                    out = subprocess.run([cli, "advise", "--material", material, "--pixel", "%gmm" % p, "--tolerance",
+                                          tolerance, "--reference", reference_kind, "-f", "json"], check=True,
+                                         capture_output=True, text=True)
+                advice.append(json.loads(out.stdout))
+            if truth_edges is None:
+                r_max = 10 * advice[0]["profile_radius_mm"]  # light beyond it (not in the CSV) is negligible
+                edges, channels, truth, _ = reference(cli, material, photons, 2, 1e-4, r_max)
+                truth_edges = edges
+                table = None  # the advised Monte Carlo reference-table, run only if chosen
+                exact = model_table(cli, material, "exact", channels, edges)
+            for p, a in zip(pixels, advice):
+                name = a["choice"]["representation"] if a["choice"] else None
+                path = "%s/%s/%g/%s.%s.json" % (workdir, tolerance, p, material, (name or "").replace(":", "_"))
+                cand = None
+                if name == "reference-table":
+                    kind = json.load(open(path))["kind"]
+                    if kind != "radial-log" and table is None:
+                        table = reference(cli, material, 200_000, 1, 1e-4, r_max)[2]
+                    cand = written_table(path, channels, edges) if kind == "radial-log" else table
+                elif name == "lambertian":  # its albedo as written
+                    albedo = {c["name"]: c["values"][0] for c in json.load(open(path))["channels"]}
+                    cand = {c: np.concatenate([[albedo[c]], np.zeros(len(truth[c]) - 1)]) for c in channels}
+                elif name and ":" in name:
+                    cand = written_table(path, channels, edges)
+                elif name:
+                    cand = model_table(cli, material, name, channels, edges)
+                kernel = next(c for c in a["candidates"] if c["representation"].startswith("separable-"))
+                kpath = "%s/%s/%g/%s.kernel.json" % (workdir, tolerance, p, material)
+                os.makedirs(os.path.dirname(kpath), exist_ok=True)  # no choice: --write made nothing
+                run(cli, "lut", "--kind", "separable", "--material", material, "--model", kernel["representation"].split(":")[1],
+                    "--taps", "%d" % kernel["parameters"]["taps"], "--range", repr(kernel["parameters"]["range_mm"]), "-o", kpath, "-q")
+                separable = f"{kernel['representation']}\t{kernel['error']:.3f}\t{kernel_error(edges, truth, kpath, p):.3f}"
+                U = f'{a.get("reference_uncertainty", 0):.3f}\t{code_error(edges, truth, exact, p):.3f}'
+                if not name or cand is None:
+                    print(f"{material}\t{p:g}\t{tolerance}\t{name}\t-\t(not checked)\t{U}\t\t{separable}", flush=True)
+                    continue
+                checked = code_error(edges, truth, cand, p)
+                print(f"{material}\t{p:g}\t{tolerance}\t{name}\t{a['choice']['error']:.3f}\t{checked:.3f}\t{U}\t"
+                      f"{a['reference_noise']:.3f}\t{separable}", flush=True)
 
 
 if __name__ == "__main__":

@@ -18,9 +18,18 @@
 //    4); "separable-N:MODEL" (Jimenez et al. 2015, N taps and the range in `parameters`; cost 2 N x kKernelTapNs,
 //    memory N x 4 floats); "preintegrated-N:MODEL" (Penner & Borshukov 2011, N x N; cost kTableLookupNs, memory N^2 x
 //    channels x 4).
-//  - "reference-table": the reference itself tabulated on its annuli (what `lut --kind radial
-//    --reference` writes); error: twice the reference noise (its own statistical error, which the
-//    comparison against itself cannot see). Cost kTableLookupNs, memory annuli x channels x 4 bytes.
+//  - "exact" (when every channel is inside its table): the exact model, cost one R(r) of the registry.
+//  - "reference-table": the reference itself tabulated. A Monte Carlo reference: its annuli (what `lut
+//    --kind radial --reference` writes), memory annuli x channels x 4 bytes. A reference with formula
+//    channels (exact, or auto's shape models): R(r) of each at N radii as radial_table_nodes() places
+//    them (N = 8 to 256, the smallest with U + its tabulation error within the tolerance; Monte Carlo
+//    channels of a mixed reference: their annulus means at those radii), memory N x channels x 8 bytes.
+//    Cost kTableLookupNs.
+// A candidate that IS the reference cannot be judged against it (it would score 0): the reference's
+// own uncertainty U (reference_uncertainty.hpp: its measured band in image space plus twice its
+// Monte Carlo noise) stands in. "reference-table" carries U + its tabulation error; a model that is
+// the source of any reference channel (`exact` against the exact reference) carries max(judged, U).
+// The other candidates are judged against the reference as it is; U is reported beside them.
 // Real-time targets keep the candidates a shader evaluates in closed form or by one lookup:
 // lambertian, dipole, better-dipole, the burley variants and the tables.
 #pragma once
@@ -34,6 +43,7 @@
 
 #include "bssrdf/advise/image_error.hpp"
 #include "bssrdf/advise/reference_profile.hpp"
+#include "bssrdf/advise/reference_uncertainty.hpp"
 #include "bssrdf/medium.hpp"
 #include "bssrdf/model.hpp"
 
@@ -72,11 +82,20 @@ struct AdviseCandidate {
   std::vector<std::pair<std::string, double>> parameters;  // a table's chosen size, a kernel's taps and range (mm), ...
 };
 
+struct RadialTableNodes {
+  std::vector<double> radius, value;  // mm, 1/mm^2
+};
+
 struct Advice {
   AdviseOptions options;
   std::string reference;  // its description
   double reference_seconds = 0;
-  double reference_noise = 0;               // largest over the candidates' comparisons (code values)
+  double reference_noise = 0;                  // largest over the candidates' comparisons (code values)
+  ReferenceUncertainty reference_uncertainty;  // U: how wrong the reference itself may look (code values)
+  std::vector<std::string> reference_sources;  // per channel: "exact", "montecarlo" or a shape model
+  // The reference-table candidate's nodes per channel, as judged (empty: a Monte Carlo reference, whose
+  // table is its own run); `--write` writes them.
+  std::vector<RadialTableNodes> reference_table;
   std::vector<double> diffuse_reflectance;  // the reference's, per channel (the Lambertian albedo)
   std::vector<AdviseCandidate> candidates;  // cheapest first (all, whatever the target)
   std::optional<std::size_t> choice;        // index into candidates: cheapest within tolerance for the target
@@ -88,11 +107,11 @@ struct Advice {
 // (ell: transport mean free path; outer: hi_ell ell, or with hi_ell = 0 profile_extent(m), as far
 // as the reference's annuli reach), linear in (ln r, ln R) between them, R(r_0)
 // below and 0 beyond (the table a renderer loads; `advise --write` writes these nodes).
-struct RadialTableNodes {
-  std::vector<double> radius, value;  // mm, 1/mm^2
-};
 RadialTableNodes radial_table_nodes(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell = 1e-3,
                                     double hi_ell = 0);
+// The same nodes of any R(r) (a reference channel's formula).
+RadialTableNodes radial_table_nodes(const std::function<double(double)>& reflectance, const Reduced<double>& m,
+                                    std::size_t n, double lo_ell = 1e-3, double hi_ell = 0);
 std::function<double(double)> radial_table(const RadialTableNodes& nodes);
 std::function<double(double)> radial_table(const Model& model, const Reduced<double>& m, std::size_t n,
                                            double lo_ell = 1e-3, double hi_ell = 0);
@@ -101,7 +120,9 @@ Advice advise(const Medium& medium, const ReferenceProfile& reference, const Adv
 
 // JSON (names fixed by issue 16): {"choice": {"representation", "error", "cost", "memory_bytes",
 // ...} or null, "candidates": [{"representation", "error", "cost", "meets_tolerance", ...}],
-// "pixel_mm", "tolerance", "target", "reference", "reference_noise", "profile_radius_mm", "warnings"}.
+// "pixel_mm", "tolerance", "target", "reference", "reference_noise",
+// "reference_uncertainty" (U), "reference_band_error" (its band part), "reference_sources" (per channel),
+// "profile_radius_mm", "warnings"}.
 std::string to_json(const Advice& advice, const std::string& material);
 // A table for people: the candidates, the choice and why the cheaper ones fail.
 std::string to_table(const Advice& advice, const std::string& material);

@@ -6,7 +6,9 @@
 //  - gaussians-K:MODEL: the `lut --kind gaussians` table of K Gaussians fitted to MODEL;
 //  - separable-N:MODEL: the `lut --kind separable` kernel of N taps over the advised range;
 //  - preintegrated-N:MODEL: the `lut --kind preintegrated` table, N x N, the advised curvature range;
-//  - reference-table: the `lut --kind radial --reference` table (same photons and seed as advised);
+//  - reference-table: against a Monte Carlo reference the `lut --kind radial --reference` table (same
+//    photons and seed as advised); against a reference with formula channels (exact, auto) a
+//    "radial-log" table of the nodes it was judged on (Advice::reference_table);
 //  - an analytic model: the `lut --kind radial --model MODEL` table.
 // Each records the advice (bssrdf:advice) and its image error and pixel size (bssrdf:image_error,
 // bssrdf:image_error_pixel_mm).

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,9 +24,22 @@
 
 namespace bssrdf {
 
+// Where one channel of the reference comes from and how far it is trusted (reference_uncertainty.hpp
+// turns the bands into image-space error). A Monte Carlo channel has no band: its statistical error
+// is in the profile's energy_stderr.
+struct ReferenceSource {
+  std::string name;         // "montecarlo", "exact", or the model whose shape is used
+  double total_band = 0;    // measured relative accuracy of the total reflectance (0: none stated)
+  double profile_band = 0;  // of the shape: relative L2 of r R(r), the larger inside / beyond one transport mfp
+  // R(r), 1/mm^2 per entered flux, where the channel is a formula (empty for Monte Carlo); valid while
+  // the ReferenceProfile that produced it lives.
+  std::function<double(double)> reflectance;
+};
+
 struct ReferenceProfiles {
   std::string description;               // what was run, for reports
   std::vector<AnnularProfile> channels;  // per entered flux
+  std::vector<ReferenceSource> sources;  // one per channel
   double seconds = 0;                    // wall-clock cost of producing them
 };
 
@@ -49,6 +63,12 @@ struct MonteCarloReferenceOptions {
   unsigned threads = 0;  // 0: all; never changes the result
 };
 
+// The radiative-transfer Monte Carlo solution of the half-space (montecarlo.hpp) for every channel of
+// `medium`, binned on `edges` (reference_annuli() of a medium with these channels or more). The
+// annuli returned are the tracer's own bins (equal to `edges` up to rounding).
+std::vector<AnnularProfile> monte_carlo_annuli(const Medium& medium, const std::vector<double>& edges,
+                                               const MonteCarloReferenceOptions& options);
+
 // The radiative-transfer Monte Carlo solution of the half-space (montecarlo.hpp), binned on the annuli.
 class MonteCarloReference : public ReferenceProfile {
  public:
@@ -59,7 +79,8 @@ class MonteCarloReference : public ReferenceProfile {
   MonteCarloReferenceOptions options_;
 };
 
-// A model as the reference (exact when the model is; for tests and for the exact model to come).
+// A model as the reference: `exact` (carrying its measured accuracy band from the model registry,
+// ModelEntry::reference_accuracy) or, for tests and benches, any model taken as the truth (no band).
 class ModelReference : public ReferenceProfile {
  public:
   explicit ModelReference(std::unique_ptr<Model> model) : model_(std::move(model)) {}
