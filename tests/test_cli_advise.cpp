@@ -88,6 +88,30 @@ TEST(CliAdvise, TableNamesTheChoiceAndWhyCheaperOnesFail) {
   EXPECT_TRUE(r.out.find("choice:") != std::string::npos || r.out.find("no candidate") != std::string::npos);
 }
 
+// Without a choice the table says what would do (the most accurate candidate for the target) and,
+// below the reference's own uncertainty U, that such a tolerance cannot be certified.
+TEST(CliAdvise, WithoutAChoiceTheTableSaysWhatWouldDo) {
+  const auto r = run("advise --material Skin1 --pixel 1mm --tolerance 0.5 -f json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(doc["choice"].is_null());
+  const double U = doc["reference_uncertainty"].get<double>();
+  ASSERT_GT(U, 0.5);
+  std::string best;
+  double least = 1e300;
+  for (const auto& c : doc["candidates"])
+    if (c["error"].get<double>() < least) {
+      least = c["error"].get<double>();
+      best = c["representation"].get<std::string>();
+    }
+  const auto t = run("advise --material Skin1 --pixel 1mm --tolerance 0.5");
+  ASSERT_EQ(t.status, 0) << t.err;
+  EXPECT_NE(t.out.find("no candidate meets the tolerance for this target; the most accurate is " + best),
+            std::string::npos)
+      << t.out;
+  EXPECT_NE(t.out.find("cannot be certified"), std::string::npos) << t.out;
+}
+
 TEST(CliAdvise, BadInputExitsTwoWithOneLine) {
   for (const char* args :
        {"--material Skin1 --pixel -1mm", "--material Skin1 --pixel 0.1furlong", "--material Skin1 --pixel 0",

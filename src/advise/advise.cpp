@@ -309,7 +309,19 @@ std::string to_table(const Advice& advice, const std::string& material) {
     }
     out << (any ? "\n" : " none\n");
   } else {
-    out << "\nno candidate meets the tolerance for this target\n";
+    out << "\nno candidate meets the tolerance for this target";
+    // Say what would: the most accurate candidate allowed for the target, and whether the tolerance
+    // asks for less than the reference itself can tell apart.
+    const AdviseCandidate* best = nullptr;
+    for (const auto& c : advice.candidates)
+      if ((advice.options.target != AdviseTarget::realtime || c.realtime) &&
+          (!best || c.image.error < best->image.error))
+        best = &c;
+    if (best) out << "; the most accurate is " << best->representation << " (" << best->image.error << ")";
+    if (advice.options.tolerance < advice.reference_uncertainty.error())
+      out << "; a tolerance below the reference's own uncertainty U = " << advice.reference_uncertainty.error()
+          << " cannot be certified";
+    out << "\n";
   }
   if (!advice.object_warning.empty()) out << "warning: " << advice.object_warning << "\n";
   return out.str();
