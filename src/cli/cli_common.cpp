@@ -240,6 +240,18 @@ void emit(const OutputOptions& options, const std::string& file_content, const s
   std::cout.flush();
 }
 
+void emit(const OutputOptions& options, const std::function<std::string()>& json,
+          const std::function<std::string()>& csv, const std::string& table) {
+  switch (options.file_format()) {
+    case Format::json:
+      return emit(options, json(), table);
+    case Format::csv:
+      return emit(options, csv(), table);
+    case Format::table:
+      return emit(options, table, table);
+  }
+}
+
 std::function<void(std::uint64_t, std::uint64_t)> progress_bar(const std::string& label) {
   if (!::isatty(STDERR_FILENO)) return nullptr;
   auto last = std::make_shared<int>(-1);

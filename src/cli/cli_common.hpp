@@ -120,6 +120,10 @@ struct OutputOptions {
 
 // Writes `file_content` to -o atomically (if given) and prints `stdout_content` unless quiet.
 void emit(const OutputOptions& options, const std::string& file_content, const std::string& stdout_content);
+// The same with the file's content chosen by its format: json() or csv() (computed only then) or the
+// table, which is also what stdout shows with -o.
+void emit(const OutputOptions& options, const std::function<std::string()>& json,
+          const std::function<std::string()>& csv, const std::string& table);
 
 // A one-line progress bar on stderr, only when stderr is a terminal (nullptr otherwise).
 std::function<void(std::uint64_t done, std::uint64_t total)> progress_bar(const std::string& label);

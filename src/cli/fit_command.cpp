@@ -237,19 +237,8 @@ Action register_fit(CLI::App& app) {
       const auto file = read_rxt(so->rxt);
       const auto fit = fit_rxt(file, options);
       const auto table = rxt_fit_table(fit);
-      std::string content;
-      switch (so->output.file_format()) {
-        case Format::json:
-          content = rxt_fit_json(fit);
-          break;
-        case Format::csv:
-          content = rxt_fit_csv(fit);
-          break;
-        case Format::table:
-          content = table;
-          break;
-      }
-      emit(so->output, content, table);
+      emit(
+          so->output, [&] { return rxt_fit_json(fit); }, [&] { return rxt_fit_csv(fit); }, table);
     } else if (slab->parsed()) {
       if (so->lost_light) throw InvalidInput("--lost-light: only with --rxt (the file gives the sphere's ports)");
       if (so->reflectance.empty()) throw InvalidInput("--reflectance is required (or --rxt FILE)");

@@ -199,19 +199,8 @@ Action register_profile(CLI::App& app) {
     });
     report.material = resolved.material;
     report.model_choice = auto_note;
-    std::string content;
-    switch (options->output.file_format()) {
-      case Format::json:
-        content = to_json(report);
-        break;
-      case Format::csv:
-        content = to_csv(report);
-        break;
-      case Format::table:
-        content = to_table(report);
-        break;
-    }
-    emit(options->output, content, to_table(report));
+    emit(
+        options->output, [&] { return to_json(report); }, [&] { return to_csv(report); }, to_table(report));
   };
 }
 

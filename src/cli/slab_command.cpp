@@ -179,19 +179,8 @@ Action register_slab(CLI::App& app) {
             << '\n';
     }
     table << "R_diffuse excludes the specular reflection; T_total includes the unscattered beam\n";
-    std::string content;
-    switch (o.output.file_format()) {
-      case Format::json:
-        content = doc.dump(2) + "\n";
-        break;
-      case Format::csv:
-        content = csv.str();
-        break;
-      case Format::table:
-        content = table.str();
-        break;
-    }
-    emit(o.output, content, table.str());
+    emit(
+        o.output, [&] { return doc.dump(2) + "\n"; }, [&] { return csv.str(); }, table.str());
   };
 }
 

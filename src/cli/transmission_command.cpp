@@ -133,19 +133,8 @@ Action register_transmission(CLI::App& app) {
     if (!ad)
       table << "invalid: the multipole does not hold (thinner than 2 transport mean free paths, or negative "
                "transmittance); use 'bssrdf reference --thickness D' (Monte Carlo) there\n";
-    std::string content;
-    switch (options->output.file_format()) {
-      case Format::json:
-        content = doc.dump(2) + "\n";
-        break;
-      case Format::csv:
-        content = csv.str();
-        break;
-      case Format::table:
-        content = table.str();
-        break;
-    }
-    emit(options->output, content, table.str());
+    emit(
+        options->output, [&] { return doc.dump(2) + "\n"; }, [&] { return csv.str(); }, table.str());
   };
 }
 
