@@ -170,6 +170,12 @@ FitReport fit_gaussians(const std::vector<NamedProfile>& channels, int count, Le
       problem.AddResidualBlock(conserve, nullptr, weight[c].data());
     }
   }
+  // Variances between (1e-3 r_lo)^2 and (1e3 r_hi)^2: far outside, a Gaussian is a spike or flat at
+  // every sampled radius, and exp(log v) under- or overflows (the residuals became NaN).
+  for (int k = 0; k < count; ++k) {
+    problem.SetParameterLowerBound(log_variance.data(), k, std::log(0.5 * 1e-6 * r_lo * r_lo));
+    problem.SetParameterUpperBound(log_variance.data(), k, std::log(0.5 * 1e6 * r_hi * r_hi));
+  }
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::DENSE_QR;
   options.max_num_iterations = 2000;
