@@ -136,6 +136,7 @@ TEST(CliValidityMap, WritesEveryModelsPanelAndTheCheapestMap) {
     for (const char* model : {"dipole", "better-dipole", "burley", "pbd", "quantized+ss"})
       EXPECT_NE(svg.find(std::string(">") + model + "<"), std::string::npos) << model;
     EXPECT_NE(svg.find("cheapest within 5 %"), std::string::npos);
+    EXPECT_NE(svg.find("total error against the exact model"), std::string::npos);
     EXPECT_NE(svg.find("alpha' (reduced albedo)"), std::string::npos);
     EXPECT_GT(std::count(svg.begin(), svg.end(), '\n'), 100);
   }
@@ -159,12 +160,17 @@ TEST(CliValidityMap, WritesPngAndTheImageMetric) {
   EXPECT_GT(be32(16), 1000u);  // width: two pixels a unit of the SVG layout
   EXPECT_GT(be32(20), 300u);
   const auto svg = test_cli::temp("image.svg");
-  r = run("models --map " + svg.string() + " --over albedo,eta --metric image --pixel 1 --tolerance 3 -n 2000");
-  ASSERT_EQ(r.status, 0) << r.err;
-  const std::string text = test_cli::slurp(svg);
-  EXPECT_NE(text.find("cheapest within 3 code values"), std::string::npos);
-  EXPECT_NE(text.find("cell text: code values"), std::string::npos);
-  EXPECT_NE(text.find(">pbd<"), std::string::npos);
+  for (const char* reference : {"exact", "montecarlo"}) {
+    r = run("models --map " + svg.string() + " --over albedo,eta --metric image --pixel 1 --tolerance 3 -n 2000 " +
+            "--map-reference " + reference);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string text = test_cli::slurp(svg);
+    EXPECT_NE(text.find("cheapest within 3 code values"), std::string::npos);
+    EXPECT_NE(text.find("cell text: code values"), std::string::npos);
+    EXPECT_NE(text.find(">pbd<"), std::string::npos);
+    EXPECT_NE(text.find(std::string(reference) == "exact" ? "model exact" : "Monte Carlo"), std::string::npos)
+        << reference;
+  }
 }
 
 TEST(CliValidityMap, BadInputExitsTwoWithoutAFile) {
@@ -173,7 +179,8 @@ TEST(CliValidityMap, BadInputExitsTwoWithoutAFile) {
        {"--map " + file.string() + " --over albedo,sigma", "--map " + file.string() + " --metric speed",
         "--map " + test_cli::temp("map.gif").string(), "--map " + file.string() + " --accuracy -1",
         "--map " + file.string() + " --metric image --pixel 0",
-        "--map " + file.string() + " --metric image --tolerance -2"}) {
+        "--map " + file.string() + " --metric image --tolerance -2",
+        "--map " + file.string() + " --metric image --map-reference pbd"}) {
     const auto r = run("models " + args);
     EXPECT_EQ(r.status, 2) << args << ": " << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;

@@ -5,7 +5,6 @@
 #include <sstream>
 
 #include "../io/canvas.hpp"
-#include "../model_error_table.hpp"
 #include "bssrdf/advise/image_error.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/model_choice.hpp"
@@ -53,47 +52,57 @@ std::string render_validity_map(const ValidityMapOptions& options, const std::ve
   if (image && !reference)
     throw InvalidInput("--metric", "image", "total or profile (image needs a reference profile)");
   const bool over_eta = options.over == "albedo,eta";
-  const std::vector<double> albedo{0.5, 0.8, 0.9, 0.95, 0.99, 0.999};
-  const std::vector<double> second =
-      over_eta ? std::vector<double>{1, 1.3, 1.4, 1.5} : std::vector<double>{0, 0.9, 0.95};
   const double fixed = over_eta ? 0.0 : 1.3;  // g on the albedo,eta plane; eta on the albedo,g plane
+  // total/profile: measured live against the exact model on a dense grid inside its domain; image:
+  // one reference run per cell on a coarse grid (each cell costs a reference).
+  const std::vector<double> albedo = image
+                                         ? std::vector<double>{0.5, 0.8, 0.9, 0.95, 0.99, 0.999}
+                                         : std::vector<double>{0.3, 0.5, 0.7, 0.8, 0.9, 0.95, 0.98, 0.99, 0.995, 0.999};
+  const std::vector<double> second =
+      over_eta
+          ? (image ? std::vector<double>{1, 1.3, 1.4, 1.5} : std::vector<double>{1, 1.1, 1.2, 1.3, 1.4, 1.5, 1.6})
+          : (image ? std::vector<double>{0, 0.9, 0.95} : std::vector<double>{0, 0.3, 0.5, 0.7, 0.8, 0.9, 0.95, 0.99});
 
-  // error[model][i][j], i: albedo, j: second axis; NaN where no case was measured.
-  const std::size_t models = detail::kCandidateModels;
+  // The models drawn: every --model auto candidate but the reference itself, with their costs.
+  std::vector<std::string> names;
+  for (const auto& entry : model_registry())
+    if (entry.auto_candidate && !entry.reference_accuracy) names.push_back(entry.name);
+  const std::size_t models = names.size();
+  // error[model][i][j], i: albedo, j: second axis; NaN where nothing was measured.
   std::vector<std::vector<std::vector<double>>> error(
       models, std::vector<std::vector<double>>(albedo.size(), std::vector<double>(second.size(), NAN)));
   std::string source;
-  if (image) {
-    // Each cell: sigma_t' = 1/mm, the reference once, every model judged on its annuli.
-    for (std::size_t i = 0; i < albedo.size(); ++i)
-      for (std::size_t j = 0; j < second.size(); ++j) {
-        const double g = over_eta ? 0.0 : second[j], eta = over_eta ? second[j] : 1.3;
-        const Medium medium = Medium::single_channel(1 - albedo[i], albedo[i] / (1 - g), g, eta);
+  for (std::size_t i = 0; i < albedo.size(); ++i)
+    for (std::size_t j = 0; j < second.size(); ++j) {
+      const double g = over_eta ? fixed : second[j], eta = over_eta ? second[j] : fixed;
+      const Medium medium = Medium::single_channel(1 - albedo[i], albedo[i] / (1 - g), g, eta);
+      const auto m = medium.reduced(0);
+      if (image) {
+        // sigma_t' = 1/mm: the reference once, every model judged on its annuli.
         const ReferenceProfiles ref = reference->profiles(medium);
-        if (source.empty()) source = ref.description;
+        if (source.empty()) source = "the reference at each cell, " + ref.description;
         const ImageErrorMeter meter(ref.channels.front().edges, options.pixel);
         const std::vector<PatternImage> ref_image{meter.render(ref.channels.front())};
-        const auto m = medium.reduced(0);
         for (std::size_t k = 0; k < models; ++k) {
-          // A column whose model has left the registry has no image.
-          if (!find_model_entry(detail::kCandidateNames[k])) continue;
-          const auto model = make_model(detail::kCandidateNames[k]);
+          const auto model = make_model(names[k]);
           const auto profile = annuli_of(
               meter.edges(), [&](double r) { return model->reflectance(m, r); }, model->total_reflectance(m));
           error[k][i][j] = meter.error(ref_image, {meter.render(profile)}).error;
         }
+      } else if (const auto estimates = model_errors_vs_exact(m)) {
+        for (const auto& e : *estimates) {
+          const auto k = std::find(names.begin(), names.end(), e.model) - names.begin();
+          if (k < static_cast<long>(models))
+            error[static_cast<std::size_t>(k)][i][j] = options.metric == "total" ? e.total_error : e.profile_error;
+        }
       }
-  } else {
-    for (const auto& c : detail::kMeasuredCases) {
-      if ((over_eta ? c.g : c.eta) != fixed) continue;
-      const auto i = std::find(albedo.begin(), albedo.end(), c.albedo_prime) - albedo.begin();
-      const auto j = std::find(second.begin(), second.end(), over_eta ? c.eta : c.g) - second.begin();
-      if (i >= static_cast<long>(albedo.size()) || j >= static_cast<long>(second.size())) continue;
-      for (std::size_t m = 0; m < models; ++m)
-        error[m][static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] =
-            options.metric == "total" ? c.error[m].total : c.error[m].profile;
     }
-    source = "tools/validation/models_vs_montecarlo_extended.tsv, Monte Carlo noise ~1.5 %";
+  if (!image) {
+    const auto band = *model_entry("exact").reference_accuracy;
+    source = "measured live (the exact model itself is within " + format_number(std::round(1000 * band.total) / 10) +
+             " % in total and " + format_number(std::round(1000 * band.profile) / 10) +
+             " % in profile of Monte Carlo); profile: relative L2 of r R(r), the worse of inside and beyond one "
+             "transport mfp";
   }
   // The colour scale and cell text: percent for relative errors, code values for the image.
   const double lo = image ? 0.1 : 0.003, hi = image ? 100 : 1;
@@ -106,10 +115,7 @@ std::string render_validity_map(const ValidityMapOptions& options, const std::ve
       image ? format_number(options.tolerance) + " code values" : format_number(100 * options.tolerance) + " %";
   // Models cheapest first, as the choice ranks them.
   std::vector<std::pair<double, std::size_t>> order;
-  const auto measured = measured_models();
-  for (std::size_t m = 0; m < models; ++m)
-    for (const auto& mm : measured)
-      if (mm.model == detail::kCandidateNames[m]) order.emplace_back(mm.cost_ns, m);
+  for (std::size_t m = 0; m < models; ++m) order.emplace_back(model_entry(names[m]).cost_ns, m);
   std::stable_sort(order.begin(), order.end());
 
   const double panel_w = kCell * static_cast<double>(albedo.size()),
@@ -122,13 +128,13 @@ std::string render_validity_map(const ValidityMapOptions& options, const std::ve
                                        format_number(options.pixel) + " transport mfp)"
                                  : options.metric + " error";
   canvas->text(kMargin, 22,
-               "Where each model holds: " + what + " against Monte Carlo over alpha' and " +
-                   (over_eta ? "eta (g = 0)" : "g (eta = 1.3)"),
+               "Where each model holds: " + what + " against " + (image ? "the reference" : "the exact model") +
+                   " over alpha' and " + (over_eta ? "eta (g = 0)" : "g (eta = 1.3)"),
                15);
-  canvas->text(kMargin, 40,
-               "one cell per " + std::string(image ? "reference run" : "measured case") + " (" + source +
-                   "); dots: the database's material channels (alpha', " + (over_eta ? "eta" : "g") +
-                   "); left of 0.5: off the map",
+  canvas->text(kMargin, 38, "one cell per point: " + source, 10);
+  canvas->text(kMargin, 51,
+               "dots: the database's material channels (alpha', " + std::string(over_eta ? "eta" : "g") +
+                   "); left of " + format_number(albedo.front()) + ": off the map",
                10);
 
   const auto panel = [&](int index, const std::string& title, const auto& cell_colour, const auto& cell_text) {
@@ -162,7 +168,7 @@ std::string render_validity_map(const ValidityMapOptions& options, const std::ve
   for (const auto& entry : order) {
     const auto m = entry.second;  // a plain variable: C++20 lambdas cannot capture a structured binding in clang 14
     panel(
-        index++, std::string(detail::kCandidateNames[m]),
+        index++, names[m],
         [&](std::size_t i, std::size_t j) {
           return std::isnan(error[m][i][j]) ? std::string("#dddddd") : error_colour(error[m][i][j], lo, hi);
         },
@@ -197,8 +203,7 @@ std::string render_validity_map(const ValidityMapOptions& options, const std::ve
   for (std::size_t k = 0; k < order.size(); ++k) {
     canvas->rect(lx, 234 + 18 * static_cast<double>(k), 14, 14, kCategorical[k]);
     canvas->text(lx + 20, 245 + 18 * static_cast<double>(k),
-                 std::string(detail::kCandidateNames[order[k].second]) + " (" + format_number(order[k].first) + " ns)",
-                 10);
+                 names[order[k].second] + " (" + format_number(order[k].first) + " ns)", 10);
   }
   canvas->rect(lx, 234 + 18 * static_cast<double>(order.size()), 14, 14, "#dddddd");
   canvas->text(lx + 20, 245 + 18 * static_cast<double>(order.size()), "not measured; white: none within", 10);

@@ -136,22 +136,32 @@ Action register_models(CLI::App& app) {
   sub->add_option("--over", map->over, "--map: the plane, albedo,eta (g = 0) or albedo,g (eta = 1.3) [albedo,eta]");
   sub->add_option(
       "--metric", map->metric,
-      "--map: total or profile (measured relative errors against Monte Carlo; cheapest within --accuracy), or image "
-      "(8-bit sRGB code values against a Monte Carlo run per cell; cheapest within --tolerance) [profile]");
+      "--map: total or profile (relative errors measured live against the exact model; cheapest within "
+      "--accuracy), or image (8-bit sRGB code values against --map-reference per cell; cheapest within --tolerance) "
+      "[profile]");
+  auto map_reference = std::make_shared<std::string>("exact");
+  sub->add_option("--map-reference", *map_reference,
+                  "--map --metric image: the reference, exact (the tabulated transport solution) or montecarlo (a "
+                  "run per cell, -n photons) [exact]");
   auto tolerance = std::make_shared<std::string>("1");
   sub->add_option("--tolerance", *tolerance, "--map --metric image: largest acceptable image error, code values [1]");
   sub->add_option("--pixel", map->pixel, "--map --metric image: pixel size in transport mean free paths [1]");
   auto photons = std::make_shared<std::uint64_t>(20'000);
   add_count_option(*sub, "--photons,-n", *photons, 1000, kMaxPhotons,
                    "--map --metric image: Monte Carlo photons per cell [20000]");
-  return [json, medium, accuracy, chart, map, map_file, tolerance, photons] {
+  return [json, medium, accuracy, chart, map, map_file, tolerance, photons, map_reference] {
     if (!map_file->empty()) {  // validity maps (advise/validity_map.hpp)
       map->extension = std::filesystem::path(*map_file).extension().string();
       if (map->extension != ".svg" && map->extension != ".png")
         throw InvalidInput("--map", "'" + *map_file + "'", "a file ending in .svg or .png");
       map->tolerance = map->metric == "image" ? parse_number(*tolerance, "--tolerance") : parse_accuracy(*accuracy);
       const auto database = MaterialDatabase::load_with_user(medium->db);
-      const MonteCarloReference reference({*photons, 1, 0});
+      if (*map_reference != "exact" && *map_reference != "montecarlo")
+        throw InvalidInput("--map-reference", "'" + *map_reference + "'", "exact or montecarlo");
+      const MonteCarloReference montecarlo({*photons, 1, 0});
+      const ModelReference exact(make_model("exact"));
+      const ReferenceProfile& reference =
+          *map_reference == "exact" ? static_cast<const ReferenceProfile&>(exact) : montecarlo;
       write_file_atomically(*map_file, render_validity_map(*map, database.all(), &reference));
       std::cout << "map: " << *map_file << '\n';
       return;

@@ -2,14 +2,16 @@
 // map of the cheapest model within a tolerance at each point, with the database's material
 // channels marked. SVG or PNG (io canvas, no plotting library).
 //
-// Planes: albedo,eta (g = 0) and albedo,g (eta = 1.3), alpha' 0.5-0.999 x eta 1, 1.3, 1.4, 1.5 or
-// x g 0, 0.9, 0.95. Metrics:
-//  - "total" (|relative error of the total reflectance|) and "profile" (area-weighted relative L2
-//    error of R(r)): the measured validation cases behind model_choice.hpp (Monte Carlo noise about
-//    1.5 % in L2), one cell per measured case, never interpolated; tolerance relative.
+// Planes: albedo,eta (g = 0) and albedo,g (eta = 1.3). Models: every `--model auto` candidate but
+// the exact model itself. Metrics:
+//  - "total" (|relative error of the total reflectance|) and "profile" (relative L2 of r R(r), the
+//    worse of inside and beyond one transport mfp): measured live against the exact model
+//    (model_choice.hpp's model_errors_vs_exact) on a dense grid, alpha' 0.3-0.999 x eta 1-1.6 or x
+//    g 0-0.99; tolerance relative.
 //  - "image": the image-space error (image_error.hpp, 8-bit sRGB code values at a shadow edge and a
-//    one-pixel line) against the reference at each cell (a medium with sigma_t' = 1/mm, so `pixel`
-//    is in transport mean free paths); tolerance in code values.
+//    one-pixel line) against `reference` at each cell of a coarse grid (alpha' 0.5-0.999 x eta 1,
+//    1.3, 1.4, 1.5 or x g 0, 0.9, 0.95; a medium with sigma_t' = 1/mm, so `pixel` is in transport
+//    mean free paths); tolerance in code values.
 //
 //   ValidityMapOptions o{.over = "albedo,eta", .metric = "profile", .tolerance = 0.05};
 //   write_file_atomically("map.png", render_validity_map(o, database.all(), nullptr));
