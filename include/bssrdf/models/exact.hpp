@@ -49,6 +49,8 @@ class ExactProfile {
   double cumulative(double r) const;  // int_0^r 2 pi r' R dr'
   double total() const { return total_; }
   double albedo_prime() const { return albedo_prime_; }
+  double g() const { return g_; }
+  double eta() const { return eta_; }
 
  private:
   double ln_y(double ln_r) const;  // the interpolated, normalised curve
