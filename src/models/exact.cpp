@@ -20,7 +20,8 @@ double g_coordinate(double g) { return -std::log1p(-g); }
 double eta_coordinate(double eta) { return eta; }
 
 // Cubic Hermite weights on four nodes for x in [x[i], x[i+1]]: slopes at the interval's ends from
-// the three-point (non-uniform) difference, or the secant at the ends of the axis. The slopes at a
+// the three-point (non-uniform) difference, or at the ends of the axis the one-sided three-point
+// difference (the secant with only two nodes). The slopes at a
 // node are the same from both sides, so the interpolant has continuous first derivatives.
 struct Weights {
   std::array<std::size_t, 4> node{};
@@ -57,6 +58,13 @@ Weights hermite_weights(const std::vector<double>& axis, double (*f)(double), do
     c[0] += h10 * (-a / h0);
     c[1] += h10 * (a / h0 - b / h);
     c[2] += h10 * (b / h);
+  } else if (i + 2 < n) {
+    // First interval: the slope of the parabola through the first three nodes (the secant alone
+    // missed a curved end by up to 0.6 % in the total, g between 0 and 0.2).
+    const double h2 = x(i + 2) - x(i + 1);
+    c[1] += h10 * (-(2 * h + h2) / (h * (h + h2)));
+    c[2] += h10 * ((h + h2) / (h * h2));
+    c[3] += h10 * (-h / (h2 * (h + h2)));
   } else {
     c[1] += h10 * (-1 / h);
     c[2] += h10 * (1 / h);
@@ -66,6 +74,12 @@ Weights hermite_weights(const std::vector<double>& axis, double (*f)(double), do
     c[1] += h11 * (-a / h);
     c[2] += h11 * (a / h - b / h2);
     c[3] += h11 * (b / h2);
+  } else if (i > 0) {
+    // Last interval: the slope of the parabola through the last three nodes, at the last.
+    const double h0 = x(i) - x(i - 1);
+    c[0] += h11 * (h / (h0 * (h0 + h)));
+    c[1] += h11 * (-(h0 + h) / (h0 * h));
+    c[2] += h11 * ((2 * h + h0) / (h * (h0 + h)));
   } else {
     c[1] += h11 * (-1 / h);
     c[2] += h11 * (1 / h);
@@ -82,6 +96,7 @@ Weights hermite_weights(const std::vector<double>& axis, double (*f)(double), do
 
 struct NodeWeights {
   Weights a, g, e;
+  Weights e_total;  // on the totals' eta axis (ExactTable::ln_total_eta)
 };
 
 NodeWeights weights_at(const ExactTable& table, double albedo_prime, double g, double eta) {
@@ -96,15 +111,17 @@ NodeWeights weights_at(const ExactTable& table, double albedo_prime, double g, d
                            " (the exact model's table; outside it use the Monte Carlo reference: bssrdf reference)");
   }
   return {hermite_weights(table.albedo_prime, albedo_coordinate, albedo_prime),
-          hermite_weights(table.g, g_coordinate, g), hermite_weights(table.eta, eta_coordinate, eta)};
+          hermite_weights(table.g, g_coordinate, g), hermite_weights(table.eta, eta_coordinate, eta),
+          hermite_weights(table.ln_total_eta(), eta_coordinate, eta)};
 }
 
 double interpolated_ln_total(const ExactTable& table, const NodeWeights& w) {
   double sum = 0;
-  for (int e = 0; e < w.e.count; ++e)
+  for (int e = 0; e < w.e_total.count; ++e)
     for (int gi = 0; gi < w.g.count; ++gi)
       for (int a = 0; a < w.a.count; ++a)
-        sum += w.e.w[e] * w.g.w[gi] * w.a.w[a] * table.ln_total[table.node(w.e.node[e], w.g.node[gi], w.a.node[a])];
+        sum += w.e_total.w[e] * w.g.w[gi] * w.a.w[a] *
+               table.ln_total[table.node(w.e_total.node[e], w.g.node[gi], w.a.node[a])];
   return sum;
 }
 

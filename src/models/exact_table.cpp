@@ -56,22 +56,36 @@ void ExactTable::validate() const {
     if (!std::isfinite(v)) throw InvalidInput(kField, "ln_y", "finite values");
   for (double t : total)
     if (!(t > 0 && t < 1)) throw InvalidInput(kField, "total = " + std::to_string(t), "0 < total < 1");
+  if (!total_eta.empty()) {
+    if (!increasing(total_eta) || total_eta.front() != eta.front() || total_eta.back() != eta.back())
+      throw InvalidInput(kField, "total_eta", "increasing eta nodes from the first to the last of eta");
+    if (fine_total.size() != total_eta.size() * g.size() * albedo_prime.size())
+      throw InvalidInput(kField, "fine_total",
+                         std::to_string(total_eta.size() * g.size() * albedo_prime.size()) + " totals");
+    for (double t : fine_total)
+      if (!(t > 0 && t < 1)) throw InvalidInput(kField, "fine total = " + std::to_string(t), "0 < total < 1");
+  } else if (!fine_total.empty()) {
+    throw InvalidInput(kField, "fine_total", "none without total_eta");
+  }
 }
 
 void write_exact_table(const ExactTable& table, const std::string& path) {
   table.validate();
   nlohmann::json header;
   header["format"] = "bssrdf-exact-table";
-  header["version"] = 1;
+  header["version"] = table.total_eta.empty() ? 1 : 2;
   header["albedo_prime"] = table.albedo_prime;
   header["g"] = table.g;
   header["eta"] = table.eta;
   header["ln_r0"] = table.ln_r0;
   header["d_ln_r"] = table.d_ln_r;
   header["radii"] = table.radii;
-  header["layout"] =
-      "ln_y float32 [eta][g][albedo_prime][radius], relative_error uint16 (1e-4 units, 65535 = "
-      "extrapolated) same order, total float64 [eta][g][albedo_prime]; little-endian";
+  if (!table.total_eta.empty()) header["total_eta"] = table.total_eta;
+  header["layout"] = std::string(
+                         "ln_y float32 [eta][g][albedo_prime][radius], relative_error uint16 (1e-4 units, 65535 = "
+                         "extrapolated) same order, total float64 [eta][g][albedo_prime]") +
+                     (table.total_eta.empty() ? "" : ", fine_total float64 [total_eta][g][albedo_prime]") +
+                     "; little-endian";
   header["provenance"] = table.provenance.empty() ? nlohmann::json::object() : nlohmann::json::parse(table.provenance);
   const std::string text = header.dump();
   std::string out(kMagic, sizeof kMagic);
@@ -81,6 +95,7 @@ void write_exact_table(const ExactTable& table, const std::string& path) {
   append_bytes(out, table.ln_y);
   append_bytes(out, table.relative_error);
   append_bytes(out, table.total);
+  append_bytes(out, table.fine_total);
   const std::string temporary = path + ".partial";
   {
     std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
@@ -100,8 +115,9 @@ ExactTable read_exact_table(const std::string& path) {
   const nlohmann::json header = parse_json_document(data.substr(16, length), path);
   ExactTable table;
   try {
-    if (header.at("format") != "bssrdf-exact-table" || header.at("version") != 1)
-      throw InvalidInput(kField, path, "format bssrdf-exact-table version 1");
+    if (header.at("format") != "bssrdf-exact-table" || (header.at("version") != 1 && header.at("version") != 2))
+      throw InvalidInput(kField, path, "format bssrdf-exact-table version 1 or 2");
+    if (header.at("version") == 2) table.total_eta = header.at("total_eta").get<std::vector<double>>();
     table.albedo_prime = header.at("albedo_prime").get<std::vector<double>>();
     table.g = header.at("g").get<std::vector<double>>();
     table.eta = header.at("eta").get<std::vector<double>>();
@@ -112,13 +128,16 @@ ExactTable read_exact_table(const std::string& path) {
   } catch (const nlohmann::json::exception& e) {
     throw InvalidInput(kField, path, std::string("a valid header (") + e.what() + ")");
   }
-  if (table.radii > (1u << 20) || table.albedo_prime.size() * table.g.size() * table.eta.size() > (1u << 24))
+  if (table.radii > (1u << 20) || table.albedo_prime.size() * table.g.size() * table.eta.size() > (1u << 24) ||
+      table.total_eta.size() > (1u << 16))
     throw InvalidInput(kField, path, "a table of plausible size");
   std::size_t offset = 16 + length;
   const std::size_t n = table.nodes() * table.radii;
   table.ln_y = take_bytes<float>(data, offset, n, path);
   table.relative_error = take_bytes<std::uint16_t>(data, offset, n, path);
   table.total = take_bytes<double>(data, offset, table.nodes(), path);
+  table.fine_total =
+      take_bytes<double>(data, offset, table.total_eta.size() * table.g.size() * table.albedo_prime.size(), path);
   if (offset != data.size()) throw InvalidInput(kField, path, "no data after the totals");
   table.prepare();
   return table;

@@ -31,6 +31,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <ctime>
 #include <filesystem>
@@ -45,8 +46,10 @@
 #include "bssrdf/adding_doubling/slab.hpp"
 #include "bssrdf/layers.hpp"
 #include "bssrdf/medium.hpp"
+#include "bssrdf/models/exact.hpp"
 #include "bssrdf/models/exact_table.hpp"
 #include "bssrdf/montecarlo.hpp"
+#include "bssrdf/parallel.hpp"
 #include "bssrdf/reduced.hpp"
 #include "bssrdf/single_scattering.hpp"
 
@@ -54,7 +57,9 @@ namespace {
 
 using namespace bssrdf;
 
-constexpr int kGeneratorVersion = 1;
+constexpr int kGeneratorVersion = 2;
+constexpr int kSmoothingHalf = 3;  // radial smoothing window (smooth_radially): 7 bins, 0.58 decades
+constexpr int kSmoothingWide = 5;  // where a bin's error exceeds 3 %: 11 bins
 
 // ---- the grid ---------------------------------------------------------------------------------
 // alpha': uniform in logit(alpha') from 0.001 to 0.9999 (41 nodes, step 0.40): the profile's
@@ -78,7 +83,12 @@ struct Grid {
     }
     g = {0.0, 0.2, 0.4, 0.55, 0.7, 0.8, 0.87, 0.92, 0.95, 0.97, 0.98, 0.99};
     eta = {1.0, 1.05, 1.15, 1.3, 1.45, 1.6};
+    // The totals' eta axis (adding-doubling only, cheap): the total bends sharply within a few
+    // hundredths above 1, where total internal reflection sets in.
+    total_eta = {1.0,  1.0025, 1.005, 1.0075, 1.01, 1.015, 1.02, 1.025, 1.03, 1.04, 1.05, 1.06, 1.07,
+                 1.08, 1.1,    1.12,  1.15,   1.2,  1.25,  1.3,  1.35,  1.4,  1.45, 1.5,  1.55, 1.6};
   }
+  std::vector<double> total_eta;
   // Monte Carlo runs per (g, eta): a non-absorbing ("white") one, index kWhite, and absorbing ones
   // at these base alpha'. Node alpha' is taken from the run with the smallest base >= alpha' and
   // reweighted by (alpha / alpha_base)^k <= 1: a low albedo's multiple scattering comes from the
@@ -289,6 +299,62 @@ int run(const std::filesystem::path& dir, std::uint64_t target, std::uint64_t ch
   return 0;
 }
 
+// ---- radial smoothing of the multiple-scattering tallies -------------------------------------------
+// Where a node's runs had few photons (the non-absorbing runs at alpha' > 0.99, 2.5-5e4 photons), a
+// bin's mean is noisy (3-6 % in the near field) while the profile itself is smooth in ln y over
+// ln r. Each bin's ln mean is replaced by a local quadratic fit over the well-measured bins within
+// `half` bins of it (Savitzky-Golay, unweighted: the bins of a window have similar noise, and
+// weights from the noisy standard errors themselves would bias). The fit's value at the bin is a
+// linear combination sum L_j ln mean_j, so its standard error is exactly sqrt(sum L_j^2 rel_j^2);
+// ln mean_j + rel_j^2 / 2 removes the second-order bias of the logarithm. The quadratic's bias is
+// the profile's fourth derivative times sum L_j j^4 d_ln_r^4 / 24: measured on well-sampled nodes
+// by `build` (provenance "radial_smoothing").
+struct Smoothed {
+  std::vector<double> mean, se;
+  std::vector<double> own_weight;  // L_k of the bin's own mean (0: left as it was)
+};
+Smoothed smooth_radially(const std::vector<double>& mean, const std::vector<double>& se, const std::vector<bool>& good,
+                         int half) {
+  Smoothed out{mean, se, std::vector<double>(mean.size(), 0.0)};
+  const auto n = static_cast<std::ptrdiff_t>(mean.size());
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    if (!good[static_cast<std::size_t>(k)]) continue;
+    // Normal equations of z_j = c0 + c1 x + c2 x^2, x = j - k, over the window's good bins.
+    double m[3][3] = {}, count = 0;
+    std::vector<std::ptrdiff_t> bins;
+    for (std::ptrdiff_t j = std::max<std::ptrdiff_t>(0, k - half); j <= std::min(n - 1, k + half); ++j) {
+      if (!good[static_cast<std::size_t>(j)]) continue;
+      bins.push_back(j);
+      const double x = static_cast<double>(j - k), p[3] = {1, x, x * x};
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) m[a][b] += p[a] * p[b];
+      count += 1;
+    }
+    if (count < 5) continue;  // a quadratic through fewer points would follow the noise
+    // Row 0 of the inverse (cofactors): c0 = sum_j (inv[0] . p_j) z_j.
+    const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                       m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                       m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    const double inv0[3] = {(m[1][1] * m[2][2] - m[1][2] * m[2][1]) / det,
+                            -(m[0][1] * m[2][2] - m[0][2] * m[2][1]) / det,
+                            (m[0][1] * m[1][2] - m[0][2] * m[1][1]) / det};
+    double z = 0, variance = 0;
+    for (std::ptrdiff_t j : bins) {
+      const double x = static_cast<double>(j - k);
+      const double weight = inv0[0] + inv0[1] * x + inv0[2] * x * x;
+      if (j == k) out.own_weight[static_cast<std::size_t>(k)] = weight;
+      const std::size_t u = static_cast<std::size_t>(j);
+      const double rel = se[u] / mean[u];
+      z += weight * (std::log(mean[u]) + 0.5 * rel * rel);
+      variance += weight * weight * rel * rel;
+    }
+    const std::size_t u = static_cast<std::size_t>(k);
+    out.mean[u] = std::exp(z);
+    out.se[u] = out.mean[u] * std::sqrt(variance);
+  }
+  return out;
+}
+
 // ---- build: the table from the sums ---------------------------------------------------------------
 std::string git_revision() {
   std::string out;
@@ -299,6 +365,69 @@ std::string git_revision() {
   }
   while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
   return out.empty() ? "unknown" : out;
+}
+
+// The semi-infinite medium's total diffuse reflectance per unit entered flux by adding-doubling,
+// in transport units, and the exact single-scattering total beside it.
+struct AddingDoublingTotal {
+  double total = 0, error_estimate = 0, single_scattering = 0;
+  // Converged: its own error estimate (from doubling the angles) within 2e-4 of the total. With g
+  // near 1 and low albedo delta-M with 128 angles does not converge (even negative totals at
+  // alpha' 0.001, g 0.99).
+  bool converged() const { return total > single_scattering && error_estimate <= 2e-4 * total; }
+};
+AddingDoublingTotal adding_doubling_total(double albedo_prime, double g, double eta) {
+  const Reduced<double> m = reduce(1 - albedo_prime, albedo_prime / (1 - g), g, eta);
+  adding_doubling::Slab slab;
+  slab.layers = {{m.sigma_a, m.sigma_s, g, kSemiInfinite}};
+  slab.n = eta;
+  adding_doubling::Options ad;
+  ad.tolerance = 1e-5 * albedo_prime;  // relative to R_d, which is of order alpha' at low albedo
+  const auto totals = adding_doubling::solve(slab, adding_doubling::Incidence::collimated, ad);
+  return {totals.diffuse_reflectance * totals.entered_scale(), totals.error_estimate,
+          single_scattering_total(m.albedo(), g, eta)};
+}
+
+// Adding-doubling's shape in eta is trusted where its error estimate is within 1 % of the total
+// (looser than a total it is to stand for: only its bend between eta nodes is used).
+bool usable_shape(const AddingDoublingTotal& t) {
+  return t.total > t.single_scattering && t.error_estimate <= 1e-2 * t.total;
+}
+
+// The totals on the fine eta axis: the coarse totals' interpolation times adding-doubling's own
+// ratio of its value to its interpolation from the coarse eta nodes (1 at those nodes, so the node
+// totals stand; between them it restores the bend the coarse nodes miss). Where adding-doubling's
+// shape is not usable at every eta of a (g, alpha'), that row keeps the plain interpolation.
+// `coarse_ad` holds adding-doubling at the coarse nodes ([eta][g][albedo]). Returns how many
+// (g, alpha') rows kept the plain interpolation.
+std::size_t add_fine_totals(const Grid& grid, ExactTable& table, const std::vector<AddingDoublingTotal>& coarse_ad) {
+  table.prepare();
+  ExactTable shape = table;  // adding-doubling at the coarse nodes, for its own interpolation
+  for (std::size_t i = 0; i < shape.total.size(); ++i)
+    shape.total[i] = usable_shape(coarse_ad[i]) ? coarse_ad[i].total : table.total[i];
+  shape.prepare();
+  const std::size_t albedos = grid.albedo_prime.size(), rows = grid.g.size() * albedos;
+  std::vector<double> fine(grid.total_eta.size() * rows);
+  std::vector<char> plain(rows, 0);
+  parallel_for(rows, 0, [&](std::size_t row) {
+    const std::size_t gi = row / albedos, a = row % albedos;
+    const double ap = grid.albedo_prime[a], g = grid.g[gi];
+    bool usable = true;
+    for (std::size_t e = 0; e < grid.eta.size(); ++e) usable = usable && usable_shape(coarse_ad[table.node(e, gi, a)]);
+    std::vector<double> ratio(grid.total_eta.size(), 1.0);
+    for (std::size_t e = 0; e < grid.total_eta.size() && usable; ++e) {
+      const AddingDoublingTotal t = adding_doubling_total(ap, g, grid.total_eta[e]);
+      usable = usable_shape(t);
+      ratio[e] = t.total / exact_total(shape, ap, g, grid.total_eta[e]);
+    }
+    for (std::size_t e = 0; e < grid.total_eta.size(); ++e)
+      fine[table.node(e, gi, a)] = exact_total(table, ap, g, grid.total_eta[e]) * (usable ? ratio[e] : 1.0);
+    plain[row] = !usable;
+  });
+  table.total_eta = grid.total_eta;
+  table.fine_total = std::move(fine);
+  table.prepare();
+  return static_cast<std::size_t>(std::count(plain.begin(), plain.end(), 1));
 }
 
 int build(const std::filesystem::path& dir, const std::string& out_path, std::uint64_t seed) {
@@ -319,6 +448,9 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   double cpu_seconds = 0, worst_scale_sigma = 0, worst_ss_sigma = 0, worst_lost = 0, largest_r999 = 0;
   std::string worst_scale_at, worst_ss_at;
   std::size_t extrapolated = 0, monte_carlo_totals = 0;
+  const int smoothing_half = kSmoothingHalf, wide_half = kSmoothingWide;
+  double smoothing_chi2 = 0, wide_chi2 = 0, smoothing_bins = 0;
+  std::vector<AddingDoublingTotal> coarse_ad(table.nodes());
   nlohmann::json scale_check = nlohmann::json::array();
   for (std::size_t ei = 0; ei < grid.eta.size(); ++ei) {
     for (std::size_t gi = 0; gi < grid.g.size(); ++gi) {
@@ -343,14 +475,10 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
         const double ap = grid.albedo_prime[a];
         // Transport units: sigma_t' = 1.
         const Reduced<double> m = reduce(1 - ap, ap / (1 - g), g, eta);
-        adding_doubling::Slab slab;
-        slab.layers = {{m.sigma_a, m.sigma_s, g, kSemiInfinite}};
-        slab.n = eta;
-        adding_doubling::Options ad;
-        ad.tolerance = 1e-5 * ap;  // relative to R_d, which is of order alpha' at low albedo
-        const auto totals = adding_doubling::solve(slab, adding_doubling::Incidence::collimated, ad);
-        const double ad_total = totals.diffuse_reflectance * totals.entered_scale();
-        const double ss_total = single_scattering_total(m.albedo(), g, eta);
+        const AddingDoublingTotal totals = adding_doubling_total(ap, g, eta);
+        coarse_ad[table.node(ei, gi, a)] = totals;
+        const double ad_total = totals.total;
+        const double ss_total = totals.single_scattering;
         const auto mean_se = [n](double sum, double sq) {
           const double mean = sum / n;
           return std::pair{mean, std::sqrt(std::max(0.0, (sq / n - mean * mean) / (n - 1)))};
@@ -361,7 +489,7 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
         // doubling the angles, within 2e-4 of the total); with g near 1 and low albedo delta-M
         // with 128 angles does not converge (even negative totals at alpha' 0.001, g 0.99), and
         // the Monte Carlo total (exact single scattering + multiple scattering) stands.
-        const bool ad_converged = ad_total > ss_total && totals.error_estimate <= 2e-4 * ad_total;
+        const bool ad_converged = totals.converged();
         const double ms_exact = ad_converged ? ad_total - ss_total : ms_mc;
         const double total = ss_total + ms_exact;
         const double scale = ms_mc > 0 ? ms_exact / ms_mc : 0.0;
@@ -399,6 +527,29 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
         for (std::size_t k = 0; k < radii; ++k) good[k] = mean[k] > 0 && se[k] < 0.3 * mean[k];
         if (std::none_of(good.begin(), good.end(), [](bool b) { return b; }))
           for (std::size_t k = 0; k < radii; ++k) good[k] = mean[k] > 0;  // noisy: relative errors say so
+        {                                                                 // radial smoothing (smooth_radially)
+          std::vector<bool> smoothable(radii);
+          for (std::size_t k = 0; k < radii; ++k) smoothable[k] = good[k] && se[k] < 0.3 * mean[k];
+          const Smoothed smooth = smooth_radially(mean, se, smoothable, smoothing_half);
+          const Smoothed wide = smooth_radially(mean, se, smoothable, wide_half);
+          // The bias check: on well-sampled bins (within 0.5 %), where a bias would stand out of
+          // the noise, the change in units of the bin's own error has E[d^2] = 1 - L_k if the fit
+          // is unbiased.
+          for (std::size_t k = 0; k < radii; ++k) {
+            if (smooth.own_weight[k] == 0 || wide.own_weight[k] == 0 || !(se[k] < 0.005 * mean[k])) continue;
+            smoothing_chi2 += std::pow((smooth.mean[k] - mean[k]) / se[k], 2) / (1 - smooth.own_weight[k]);
+            wide_chi2 += std::pow((wide.mean[k] - mean[k]) / se[k], 2) / (1 - wide.own_weight[k]);
+            smoothing_bins += 1;
+          }
+          // Bins measured within 0.5 % keep their value: there the smoothing's bias (above) would
+          // be comparable to their noise.
+          for (std::size_t k = 0; k < radii; ++k)
+            if (!(se[k] < 0.005 * mean[k])) {
+              const Smoothed& use = se[k] > 0.03 * mean[k] ? wide : smooth;
+              mean[k] = use.mean[k];
+              se[k] = use.se[k];
+            }
+        }
         const bool any_ms = std::any_of(good.begin(), good.end(), [](bool b) { return b; });
         std::size_t first_good = 0, last_good = radii - 1;
         if (any_ms) {
@@ -470,6 +621,7 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
       }
     }
   }
+  const std::size_t interpolated_rows = add_fine_totals(grid, table, coarse_ad);
   char date[32];
   const std::time_t now = std::time(nullptr);
   std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
@@ -493,6 +645,12 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   p["adding_doubling_tolerance"] = "1e-5 alpha' absolute";
   p["totals"] = "adding-doubling where its error estimate is within 2e-4 of the total, else the Monte Carlo total";
   p["monte_carlo_totals"] = monte_carlo_totals;
+  p["fine_totals"] = {{"total_eta", grid.total_eta},
+                      {"source",
+                       "the coarse totals interpolated in eta, times adding-doubling's ratio of its value "
+                       "to its own interpolation from the coarse eta nodes (where its error estimate is "
+                       "within 1 % at every eta of that g, alpha'; else 1)"},
+                      {"plain_interpolation_g_albedo_rows", interpolated_rows}};
   p["worst_total_check_sigma"] = {{"value", worst_scale_sigma},
                                   {"at", worst_scale_at},
                                   {"meaning", "(Monte Carlo - exact) multiple-scattering total / its standard error"}};
@@ -500,6 +658,21 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   p["largest_lost_fraction"] = worst_lost;
   p["largest_radius_999"] = largest_r999;
   p["extrapolated_entries"] = extrapolated;
+  p["radial_smoothing"] = {
+      {"method",
+       "multiple scattering: ln of each bin mean measured worse than 0.5 % replaced by a local quadratic fit over "
+       "+-half bins (+-wide_half where worse than 3 %), over bins measured within 30 %"},
+      {"half", smoothing_half},
+      {"wide_half", wide_half},
+      {"bias_check_chi2_per_bin", smoothing_bins > 0 ? smoothing_chi2 / smoothing_bins : NAN},
+      {"bias_check_chi2_per_bin_wide", smoothing_bins > 0 ? wide_chi2 / smoothing_bins : NAN},
+      {"bias_check_bins", smoothing_bins},
+      {"bias_check_meaning",
+       "well-sampled bins (within 0.5 %): (smoothed - raw)^2 / (se^2 (1 - L_k)), "
+       "1 when the smoothing adds no bias"}};
+  std::cerr << "radial smoothing +-" << smoothing_half << " (+-" << wide_half << ") bins: bias check chi2/bin "
+            << smoothing_chi2 / std::max(1.0, smoothing_bins) << " (" << wide_chi2 / std::max(1.0, smoothing_bins)
+            << ") over " << smoothing_bins << " bins\n";
   table.provenance = p.dump();
   write_exact_table(table, out_path);
   std::cout << p.dump(2) << "\n";

@@ -38,16 +38,24 @@ struct ExactTable {
   static constexpr std::uint16_t kExtrapolated = 65535;
   // [eta][g][albedo]: total diffuse reflectance per unit entered flux (adding-doubling).
   std::vector<double> total;
+  // Version 2: the totals again on a finer eta axis (the same ends; every eta node among them),
+  // [total_eta][g][albedo]. The total bends sharply just above eta = 1, where total internal
+  // reflection sets in, and the coarse eta nodes missed it by up to 0.5 % (eta 1.02). Empty in a
+  // version 1 file: the totals above serve.
+  std::vector<double> total_eta;
+  std::vector<double> fine_total;
 
   std::string provenance;  // JSON: photons, seeds, generator version, run time, checks
 
   // Derived by prepare() (read_exact_table calls it): ln of each total, for the interpolation.
-  std::vector<double> ln_total;
+  std::vector<double> ln_total;  // ln of fine_total, or of total without it
   void prepare() {
     validate();
     ln_total.clear();
-    for (double t : total) ln_total.push_back(std::log(t));
+    for (double t : total_eta.empty() ? total : fine_total) ln_total.push_back(std::log(t));
   }
+  // The eta axis of ln_total (node(e, g, a) indexes it: its layout does not depend on the eta count).
+  const std::vector<double>& ln_total_eta() const { return total_eta.empty() ? eta : total_eta; }
 
   double radius(std::size_t k) const { return std::exp(ln_r0 + d_ln_r * static_cast<double>(k)); }
   std::size_t node(std::size_t e, std::size_t gi, std::size_t a) const {
@@ -62,8 +70,9 @@ struct ExactTable {
 };
 
 // Binary file: magic "BSSRDFX1", a little-endian uint64 header length, a JSON header (axes,
-// layout, provenance), then ln_y (float32), relative_error (uint16) and total (float64),
-// little-endian. Throws InvalidInput (field "exact table") on a malformed or truncated file.
+// layout, provenance), then ln_y (float32), relative_error (uint16), total (float64) and, in
+// version 2, fine_total (float64), little-endian; version 1 files (no fine totals) still load. Throws InvalidInput
+// (field "exact table") on a malformed or truncated file.
 ExactTable read_exact_table(const std::string& path);
 void write_exact_table(const ExactTable& table, const std::string& path);
 
