@@ -37,6 +37,7 @@ double Model::radius_for_fraction(const Reduced<double>& m, double fraction) con
   if (!(fraction > 0 && fraction < 1))
     throw InvalidInput("energy fraction", format_number(fraction), "0 < fraction < 1");
   const double target = fraction * total_reflectance(m);
+  if (target == 0) return 0;  // nothing scatters (alpha' = 0): no light to hold
   const auto R = [&](double r) { return reflectance(m, r); };
   // C(b) - C(a) by integrating over [a, b] only: no step re-integrates from 0 (for models without a
   // closed-form C, forty bisection steps from 0 cost tens of milliseconds).

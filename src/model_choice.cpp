@@ -85,7 +85,7 @@ std::string exact_domain_text() {
   const auto range = [](const std::vector<double>& axis) {
     return format_number(axis.front()) + " to " + format_number(axis.back());
   };
-  return "alpha' " + range(t.albedo_prime) + ", g " + range(t.g) + ", eta " + range(t.eta);
+  return "alpha' 0 to " + format_number(t.albedo_prime.back()) + ", g " + range(t.g) + ", eta " + range(t.eta);
 }
 
 }  // namespace

@@ -33,6 +33,7 @@ std::vector<double> bin_averages(const std::vector<double>& edges, R&& reflectan
 ExactBins exact_bins(const ExactProfile& exact) {
   ExactBins bins;
   bins.total = exact.total();
+  if (bins.total == 0) return bins;  // alpha' = 0: R = 0, no bins
   const double outer = radius_where([&](double r) { return exact.cumulative(r); }, 0.999 * bins.total, 1.0, 1e-6);
   // Log-spaced, with an edge at 1 transport mfp so no bin straddles the near / far split: the
   // bins shared between the two sides in proportion to their log ranges (at least 8 beyond).
@@ -48,6 +49,11 @@ ExactBins exact_bins(const ExactProfile& exact) {
 
 ErrorVsExact error_vs_exact(const Model& model, const Reduced<double>& m, const ExactBins& exact) {
   ErrorVsExact out;
+  if (exact.total == 0) {  // nothing scatters: a model is exact if it gives no light either
+    const double none = model.total_reflectance(m) == 0 ? 0.0 : HUGE_VAL;
+    out.total = out.near = out.far = none;
+    return out;
+  }
   out.total = std::abs(model.total_reflectance(m) / exact.total - 1);
   // Model lengths are physical: r_physical = r * ell, and r R is scale-free as r^2 R.
   const double ell = m.ell;

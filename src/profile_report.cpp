@@ -171,7 +171,8 @@ std::string fixed(double v, int width, int precision = 5) {
   } else {
     std::snprintf(buffer, sizeof buffer, "%*.*g", width, precision, v);
   }
-  return buffer;
+  // A value as wide as its column still gets a space before it (0.00018102 after g).
+  return std::string(buffer[0] == ' ' ? "" : " ") + buffer;
 }
 
 }  // namespace

@@ -136,7 +136,7 @@ TEST(CliMaterials, ShowGivesEveryQuantityPerChannel) {
   ASSERT_EQ(r.status, 0) << r.err;
   const auto doc = json::parse(r.out);
   EXPECT_EQ(doc["name"], "Coke");
-  EXPECT_EQ(doc["physical_model"], "pbd");
+  EXPECT_EQ(doc["physical_model"], "exact");  // alpha' below 0.001, and 0 in B
   ASSERT_EQ(doc["channels"].size(), 3u);
   for (const auto& c : doc["channels"])
     for (const char* key : {"sigma_a", "sigma_s", "g", "albedo_prime", "mfp", "transport_mfp", "diffuse_mfp",

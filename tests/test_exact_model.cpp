@@ -124,7 +124,9 @@ TEST(ExactModel, OutsideTheTableARefusalNamesTheParameter) {
     }
     return "";
   };
-  EXPECT_EQ(refused(0.0005, 0.5, 1.3), "albedo'");
+  EXPECT_EQ(refused(0.0005, 0.5, 1.3), "");  // below the first node: continued exactly
+  EXPECT_EQ(refused(0.0, 0.5, 1.3), "");
+  EXPECT_EQ(refused(-0.001, 0.5, 1.3), "albedo'");
   EXPECT_EQ(refused(0.99995, 0.5, 1.3), "albedo'");
   EXPECT_EQ(refused(0.5, 0.995, 1.3), "g");
   EXPECT_EQ(refused(0.5, -0.1, 1.3), "g");
@@ -236,6 +238,48 @@ TEST(ExactModel, AgreesWithFreshMonteCarloOffTheGrid) {
         << p.albedo_prime << " " << p.g << " " << p.eta << ": total " << d.total << " (" << sigma << " sigma)";
     EXPECT_LE(d.near_r, 0.03 + 3 * d.near_r_noise) << p.albedo_prime << " " << p.g << " " << p.eta;
     EXPECT_LE(d.far_r, 0.03 + 3 * d.far_r_noise) << p.albedo_prime << " " << p.g << " " << p.eta;
+  }
+}
+
+TEST(ExactModel, BelowTheFirstAlbedoNodeContinuesExactly) {
+  // Below alpha' 0.001: exact single scattering plus the first node's multiple scattering scaled by
+  // (alpha / alpha_0)^2. Continuous at the node, zero without scattering, and equal to fresh Monte
+  // Carlo (cheap here: few scatterings per photon) within its noise.
+  const double a0 = table().albedo_prime.front();
+  for (double g : {0.0, 0.7, 0.97}) {
+    EXPECT_NEAR(exact_total(table(), a0 * (1 - 1e-9), g, 1.33) / exact_total(table(), a0, g, 1.33), 1.0, 1e-6);
+    const ExactProfile below(table(), a0 * (1 - 1e-9), g, 1.33), at(table(), a0, g, 1.33);
+    for (double r : {0.01, 0.3, 3.0}) EXPECT_NEAR(below.reflectance(r) / at.reflectance(r), 1.0, 1e-5) << g << " " << r;
+  }
+  const ExactProfile none(table(), 0.0, 0.5, 1.3);
+  EXPECT_EQ(none.total(), 0.0);
+  EXPECT_EQ(none.reflectance(0.5), 0.0);
+  EXPECT_EQ(none.cumulative(0.5), 0.0);
+  EXPECT_EQ(exact_total(table(), 0.0, 0.5, 1.3), 0.0);
+
+  const auto model = make_model("exact");
+  for (const Point& p : {Point{2e-4, 0.5, 1.33}, Point{6e-4, 0.95, 1.2}, Point{5e-5, 0.0, 1.0}}) {
+    const Medium medium = Medium::single_channel(1 - p.albedo_prime, p.albedo_prime / (1 - p.g), p.g, p.eta);
+    const auto m = medium.reduced(0);
+    MonteCarloOptions options;
+    options.photons = 20000000;
+    options.seed = 37;
+    options.spacing = BinSpacing::log;
+    options.bins = 40;
+    options.r_max = model->radius_for_fraction(m, 0.999);
+    options.r_min = 1e-3;
+    const auto mc = run_monte_carlo(LayerStack::half_space(medium), options);
+    const auto d = compare_with_monte_carlo(*model, m, mc);
+    const auto entered = mc.channels[0].per_entered_flux();
+    const double sigma = d.total * entered.diffuse_reflectance.value / entered.diffuse_reflectance.standard_error;
+    EXPECT_TRUE(std::abs(d.total) <= 0.01 || std::abs(sigma) <= 3)
+        << p.albedo_prime << " " << p.g << " " << p.eta << ": total " << d.total << " (" << sigma << " sigma)";
+    EXPECT_LE(d.near_r, 0.03 + 3 * d.near_r_noise) << p.albedo_prime << " " << p.g << " " << p.eta;
+    EXPECT_LE(d.far_r, 0.03 + 3 * d.far_r_noise) << p.albedo_prime << " " << p.g << " " << p.eta;
+    std::printf(
+        "alpha' %g g %g eta %g: total %+.3f %% (%.2f sigma), near L2 %.2f %% (noise %.2f), far %.2f %% (%.2f)\n",
+        p.albedo_prime, p.g, p.eta, 100 * d.total, sigma, 100 * d.near_r, 100 * d.near_r_noise, 100 * d.far_r,
+        100 * d.far_r_noise);
   }
 }
 

@@ -340,8 +340,9 @@ TEST(DerivedQuantities, BurleyDIsFittedToTheExactProfileInsideItsDomain) {
                   now.name.c_str(), now.burley_d, old.channels[c].burley_d, e_exact, e_pbd);
     }
   }
-  // Coke: every channel below alpha' 0.001 falls back; a mixed material names its fallen channels.
-  EXPECT_EQ(derive_quantities(db.find("Coke").medium).physical_model, "pbd");
+  // Spectralon: every channel at alpha' 1 falls back; a mixed material names its fallen channels.
+  EXPECT_EQ(derive_quantities(db.find("Spectralon").medium).physical_model, "pbd");
+  EXPECT_EQ(derive_quantities(db.find("Coke").medium).physical_model, "exact");  // alpha' < 0.001 and 0
   for (const auto& m : db.all()) {
     const auto q = derive_quantities(m.medium);
     int outside = 0;

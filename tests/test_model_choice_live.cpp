@@ -163,11 +163,11 @@ TEST(ModelChoiceLive, OneModelsEstimateIsTheSameAsInTheList) {
 }
 
 TEST(ModelChoiceLive, RefusalOutsideTheDomainNamesTheChannelAndACommandThatWorks) {
-  const auto r = test_cli::run("profile --material Coke --model auto");  // channel R: alpha' 0.00089
+  const auto r = test_cli::run("profile --material 'Strawberry Shampoo' --model auto");  // channel B: g 0.994
   EXPECT_EQ(r.status, 2);
   EXPECT_TRUE(r.out.empty());
   EXPECT_EQ(test_cli::count_lines(r.err), 1) << r.err;
-  EXPECT_NE(r.err.find("channel R"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("channel B"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("bssrdf reference"), std::string::npos) << r.err;
   const auto served = test_cli::run("profile --material Ketchup --model auto --accuracy 0.1 --samples 8");
   ASSERT_EQ(served.status, 0) << served.err;

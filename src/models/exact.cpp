@@ -5,8 +5,10 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "bssrdf/error.hpp"
+#include "bssrdf/single_scattering.hpp"
 
 namespace bssrdf {
 
@@ -107,7 +109,8 @@ NodeWeights weights_at(const ExactTable& table, double albedo_prime, double g, d
     const double value = note.code == "exact_albedo" ? albedo_prime : note.code == "exact_g" ? g : eta;
     const auto& axis = note.code == "exact_albedo" ? table.albedo_prime : note.code == "exact_g" ? table.g : table.eta;
     throw InvalidInput(field, format_number(value),
-                       format_number(axis.front()) + " to " + format_number(axis.back()) +
+                       format_number(note.code == "exact_albedo" ? 0.0 : axis.front()) + " to " +
+                           format_number(axis.back()) +
                            " (the exact model's table; outside it use the Monte Carlo reference: bssrdf reference)");
   }
   return {hermite_weights(table.albedo_prime, albedo_coordinate, albedo_prime),
@@ -131,6 +134,37 @@ bool inside(double v, const std::vector<double>& axis) {
   return v >= axis.front() - slack && v <= axis.back() + slack;
 }
 
+// Below the first albedo node (0.001) the table continues exactly: single scattering is the exact
+// integral at any albedo, and multiple scattering, at most 0.1 % of the total there, is the first
+// node's scaled by (alpha / alpha_0)^2 (two scatterings dominate; the transport-mfp radius scale
+// 1 - alpha g changes by under 0.1 %). At alpha' = 0 nothing scatters: R = 0.
+struct BelowFirstNode {
+  Reduced<double> medium, node;  // transport units (sigma_t' = 1)
+  double ms_scale;               // (alpha / alpha_0)^2
+  BelowFirstNode(const ExactTable& table, double albedo_prime, double g, double eta)
+      : medium(reduce(1 - albedo_prime, albedo_prime / (1 - g), g, eta)),
+        node(reduce(1 - table.albedo_prime.front(), table.albedo_prime.front() / (1 - g), g, eta)),
+        ms_scale(std::pow(medium.albedo() / node.albedo(), 2)) {}
+  double total(double node_total) const {
+    const double ss = single_scattering_total(medium.albedo(), medium.g, medium.eta);
+    const double ss_node = single_scattering_total(node.albedo(), node.g, node.eta);
+    return ss + ms_scale * (node_total - ss_node);
+  }
+  // ln y (y = 2 pi r^2 R) at radius r from the first node's ln y there, as ratios to the node's y:
+  // far out both single-scattering terms underflow while the table's tail stays finite in ln y.
+  double ln_y(double r, double node_ln_y) const {
+    const double ln_to_y = std::log(2 * std::numbers::pi * r * r);
+    const auto ratio = [&](const Reduced<double>& m) {  // y_ss / node y, 96 points as the generator
+      return std::exp(ln_to_y + std::log(single_scattering_reflectance(m, r, 96)) - node_ln_y);
+    };
+    // Not clamped at 0: where the node is all single scattering, its table value may fall a
+    // rounding below the integral, and the continuation must still meet the node exactly.
+    const double f = ratio(medium) + ms_scale * (1 - ratio(node));
+    // f = 0 only where the node's y is single scattering alone and it underflowed: it scales as alpha.
+    return node_ln_y + (f > 0 ? std::log(f) : std::log(medium.albedo() / node.albedo()));
+  }
+};
+
 }  // namespace
 
 ValidityReport exact_domain(const ExactTable& table, double albedo_prime, double g, double eta) {
@@ -141,14 +175,21 @@ ValidityReport exact_domain(const ExactTable& table, double albedo_prime, double
                         std::string(name) + " = " + format_number(v) + " is outside the exact table (" +
                             format_number(axis.front()) + " to " + format_number(axis.back()) + ")"});
   };
-  check("exact_albedo", "alpha'", albedo_prime, table.albedo_prime);
+  // Below the first albedo node the model continues exactly (below_first_node), down to 0.
+  if (!(albedo_prime >= 0 && albedo_prime <= table.albedo_prime.back() + 1e-9 * table.albedo_prime.back()))
+    report.push_back({Severity::invalid, "exact_albedo",
+                      "alpha' = " + format_number(albedo_prime) + " is outside the exact table (0 to " +
+                          format_number(table.albedo_prime.back()) + ")"});
   check("exact_g", "g", g, table.g);
   check("exact_eta", "eta", eta, table.eta);
   return report;
 }
 
 double exact_total(const ExactTable& table, double albedo_prime, double g, double eta) {
-  return std::exp(interpolated_ln_total(table, weights_at(table, albedo_prime, g, eta)));
+  const double node_total = std::exp(interpolated_ln_total(table, weights_at(table, albedo_prime, g, eta)));
+  if (albedo_prime >= table.albedo_prime.front()) return node_total;
+  if (albedo_prime == 0) return 0;
+  return BelowFirstNode(table, albedo_prime, g, eta).total(node_total);
 }
 
 double exact_albedo_prime_from_total(const ExactTable& table, double total, double g, double eta) {
@@ -194,6 +235,7 @@ double exact_albedo_prime_from_total(const ExactTable& table, double total, doub
 ExactProfile::ExactProfile(const ExactTable& table, double albedo_prime, double g, double eta)
     : albedo_prime_(albedo_prime), g_(g), eta_(eta), ln_r0_(table.ln_r0), d_ln_r_(table.d_ln_r) {
   const NodeWeights w = weights_at(table, albedo_prime, g, eta);
+  if (albedo_prime == 0) return;  // nothing scatters: R = 0, total() = 0
   const std::size_t radii = table.radii;
   ln_y_.assign(radii, 0.0);
   for (int e = 0; e < w.e.count; ++e)
@@ -203,6 +245,11 @@ ExactProfile::ExactProfile(const ExactTable& table, double albedo_prime, double 
         const float* row = &table.ln_y[table.index(w.e.node[e], w.g.node[gi], w.a.node[a], 0)];
         for (std::size_t k = 0; k < radii; ++k) ln_y_[k] += weight * row[k];
       }
+  std::optional<BelowFirstNode> below;
+  if (albedo_prime < table.albedo_prime.front()) {
+    below.emplace(table, albedo_prime, g, eta);
+    for (std::size_t k = 0; k < radii; ++k) ln_y_[k] = below->ln_y(table.radius(k), ln_y_[k]);
+  }
   // Below the first radius single scattering dominates (y ~ r); beyond the last, an exponential
   // tail in r: both continue the curve with the slope of its end.
   head_slope_ = std::max(0.5, (ln_y_[1] - ln_y_[0]) / d_ln_r_);
@@ -226,12 +273,14 @@ ExactProfile::ExactProfile(const ExactTable& table, double albedo_prime, double 
   // (99.9 % of the energy inside), so the bound is the value.
   sum += std::exp(ln_y_[radii - 1]) / (-tail_slope_ * r_last);
   total_ = std::exp(interpolated_ln_total(table, w));
+  if (below) total_ = below->total(total_);
   const double scale = total_ / sum;
   for (auto& v : ln_y_) v += std::log(scale);
   for (auto& c : cumulative_) c *= scale;
 }
 
 double ExactProfile::ln_y(double ln_r) const {
+  if (ln_y_.empty()) return -std::numeric_limits<double>::infinity();  // alpha' = 0
   const double f = (ln_r - ln_r0_) / d_ln_r_;
   const std::size_t n = ln_y_.size();
   if (f <= 0) return ln_y_[0] + head_slope_ * (ln_r - ln_r0_);
@@ -250,12 +299,13 @@ double ExactProfile::ln_y(double ln_r) const {
 }
 
 double ExactProfile::reflectance(double r) const {
+  if (ln_y_.empty()) return 0;  // alpha' = 0
   if (!(r > 0)) return r == 0 ? std::numeric_limits<double>::infinity() : 0.0;
   return std::exp(ln_y(std::log(r))) / (2 * std::numbers::pi * r * r);
 }
 
 double ExactProfile::cumulative(double r) const {
-  if (!(r > 0)) return 0;
+  if (!(r > 0) || ln_y_.empty()) return 0;
   const double ln_r = std::log(r);
   const double f = (ln_r - ln_r0_) / d_ln_r_;
   const std::size_t n = ln_y_.size();

@@ -2,7 +2,7 @@
 // and the bundled materials' totals against fresh runs: the accuracy table of README "The exact
 // model" (output committed as tools/validation/exact_vs_montecarlo.txt).
 //
-//   validate_exact [points=40] [scatterings per point=4e9] [seed=7] [materials=1]
+//   validate_exact [points=40] [scatterings per point=4e9] [seed=7] [materials=1] [points below alpha' 0.001=10]
 //
 // Each point: alpha' log-uniform in logit over [0.001, 0.9999], g uniform in -ln(1 - g) over
 // [0, 0.99], eta uniform over [1, 1.6], drawn with a generator independent of the table's seeds; a
@@ -14,6 +14,7 @@
 // within 3 %.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <random>
@@ -62,44 +63,71 @@ int main(int argc, char** argv) {
   const double scatterings = argc > 2 ? std::atof(argv[2]) : 4e9;
   const unsigned seed = argc > 3 ? static_cast<unsigned>(std::atoi(argv[3])) : 7;
   const bool materials = argc > 4 ? std::atoi(argv[4]) != 0 : true;
+  const int low_points = argc > 5 ? std::atoi(argv[5]) : 10;
   const auto model = make_model("exact");
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> uniform(0, 1);
-  const double lo = std::log(0.001 / 0.999), hi = std::log(0.9999 / 0.0001), g_hi = -std::log(0.01);
+  const double g_hi = -std::log(0.01);
 
-  std::printf("# exact model vs fresh Monte Carlo at random off-grid points (seed %u, %.3g scatterings per point)\n",
-              seed, scatterings);
-  std::printf("# %9s %6s %6s %10s %8s %7s %8s %8s %8s %8s\n", "alpha'", "g", "eta", "photons", "total%", "sigma",
-              "near%", "noise%", "far%", "noise%");
-  int total_ok = 0, near_ok = 0, far_ok = 0;
-  double worst_total = 0, worst_near = 0, worst_far = 0;
-  for (int i = 0; i < points; ++i) {
-    const double ap = 1 / (1 + std::exp(-(lo + (hi - lo) * uniform(rng))));
-    const double g = 1 - std::exp(-g_hi * uniform(rng));
-    const double eta = 1 + 0.6 * uniform(rng);
-    // Transport units: sigma_t' = 1.
-    const Medium medium = Medium::single_channel(1 - ap, ap / (1 - g), g, eta);
-    const auto mc = run(medium, *model, scatterings, seed * 1000 + static_cast<unsigned>(i));
-    const auto d = compare_with_monte_carlo(*model, medium.reduced(0), mc);
-    const auto per_entered = mc.channels[0].per_entered_flux();
-    const double sigma =
-        d.total * per_entered.diffuse_reflectance.value / per_entered.diffuse_reflectance.standard_error;
-    std::printf("%11.6f %6.3f %6.3f %10llu %8.3f %7.2f %8.3f %8.3f %8.3f %8.3f\n", ap, g, eta,
-                static_cast<unsigned long long>(mc.options.photons), 100 * d.total, sigma, 100 * d.near_r,
-                100 * d.near_r_noise, 100 * d.far_r, 100 * d.far_r_noise);
-    std::fflush(stdout);
-    total_ok += std::abs(d.total) <= 0.01 || std::abs(sigma) <= 3;
-    near_ok += d.near_r <= 0.03;
-    far_ok += d.far_r <= 0.03;
-    worst_total = std::max(worst_total, std::abs(d.total));
-    worst_near = std::max(worst_near, d.near_r);
-    worst_far = std::max(worst_far, d.far_r);
+  // One section of random points: alpha' log-uniform in logit over [ap_lo, ap_hi].
+  const auto section = [&](int n, double ap_lo, double ap_hi, std::uint64_t seed_offset) {
+    const double lo = std::log(ap_lo / (1 - ap_lo)), hi = std::log(ap_hi / (1 - ap_hi));
+    std::printf("# %9s %6s %6s %10s %8s %7s %8s %8s %8s %8s\n", "alpha'", "g", "eta", "photons", "total%", "sigma",
+                "near%", "noise%", "far%", "noise%");
+    int total_ok = 0, near_ok = 0, far_ok = 0, near_excess_ok = 0, far_excess_ok = 0;
+    double worst_total = 0, worst_near = 0, worst_far = 0, worst_near_excess = 0, worst_far_excess = 0;
+    for (int i = 0; i < n; ++i) {
+      const double ap = 1 / (1 + std::exp(-(lo + (hi - lo) * uniform(rng))));
+      const double g = 1 - std::exp(-g_hi * uniform(rng));
+      const double eta = 1 + 0.6 * uniform(rng);
+      // Transport units: sigma_t' = 1.
+      const Medium medium = Medium::single_channel(1 - ap, ap / (1 - g), g, eta);
+      const auto mc = run(medium, *model, scatterings, seed * 1000 + seed_offset + static_cast<unsigned>(i));
+      const auto d = compare_with_monte_carlo(*model, medium.reduced(0), mc);
+      const auto per_entered = mc.channels[0].per_entered_flux();
+      const double sigma =
+          d.total * per_entered.diffuse_reflectance.value / per_entered.diffuse_reflectance.standard_error;
+      std::printf("%11.6g %6.3f %6.3f %10llu %8.3f %7.2f %8.3f %8.3f %8.3f %8.3f\n", ap, g, eta,
+                  static_cast<unsigned long long>(mc.options.photons), 100 * d.total, sigma, 100 * d.near_r,
+                  100 * d.near_r_noise, 100 * d.far_r, 100 * d.far_r_noise);
+      std::fflush(stdout);
+      total_ok += std::abs(d.total) <= 0.01 || std::abs(sigma) <= 3;
+      near_ok += d.near_r <= 0.03;
+      far_ok += d.far_r <= 0.03;
+      // The table's own error: what the L2 holds beyond the run's noise (they add in quadrature).
+      const double near_excess = std::sqrt(std::max(0.0, d.near_r * d.near_r - d.near_r_noise * d.near_r_noise));
+      const double far_excess = std::sqrt(std::max(0.0, d.far_r * d.far_r - d.far_r_noise * d.far_r_noise));
+      near_excess_ok += near_excess <= 0.03;
+      far_excess_ok += far_excess <= 0.03;
+      worst_total = std::max(worst_total, std::abs(d.total));
+      worst_near = std::max(worst_near, d.near_r);
+      worst_far = std::max(worst_far, d.far_r);
+      worst_near_excess = std::max(worst_near_excess, near_excess);
+      worst_far_excess = std::max(worst_far_excess, far_excess);
+    }
+    std::printf("# points meeting the goals: total %d/%d, near L2 %d/%d, far L2 %d/%d\n", total_ok, n, near_ok, n,
+                far_ok, n);
+    std::printf(
+        "# worst: total %.3f %%, near L2 %.3f %%, far L2 %.3f %% (the Monte Carlo noise is in the L2: see columns)\n",
+        100 * worst_total, 100 * worst_near, 100 * worst_far);
+    std::printf(
+        "# beyond the runs' noise (sqrt(L2^2 - noise^2)): near L2 within 3 %% at %d/%d (worst %.3f %%), far L2 at "
+        "%d/%d (worst %.3f %%)\n",
+        near_excess_ok, n, 100 * worst_near_excess, far_excess_ok, n, 100 * worst_far_excess);
+  };
+
+  if (points > 0) {
+    std::printf("# exact model vs fresh Monte Carlo at random off-grid points (seed %u, %.3g scatterings per point)\n",
+                seed, scatterings);
+    section(points, 0.001, 0.9999, 0);
   }
-  std::printf("# points meeting the goals: total %d/%d, near L2 %d/%d, far L2 %d/%d\n", total_ok, points, near_ok,
-              points, far_ok, points);
-  std::printf(
-      "# worst: total %.3f %%, near L2 %.3f %%, far L2 %.3f %% (the Monte Carlo noise is in the L2: see columns)\n",
-      100 * worst_total, 100 * worst_near, 100 * worst_far);
+  if (low_points > 0) {
+    std::printf(
+        "\n# below the table's first albedo node (alpha' 1e-5 to 0.001: exact single scattering + the node's "
+        "multiple scattering scaled), seed %u\n",
+        seed);
+    section(low_points, 1e-5, 0.001, 500);
+  }
   if (!materials) return 0;
 
   std::printf("\n# bundled materials: each channel's total, exact model vs a fresh Monte Carlo run\n");

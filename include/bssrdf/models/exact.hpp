@@ -12,8 +12,10 @@
 // differences: continuous first derivatives, so fits through it converge) of ln y, y = 2 pi r^2 R,
 // at each tabulated radius; Catmull-Rom in ln r between radii. The curve is then scaled so that its
 // integral equals the interpolated adding-doubling total, which is what total() returns.
-// Domain: alpha' in [0.001, 0.9999], g in [0, 0.99], eta in [1, 1.6] (the table's axes); outside it
-// the constructor throws InvalidInput naming the parameter: never an extrapolation.
+// Domain: alpha' in [0, 0.9999], g in [0, 0.99], eta in [1, 1.6]; outside it the constructor throws
+// InvalidInput naming the parameter: never an extrapolation. Below the table's first albedo node
+// (0.001) single scattering is exact and multiple scattering (at most 0.1 % of the total there) is
+// the first node's scaled by (alpha / alpha_0)^2; at alpha' = 0, R = 0.
 // Accuracy and speed: README "The exact model" (measured against fresh Monte Carlo off the grid).
 #pragma once
 
