@@ -52,8 +52,9 @@ ModelErrorEstimate estimate_for(const ModelEntry& entry, const Reduced<double>& 
   est.cost_ns = entry.cost_ns;
   est.source = source;
   if (entry.reference_accuracy) {
-    est.total_error = entry.reference_accuracy->total;
-    est.profile_error = entry.reference_accuracy->profile;
+    const auto band = entry.reference_accuracy->at(m.albedo_prime, m.g);
+    est.total_error = band.total;
+    est.profile_error = band.profile;
   }
   est.invalid = invalid_note(entry, m);
   return est;

@@ -136,12 +136,14 @@ std::vector<ModelEntry> build() {
   exact.albedo_prime_for_total = [](double total, double g, double eta) {
     return exact_albedo_prime_from_total(bundled_exact_table(), total, g, eta);
   };
-  // Its accuracy against fresh Monte Carlo at 20 random points off the grid, the worst cases of
-  // tools/validation/exact_vs_montecarlo.txt: total 1.18 % (alpha' 0.10, eta 1.02, between the eta
-  // nodes 1.0 and 1.05), profile 5.6 % beyond the runs' own noise (the near field at alpha' >= 0.99
-  // or g >= 0.95, where the table's non-absorbing runs had 2.5-5e4 photons per node). A longer
-  // generator run lowers the second; re-measure and update these with it.
-  exact.reference_accuracy = ModelEntry::ReferenceAccuracy{0.012, 0.056};
+  // Its accuracy against fresh Monte Carlo at random points off the grid, beyond the runs' own
+  // noise (tools/validation/exact_vs_montecarlo.txt, seed 11: 40 points over the domain, 20 more in
+  // the region): anywhere, the worst point's total 1.4 % (alpha' 0.011, g 0.98, 2.7 sigma) and
+  // profile 4.8 % (the near field at alpha' > 0.99 with g >= 0.86, where the table's non-absorbing
+  // runs had 2.5-5e4 photons per node); for 0.05 <= alpha' <= 0.99 and g <= 0.9 (skin, the
+  // chickens, most tissue) total 0.3 % and profile 1.5 %. A longer generator run lowers the first;
+  // re-measure and update these with it.
+  exact.reference_accuracy = ModelEntry::ReferenceAccuracy{0.014, 0.048, {{0.05, 0.99, 0.9, 0.003, 0.015}}};
 
   table.push_back(dipole);
   table.push_back(better);

@@ -48,8 +48,8 @@ TEST(ModelChoice, EstimatesAtMeasuredCasesAreTheValidationTable) {
     ASSERT_EQ(estimates->size(), candidates);
     for (const auto& e : *estimates) {
       if (const auto band = model_entry(e.model).reference_accuracy) {  // exact: its own band, no column
-        EXPECT_EQ(e.total_error, band->total);
-        EXPECT_EQ(e.profile_error, band->profile);
+        EXPECT_EQ(e.total_error, band->at(m.albedo_prime, m.g).total);
+        EXPECT_EQ(e.profile_error, band->at(m.albedo_prime, m.g).profile);
         continue;
       }
       EXPECT_NEAR(e.total_error, std::abs(row.at(e.model + "_total")), 1e-12) << e.model;
@@ -116,13 +116,15 @@ TEST(ModelChoice, PicksTheCheapestWithinTheAccuracyForEveryChannel) {
   }
   // Skin1 is inside the exact domain: exact (40 ns) within 10 %, every cheaper model invalid here.
   EXPECT_EQ(choose_model(skin, 0.1).model, "exact");
-  // Too strict: the message names the best achievable (exact's own measured band); outside every
-  // measured range (Coke's channel R, alpha' 0.00089 < 0.001): the channel and a command that works.
+  // Too strict: the message names the best achievable (exact's own measured band, here its region's);
+  // outside every measured range (g 0.994): the channel and a command that works.
   try {
     choose_model(skin, 0.01);
     FAIL();
   } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find(">= " + format_number(model_entry("exact").reference_accuracy->profile)),
+    const auto m = skin.reduced(0);
+    EXPECT_NE(std::string(e.what()).find(
+                  ">= " + format_number(model_entry("exact").reference_accuracy->at(m.albedo_prime, m.g).profile)),
               std::string::npos)
         << e.what();
     EXPECT_NE(std::string(e.what()).find("exact"), std::string::npos) << e.what();

@@ -58,15 +58,22 @@ TEST(ReferenceUncertainty, PerturbationStaysInsideTheMeasuredBand) {
   const Medium& skin = material("Skin1");
   const ModelReference exact(make_model("exact"));
   const ReferenceProfiles ref = exact.profiles(skin);
-  const auto& band = *model_entry("exact").reference_accuracy;
   ASSERT_EQ(ref.sources.size(), skin.channels());
-  EXPECT_EQ(ref.sources[0].total_band, band.total);
-  EXPECT_EQ(ref.sources[0].profile_band, band.profile);
+  const auto band_at = [&](std::size_t c) {  // each channel's own: Skin1 lies in the exact model's tighter region
+    const auto m = skin.reduced(c);
+    return model_entry("exact").reference_accuracy->at(m.albedo_prime, m.g);
+  };
+  for (std::size_t c = 0; c < skin.channels(); ++c) {
+    EXPECT_EQ(ref.sources[c].total_band, band_at(c).total);
+    EXPECT_EQ(ref.sources[c].profile_band, band_at(c).profile);
+  }
+  EXPECT_LT(band_at(0).profile, model_entry("exact").reference_accuracy->profile);
   const auto near = near_radius(skin);
   for (int t : {-1, 1})
     for (int s : {-1, 1}) {
       const auto p = perturbed_reference(ref, near, t, s);
       for (std::size_t c = 0; c < skin.channels(); ++c) {
+        const auto band = band_at(c);
         EXPECT_NEAR(p[c].total() / ref.channels[c].total(), 1 + t * band.total, 1e-12);
         double largest = 0;
         for (std::size_t i = 0; i < p[c].energy.size(); ++i) {
@@ -92,7 +99,11 @@ TEST(ReferenceUncertainty, ReferenceTableAgainstTheExactModelCarriesItsBand) {
   const ReferenceProfiles ref = exact.profiles(skin);
   const RealtimeJudge judge = judge_against(skin, exact, options.pixel);
   const ReferenceUncertainty u = reference_uncertainty(judge, ref, near_radius(skin));
-  EXPECT_GT(u.band.error, 0.5);  // 1.2 % of a lit albedo near 0.5 alone is about one code value
+  // Skin1 lies in the exact model's tighter region (0.3 % total, 1.5 % profile): U is a fraction of
+  // a code value, not 0, and below the tolerance of 1 (the domain-wide band gave 2.5).
+  std::printf("[ measured ] Skin1 at 1 mm: U = %.3f code values (band %.3f)\n", u.error(), u.band.error);
+  EXPECT_GT(u.band.error, 0.05);
+  EXPECT_LT(u.error(), 1.0);
   EXPECT_EQ(u.noise, 0);
   // The worst of the four signs, each at least what the total alone gives.
   for (int t : {-1, 1})
@@ -109,7 +120,7 @@ TEST(ReferenceUncertainty, ReferenceTableAgainstTheExactModelCarriesItsBand) {
   EXPECT_GT(tabulation, 0);
   EXPECT_GT(table.image.error, u.error());
   EXPECT_NEAR(table.image.error, u.error() + tabulation, 1e-9);
-  EXPECT_FALSE(table.meets_tolerance);  // U alone is above one code value for Skin1 at 1 mm
+  EXPECT_EQ(table.meets_tolerance, table.image.error <= options.tolerance);
   EXPECT_NEAR(candidate(advice, "exact").image.error, u.error(), 1e-9);
   ASSERT_EQ(advice.reference_table.size(), skin.channels());
   EXPECT_EQ(advice.reference_table[0].radius.size(), radii);

@@ -56,10 +56,29 @@ struct ModelEntry {
   bool singular_at_origin = false;  // R(0) infinite: fits leave r = 0 out
   bool closed_form = false;         // R(r) in closed form (no quadrature, no mixture)
   bool auto_candidate = false;      // served by `--model auto` (needs measured errors)
-  // A reference model's own accuracy against the Monte Carlo reference, a constant band: what
-  // `--model auto` estimates for it (the others are measured against it live). Empty otherwise.
+  // A reference model's own accuracy against the Monte Carlo reference: what `--model auto` and
+  // advise's reference uncertainty take for it (the others are measured against it live). Empty
+  // otherwise.
   struct ReferenceAccuracy {
-    double total = 0, profile = 0;  // |relative total error|, relative L2 of r R(r) (near and far)
+    // Anywhere in its domain: |relative total error| and relative L2 of r R(r) (the worse of near
+    // and far), beyond the validation runs' own noise, at the worst validation point.
+    double total = 0, profile = 0;
+    // Tighter bands measured on the validation points inside part of the domain (inclusive ranges).
+    struct Region {
+      double albedo_prime_min = 0, albedo_prime_max = 1, g_max = 1;
+      double total = 0, profile = 0;
+    };
+    std::vector<Region> regions;
+    struct Band {
+      double total = 0, profile = 0;
+    };
+    // The band at (alpha', g): the first region holding it, else the domain-wide one.
+    Band at(double albedo_prime, double g) const {
+      for (const Region& r : regions)
+        if (albedo_prime >= r.albedo_prime_min && albedo_prime <= r.albedo_prime_max && g <= r.g_max)
+          return {r.total, r.profile};
+      return {total, profile};
+    }
   };
   std::optional<ReferenceAccuracy> reference_accuracy;
   bool listed = true;  // shown by `bssrdf models` (NAME+ss: via --single-scattering)

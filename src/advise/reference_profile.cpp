@@ -86,14 +86,15 @@ ReferenceProfiles ModelReference::profiles(const Medium& medium) const {
   const auto start = std::chrono::steady_clock::now();
   const auto edges = reference_annuli(medium);
   const ModelEntry* entry = find_model_entry(model_->name());
-  double total_band = 0, profile_band = 0;  // exact's measured accuracy; none for a model taken as the truth
-  if (entry && entry->reference_accuracy) {
-    total_band = entry->reference_accuracy->total;
-    profile_band = entry->reference_accuracy->profile;
-  }
   ReferenceProfiles out;
   for (std::size_t c = 0; c < medium.channels(); ++c) {
     const auto m = medium.reduced(c);
+    double total_band = 0, profile_band = 0;  // exact's measured accuracy; none for a model taken as the truth
+    if (entry && entry->reference_accuracy) {
+      const auto band = entry->reference_accuracy->at(m.albedo_prime, m.g);
+      total_band = band.total;
+      profile_band = band.profile;
+    }
     out.channels.push_back(annuli_of(
         edges, [&](double r) { return model_->reflectance(m, r); }, model_->total_reflectance(m)));
     const Model* model = model_.get();

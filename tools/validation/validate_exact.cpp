@@ -3,6 +3,7 @@
 // model" (output committed as tools/validation/exact_vs_montecarlo.txt).
 //
 //   validate_exact [points=40] [scatterings per point=4e9] [seed=7] [materials=1] [points below alpha' 0.001=10]
+//                  [alpha'_min=0.001 alpha'_max=0.9999 g_max=0.99]   (a part of the domain only)
 //
 // Each point: alpha' log-uniform in logit over [0.001, 0.9999], g uniform in -ln(1 - g) over
 // [0, 0.99], eta uniform over [1, 1.6], drawn with a generator independent of the table's seeds; a
@@ -64,10 +65,13 @@ int main(int argc, char** argv) {
   const unsigned seed = argc > 3 ? static_cast<unsigned>(std::atoi(argv[3])) : 7;
   const bool materials = argc > 4 ? std::atoi(argv[4]) != 0 : true;
   const int low_points = argc > 5 ? std::atoi(argv[5]) : 10;
+  // Optionally a part of the domain only (a region's band in the registry): alpha' and g bounds.
+  const double ap_min = argc > 6 ? std::atof(argv[6]) : 0.001, ap_max = argc > 7 ? std::atof(argv[7]) : 0.9999;
+  const double g_max = argc > 8 ? std::atof(argv[8]) : 0.99;
   const auto model = make_model("exact");
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> uniform(0, 1);
-  const double g_hi = -std::log(0.01);
+  const double g_hi = -std::log1p(-g_max);
 
   // One section of random points: alpha' log-uniform in logit over [ap_lo, ap_hi].
   const auto section = [&](int n, double ap_lo, double ap_hi, std::uint64_t seed_offset) {
@@ -117,9 +121,11 @@ int main(int argc, char** argv) {
   };
 
   if (points > 0) {
-    std::printf("# exact model vs fresh Monte Carlo at random off-grid points (seed %u, %.3g scatterings per point)\n",
-                seed, scatterings);
-    section(points, 0.001, 0.9999, 0);
+    std::printf(
+        "# exact model vs fresh Monte Carlo at random off-grid points (seed %u, %.3g scatterings per point; alpha' "
+        "%g-%g, g 0-%g)\n",
+        seed, scatterings, ap_min, ap_max, g_max);
+    section(points, ap_min, ap_max, 0);
   }
   if (low_points > 0) {
     std::printf(
