@@ -34,7 +34,9 @@ using namespace bssrdf;
 
 namespace {
 
-MonteCarloResult run(const Medium& medium, const Model& model, double scatterings, std::uint64_t seed) {
+// Photons to spend the given scatterings, at most max_photons (a low-albedo photon costs about one).
+MonteCarloResult run(const Medium& medium, const Model& model, double scatterings, std::uint64_t seed,
+                     double max_photons) {
   MonteCarloOptions pilot;
   pilot.photons = 2000;
   pilot.seed = seed + 1000003;
@@ -43,7 +45,7 @@ MonteCarloResult run(const Medium& medium, const Model& model, double scattering
   double per_photon = 0;
   for (const auto& c : p.channels) per_photon = std::max(per_photon, static_cast<double>(c.interactions) / 2000.0);
   MonteCarloOptions options;
-  options.photons = static_cast<std::uint64_t>(std::clamp(scatterings / std::max(per_photon, 1.0), 2e4, 5e7));
+  options.photons = static_cast<std::uint64_t>(std::clamp(scatterings / std::max(per_photon, 1.0), 2e4, max_photons));
   options.seed = seed;
   options.spacing = BinSpacing::log;
   options.bins = 100;
@@ -74,7 +76,7 @@ int main(int argc, char** argv) {
   const double g_hi = -std::log1p(-g_max);
 
   // One section of random points: alpha' log-uniform in logit over [ap_lo, ap_hi].
-  const auto section = [&](int n, double ap_lo, double ap_hi, std::uint64_t seed_offset) {
+  const auto section = [&](int n, double ap_lo, double ap_hi, std::uint64_t seed_offset, double max_photons) {
     const double lo = std::log(ap_lo / (1 - ap_lo)), hi = std::log(ap_hi / (1 - ap_hi));
     std::printf("# %9s %6s %6s %10s %8s %7s %8s %8s %8s %8s\n", "alpha'", "g", "eta", "photons", "total%", "sigma",
                 "near%", "noise%", "far%", "noise%");
@@ -86,7 +88,7 @@ int main(int argc, char** argv) {
       const double eta = 1 + 0.6 * uniform(rng);
       // Transport units: sigma_t' = 1.
       const Medium medium = Medium::single_channel(1 - ap, ap / (1 - g), g, eta);
-      const auto mc = run(medium, *model, scatterings, seed * 1000 + seed_offset + static_cast<unsigned>(i));
+      const auto mc = run(medium, *model, scatterings, seed * 1000 + seed_offset + static_cast<unsigned>(i), max_photons);
       const auto d = compare_with_monte_carlo(*model, medium.reduced(0), mc);
       const auto per_entered = mc.channels[0].per_entered_flux();
       const double sigma =
@@ -125,14 +127,14 @@ int main(int argc, char** argv) {
         "# exact model vs fresh Monte Carlo at random off-grid points (seed %u, %.3g scatterings per point; alpha' "
         "%g-%g, g 0-%g)\n",
         seed, scatterings, ap_min, ap_max, g_max);
-    section(points, ap_min, ap_max, 0);
+    section(points, ap_min, ap_max, 0, 5e7);
   }
   if (low_points > 0) {
     std::printf(
         "\n# below the table's first albedo node (alpha' 1e-5 to 0.001: exact single scattering + the node's "
-        "multiple scattering scaled), seed %u\n",
+        "multiple scattering scaled), seed %u, up to 1e9 photons per point\n",
         seed);
-    section(low_points, 1e-5, 0.001, 500);
+    section(low_points, 1e-5, 0.001, 500, 1e9);  // few photons reflect: many are needed
   }
   if (!materials) return 0;
 
