@@ -150,18 +150,33 @@ struct BelowFirstNode {
     const double ss_node = single_scattering_total(node.albedo(), node.g, node.eta);
     return ss + ms_scale * (node_total - ss_node);
   }
-  // ln y (y = 2 pi r^2 R) at radius r from the first node's ln y there, as ratios to the node's y:
-  // far out both single-scattering terms underflow while the table's tail stays finite in ln y.
-  double ln_y(double r, double node_ln_y) const {
-    const double ln_to_y = std::log(2 * std::numbers::pi * r * r);
-    const auto ratio = [&](const Reduced<double>& m) {  // y_ss / node y, 96 points as the generator
-      return std::exp(ln_to_y + std::log(single_scattering_reflectance(m, r, 96)) - node_ln_y);
-    };
-    // Not clamped at 0: where the node is all single scattering, its table value may fall a
-    // rounding below the integral, and the continuation must still meet the node exactly.
-    const double f = ratio(medium) + ms_scale * (1 - ratio(node));
-    // f = 0 only where the node's y is single scattering alone and it underflowed: it scales as alpha.
-    return node_ln_y + (f > 0 ? std::log(f) : std::log(medium.albedo() / node.albedo()));
+  // ln y (y = 2 pi r^2 R) at each tabulated radius from the first node's, as ratios to the node's
+  // y: far out both single-scattering terms underflow while the table's tail stays finite in ln y.
+  // The node's single scattering is integrated at each radius as the generator did (96 points);
+  // the medium's follows from it by similarity: R_ss = sigma_s / r I(sigma_t r), so
+  // y_ss(r) = (sigma_s sigma_t0 / (sigma_s0 sigma_t)) y_ss0(r e^d), d = ln(sigma_t / sigma_t0) < 1e-3,
+  // a shift of a small fraction of a radius step (to first order in d: error ~1e-6).
+  void continue_profile(const ExactTable& table, std::vector<double>& ln_y) const {
+    const std::size_t n = ln_y.size();
+    std::vector<double> ln_ss0(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const double r = table.radius(k);
+      ln_ss0[k] = std::log(2 * std::numbers::pi * r * r * single_scattering_reflectance(node, r, 96));
+    }
+    const double d = std::log(medium.sigma_t() / node.sigma_t());
+    const double ln_factor = std::log(medium.sigma_s * node.sigma_t() / (node.sigma_s * medium.sigma_t()));
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t lo = k > 0 ? k - 1 : k, hi = k + 1 < n ? k + 1 : k;
+      const double slope = std::isfinite(ln_ss0[hi] - ln_ss0[lo])
+                               ? (ln_ss0[hi] - ln_ss0[lo]) / (static_cast<double>(hi - lo) * table.d_ln_r)
+                               : 0.0;
+      const double ln_ss = ln_factor + ln_ss0[k] + slope * d;
+      const double f = std::exp(ln_ss - ln_y[k]) + ms_scale * (1 - std::exp(ln_ss0[k] - ln_y[k]));
+      // Not clamped at 0: where the node is all single scattering, its table value may fall a
+      // rounding below the integral, and the continuation must still meet the node exactly. f = 0
+      // only where the node's y is single scattering alone and it underflowed: it scales as alpha.
+      ln_y[k] += f > 0 ? std::log(f) : std::log(medium.albedo() / node.albedo());
+    }
   }
 };
 
@@ -248,7 +263,7 @@ ExactProfile::ExactProfile(const ExactTable& table, double albedo_prime, double 
   std::optional<BelowFirstNode> below;
   if (albedo_prime < table.albedo_prime.front()) {
     below.emplace(table, albedo_prime, g, eta);
-    for (std::size_t k = 0; k < radii; ++k) ln_y_[k] = below->ln_y(table.radius(k), ln_y_[k]);
+    below->continue_profile(table, ln_y_);
   }
   // Below the first radius single scattering dominates (y ~ r); beyond the last, an exponential
   // tail in r: both continue the curve with the slope of its end.

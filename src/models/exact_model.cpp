@@ -1,6 +1,7 @@
 // The `exact` model's face as a Model (models/exact.hpp): physical units in, the table's transport
 // units inside. Profiles are built once per medium and kept per thread, since callers evaluate
 // many radii of one medium in a row.
+#include <array>
 #include <cmath>
 #include <optional>
 
@@ -45,19 +46,25 @@ class ExactModel final : public Model {
   }
 
  private:
+  // A few profiles per thread: table builders evaluate their channels interleaved on each thread,
+  // and a profile below alpha' 0.001 costs about half a millisecond to build.
   static const ExactProfile& profile(const Reduced<double>& m) {
     struct Cached {
       double albedo_prime = -1, g = -1, eta = -1;
       std::optional<ExactProfile> profile;
     };
-    thread_local Cached cache;
-    if (!cache.profile || cache.albedo_prime != m.albedo_prime || cache.g != m.g || cache.eta != m.eta) {
-      cache.profile.emplace(bundled_exact_table(), m.albedo_prime, m.g, m.eta);
-      cache.albedo_prime = m.albedo_prime;
-      cache.g = m.g;
-      cache.eta = m.eta;
-    }
-    return *cache.profile;
+    constexpr std::size_t kKept = 4;
+    thread_local std::array<Cached, kKept> cache;
+    thread_local std::size_t next = 0;
+    for (auto& c : cache)
+      if (c.profile && c.albedo_prime == m.albedo_prime && c.g == m.g && c.eta == m.eta) return *c.profile;
+    Cached& c = cache[next];
+    next = (next + 1) % kKept;
+    c.profile.emplace(bundled_exact_table(), m.albedo_prime, m.g, m.eta);
+    c.albedo_prime = m.albedo_prime;
+    c.g = m.g;
+    c.eta = m.eta;
+    return *c.profile;
   }
 };
 
