@@ -66,15 +66,18 @@ Action register_profile(CLI::App& app) {
   auto options = std::make_shared<Options>();
   auto* sub = app.add_subcommand("profile", "Radial diffusion profile R(r) per channel (per unit entered flux)");
   options->medium.add_to(*sub);
+  std::string names;  // the registry's, in its order
+  for (const auto& name : model_names()) names += name + ", ";
   sub->add_option("--model", options->model,
-                  "Model: dipole, better-dipole, pbd, quantized, burley, burley-diffuse, burley-dmfp, multipole "
-                  "(slabs: needs --thickness or --layers); 'bssrdf models' lists them [better-dipole; multipole "
-                  "with --thickness or --layers]; auto: the cheapest measured within --accuracy of Monte Carlo here");
+                  "Model: " + names +
+                      "multipole (slabs: needs --thickness or --layers); 'bssrdf models' lists them [better-dipole; "
+                      "multipole with --thickness or --layers]; auto: the cheapest measured within --accuracy of "
+                      "the radiative-transfer solution here");
   auto* model_option = sub->get_option("--model");
   sub->add_option(
       "--accuracy", options->accuracy,
-      "With --model auto: relative error allowed in the total and in R(r) (area-weighted L2) against the Monte Carlo "
-      "reference, as measured for each model [0.1]");
+      "With --model auto: relative error allowed in the total and in r R(r) (relative L2, inside and beyond one "
+      "transport mfp) against the radiative-transfer solution, as measured for each model [0.1]");
   auto* thickness = sub->add_option("--thickness", options->thickness,
                                     "Slab thickness in --unit: R(r) and T(r) of a slab under the multipole "
                                     "(ambient index 1 on both sides)");
