@@ -199,6 +199,14 @@ Action register_models(CLI::App& app) {
                  " (g = 0), >= " + format_number(fwd) + " (g = 0.9); eta 1-1.4";
         if (iso == 1 && fwd == 1) domain = "total not within 5 % of adding-doubling anywhere measured";
       }
+      if (const auto& accuracy = entry.reference_accuracy) {  // the reference itself: its measured band
+        const auto pc = [](double v) { return format_number(std::round(1000 * v) / 10) + " %"; };
+        domain = "against fresh Monte Carlo: total within " + pc(accuracy->total) + ", r R(r) within " +
+                 pc(accuracy->profile) + " (relative L2 beyond the runs' noise) in its domain";
+        for (const auto& r : accuracy->regions)
+          domain += "; " + pc(r.total) + " and " + pc(r.profile) + " for " + format_number(r.albedo_prime_min) +
+                    " <= alpha' <= " + format_number(r.albedo_prime_max) + ", g <= " + format_number(r.g_max);
+      }
       if (*json) {
         list.push_back({{"name", name},
                         {"description", model->description()},
