@@ -154,6 +154,12 @@ int main(int argc, char** argv) {
         continue;
       }
       ++served;
+      if (m.sigma_s_prime == 0) {  // nothing scatters: no light comes back, in either
+        within += model->total_reflectance(m) == 0;
+        std::printf("  %-28s %4zu %9.6f %6.3f %6.3f %9.6f %9s (no scattering: R = 0)\n", material.name.c_str(), c,
+                    m.albedo_prime, m.g, m.eta, model->total_reflectance(m), "0");
+        continue;
+      }
       const Medium one = Medium::single_channel(m.sigma_a, m.sigma_s, m.g, m.eta);
       MonteCarloOptions options;
       options.photons = 20000;
@@ -172,7 +178,7 @@ int main(int argc, char** argv) {
       std::fflush(stdout);
     }
   }
-  std::printf("# channels inside the table %d/%d; their totals within 1 %% or 3 sigma: %d/%d\n", served, channels,
+  std::printf("# channels inside the domain %d/%d; their totals within 1 %% or 3 sigma: %d/%d\n", served, channels,
               within, served);
   return 0;
 }
