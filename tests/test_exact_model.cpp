@@ -215,30 +215,39 @@ TEST(ExactModel, AlbedoInversionIsMonotoneAndRoundTrips) {
   EXPECT_THROW(exact_albedo_prime_from_total(table(), 0.999, 0.0, 1.3), InvalidInput);
 }
 
-TEST(ExactModel, AgreesWithFreshMonteCarloOffTheGrid) {
-  // Random points in the part of the domain a CI run can afford (g <= 0.9, alpha' <= 0.995):
-  // total within 1 % or 3 standard errors, relative L2 of r R(r) within 3 % plus 3x the run's noise,
-  // inside and beyond one transport mfp.
+namespace {
+
+// The exact model against a fresh Monte Carlo run at p: total within 1 % or 3 standard errors,
+// relative L2 of r R(r) within 3 % plus 3x the run's noise, inside and beyond one transport mfp.
+void expect_agrees_with_monte_carlo(const Point& p, std::uint64_t photons, std::uint64_t seed, std::size_t bins) {
   const auto model = make_model("exact");
-  for (const Point& p : random_points(3, 2027, 0.05, 0.995, 0.9)) {
-    const Medium medium = Medium::single_channel(1 - p.albedo_prime, p.albedo_prime / (1 - p.g), p.g, p.eta);
-    const auto m = medium.reduced(0);
-    MonteCarloOptions options;
-    options.photons = 100000;
-    options.seed = 31;
-    options.spacing = BinSpacing::log;
-    options.bins = 60;
-    options.r_max = model->radius_for_fraction(m, 0.999);
-    options.r_min = 1e-3;
-    const auto mc = run_monte_carlo(LayerStack::half_space(medium), options);
-    const auto d = compare_with_monte_carlo(*model, m, mc);
-    const auto entered = mc.channels[0].per_entered_flux();
-    const double sigma = d.total * entered.diffuse_reflectance.value / entered.diffuse_reflectance.standard_error;
-    EXPECT_TRUE(std::abs(d.total) <= 0.01 || std::abs(sigma) <= 3)
-        << p.albedo_prime << " " << p.g << " " << p.eta << ": total " << d.total << " (" << sigma << " sigma)";
-    EXPECT_LE(d.near_r, 0.03 + 3 * d.near_r_noise) << p.albedo_prime << " " << p.g << " " << p.eta;
-    EXPECT_LE(d.far_r, 0.03 + 3 * d.far_r_noise) << p.albedo_prime << " " << p.g << " " << p.eta;
-  }
+  const Medium medium = Medium::single_channel(1 - p.albedo_prime, p.albedo_prime / (1 - p.g), p.g, p.eta);
+  const auto m = medium.reduced(0);
+  MonteCarloOptions options;
+  options.photons = photons;
+  options.seed = seed;
+  options.spacing = BinSpacing::log;
+  options.bins = bins;
+  options.r_max = model->radius_for_fraction(m, 0.999);
+  options.r_min = 1e-3;
+  const auto mc = run_monte_carlo(LayerStack::half_space(medium), options);
+  const auto d = compare_with_monte_carlo(*model, m, mc);
+  const auto entered = mc.channels[0].per_entered_flux();
+  const double sigma = d.total * entered.diffuse_reflectance.value / entered.diffuse_reflectance.standard_error;
+  EXPECT_TRUE(std::abs(d.total) <= 0.01 || std::abs(sigma) <= 3)
+      << p.albedo_prime << " " << p.g << " " << p.eta << ": total " << d.total << " (" << sigma << " sigma)";
+  EXPECT_LE(d.near_r, 0.03 + 3 * d.near_r_noise) << p.albedo_prime << " " << p.g << " " << p.eta;
+  EXPECT_LE(d.far_r, 0.03 + 3 * d.far_r_noise) << p.albedo_prime << " " << p.g << " " << p.eta;
+  std::printf("alpha' %g g %g eta %g: total %+.3f %% (%.2f sigma), near L2 %.2f %% (noise %.2f), far %.2f %% (%.2f)\n",
+              p.albedo_prime, p.g, p.eta, 100 * d.total, sigma, 100 * d.near_r, 100 * d.near_r_noise, 100 * d.far_r,
+              100 * d.far_r_noise);
+}
+
+}  // namespace
+
+TEST(ExactModel, AgreesWithFreshMonteCarloOffTheGrid) {
+  // Random points in the part of the domain a CI run can afford (g <= 0.9, alpha' <= 0.995).
+  for (const Point& p : random_points(3, 2027, 0.05, 0.995, 0.9)) expect_agrees_with_monte_carlo(p, 100000, 31, 60);
 }
 
 TEST(ExactModel, BelowTheFirstAlbedoNodeContinuesExactly) {
@@ -257,30 +266,8 @@ TEST(ExactModel, BelowTheFirstAlbedoNodeContinuesExactly) {
   EXPECT_EQ(none.cumulative(0.5), 0.0);
   EXPECT_EQ(exact_total(table(), 0.0, 0.5, 1.3), 0.0);
 
-  const auto model = make_model("exact");
-  for (const Point& p : {Point{2e-4, 0.5, 1.33}, Point{6e-4, 0.95, 1.2}, Point{5e-5, 0.0, 1.0}}) {
-    const Medium medium = Medium::single_channel(1 - p.albedo_prime, p.albedo_prime / (1 - p.g), p.g, p.eta);
-    const auto m = medium.reduced(0);
-    MonteCarloOptions options;
-    options.photons = 20000000;
-    options.seed = 37;
-    options.spacing = BinSpacing::log;
-    options.bins = 40;
-    options.r_max = model->radius_for_fraction(m, 0.999);
-    options.r_min = 1e-3;
-    const auto mc = run_monte_carlo(LayerStack::half_space(medium), options);
-    const auto d = compare_with_monte_carlo(*model, m, mc);
-    const auto entered = mc.channels[0].per_entered_flux();
-    const double sigma = d.total * entered.diffuse_reflectance.value / entered.diffuse_reflectance.standard_error;
-    EXPECT_TRUE(std::abs(d.total) <= 0.01 || std::abs(sigma) <= 3)
-        << p.albedo_prime << " " << p.g << " " << p.eta << ": total " << d.total << " (" << sigma << " sigma)";
-    EXPECT_LE(d.near_r, 0.03 + 3 * d.near_r_noise) << p.albedo_prime << " " << p.g << " " << p.eta;
-    EXPECT_LE(d.far_r, 0.03 + 3 * d.far_r_noise) << p.albedo_prime << " " << p.g << " " << p.eta;
-    std::printf(
-        "alpha' %g g %g eta %g: total %+.3f %% (%.2f sigma), near L2 %.2f %% (noise %.2f), far %.2f %% (%.2f)\n",
-        p.albedo_prime, p.g, p.eta, 100 * d.total, sigma, 100 * d.near_r, 100 * d.near_r_noise, 100 * d.far_r,
-        100 * d.far_r_noise);
-  }
+  for (const Point& p : {Point{2e-4, 0.5, 1.33}, Point{6e-4, 0.95, 1.2}, Point{5e-5, 0.0, 1.0}})
+    expect_agrees_with_monte_carlo(p, 20000000, 37, 40);
 }
 
 TEST(ExactModelCli, ProfileServesTheExactModelAndRefusesOutsideItsTable) {
