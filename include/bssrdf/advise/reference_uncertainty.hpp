@@ -7,7 +7,8 @@
 //  - N: the reference's Monte Carlo noise, one standard error in code values (ImageError::reference_noise;
 //    0 for a formula). Two standard errors, as `reference-table` was always stated.
 //  - B: the band error. Each channel with a measured band (ReferenceSource: total T, shape P; the
-//    exact model's is its registry band, total 1.2 %, shape 5.6 %, measured against fresh Monte Carlo)
+//    exact model's is its registry band at the channel's alpha' and g, measured against fresh Monte
+//    Carlo: total 1.4 %, shape 4.8 % anywhere, 0.3 % and 1.6 % for 0.05 <= alpha' <= 0.99, g <= 0.9)
 //    is perturbed within it,
 //      R'(r) = (1 + s_T T) (1 + s_P e(r)) R(r),   e(r) = +e_near inside one transport mfp, -e_far beyond,
 //    with e_near f = e_far (1 - f) (f: the reference's fraction of light inside one transport mfp; the
