@@ -30,6 +30,7 @@ bool increasing(const std::vector<double>& v) {
 
 template <class T>
 void append_bytes(std::string& out, const std::vector<T>& values) {
+  if (values.empty()) return;  // data() may be null
   out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
 }
 
@@ -38,6 +39,7 @@ std::vector<T> take_bytes(const std::string& data, std::size_t& offset, std::siz
   if (count > (data.size() - offset) / sizeof(T))
     throw InvalidInput(kField, path, "a complete table file (truncated data)");
   std::vector<T> values(count);
+  if (count == 0) return values;  // (a version 1 table has no fine totals) memcpy to null is undefined
   std::memcpy(values.data(), data.data() + offset, count * sizeof(T));
   offset += count * sizeof(T);
   return values;
