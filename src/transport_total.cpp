@@ -11,10 +11,7 @@ TransportTotal transport_total(const Reduced<double>& m) {
   const ExactTable& table = bundled_exact_table();
   if (exact_domain(table, m.albedo_prime, m.g, m.eta).empty())
     return {exact_total(table, m.albedo_prime, m.g, m.eta), "exact", 0.0};
-  adding_doubling::Slab slab;
-  slab.layers = {{m.sigma_a, m.sigma_s, m.g}};
-  slab.n = m.eta;
-  const auto t = adding_doubling::solve(slab, adding_doubling::Incidence::collimated);
+  const auto t = adding_doubling::solve(adding_doubling::half_space(m), adding_doubling::Incidence::collimated);
   // The quadrature can overshoot 1 by its error estimate near alpha' = 1.
   const double total = t.diffuse_reflectance * t.entered_scale();
   return {total > 1 && total - 1 <= t.error_estimate ? 1.0 : total, "adding-doubling", t.error_estimate};

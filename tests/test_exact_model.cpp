@@ -27,12 +27,10 @@ const ExactTable& table() { return bundled_exact_table(); }
 
 double adding_doubling_total(double ap, double g, double eta, double* error_estimate = nullptr) {
   const Reduced<double> m = reduce(1 - ap, ap / (1 - g), g, eta);
-  adding_doubling::Slab slab;
-  slab.layers = {{m.sigma_a, m.sigma_s, g, kSemiInfinite}};
-  slab.n = eta;
   adding_doubling::Options options;
   options.tolerance = 1e-6;
-  const auto t = adding_doubling::solve(slab, adding_doubling::Incidence::collimated, options);
+  const auto t =
+      adding_doubling::solve(adding_doubling::half_space(m), adding_doubling::Incidence::collimated, options);
   if (error_estimate) *error_estimate = t.error_estimate * t.entered_scale();
   return t.diffuse_reflectance * t.entered_scale();
 }

@@ -27,10 +27,8 @@ std::vector<Case> cases() {
   for (double g : {0.0, 0.9})
     for (double eta : {1.0, 1.4})
       for (double a : {0.8, 0.9, 0.95, 0.99}) {
-        adding_doubling::Slab slab;
-        slab.layers = {{1 - a, a / (1 - g), g}};
-        slab.n = eta;
-        const auto t = adding_doubling::solve(slab, adding_doubling::Incidence::collimated);
+        const auto t = adding_doubling::solve(adding_doubling::half_space(reduce(1 - a, a / (1 - g), g, eta)),
+                                              adding_doubling::Incidence::collimated);
         out.push_back({a, g, eta, t.diffuse_reflectance * t.entered_scale()});
       }
   return out;

@@ -192,6 +192,13 @@ Totals solve(const Slab& slab, Incidence incidence, const Options& options) {
   return solve(slab, std::vector{incidence}, options)[0];
 }
 
+Slab half_space(const Reduced<double>& m) {
+  Slab slab;
+  slab.layers = {{m.sigma_a, m.sigma_s, m.g, kSemiInfinite}};
+  slab.n = m.eta;
+  return slab;
+}
+
 Slab slab_of(const LayerStack& stack, std::size_t c) {
   stack.validate();
   Slab slab;

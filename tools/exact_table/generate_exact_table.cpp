@@ -378,12 +378,10 @@ struct AddingDoublingTotal {
 };
 AddingDoublingTotal adding_doubling_total(double albedo_prime, double g, double eta) {
   const Reduced<double> m = reduce(1 - albedo_prime, albedo_prime / (1 - g), g, eta);
-  adding_doubling::Slab slab;
-  slab.layers = {{m.sigma_a, m.sigma_s, g, kSemiInfinite}};
-  slab.n = eta;
   adding_doubling::Options ad;
   ad.tolerance = 1e-5 * albedo_prime;  // relative to R_d, which is of order alpha' at low albedo
-  const auto totals = adding_doubling::solve(slab, adding_doubling::Incidence::collimated, ad);
+  const auto totals =
+      adding_doubling::solve(adding_doubling::half_space(m), adding_doubling::Incidence::collimated, ad);
   return {totals.diffuse_reflectance * totals.entered_scale(), totals.error_estimate,
           single_scattering_total(m.albedo(), g, eta)};
 }

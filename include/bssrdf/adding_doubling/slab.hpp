@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "bssrdf/layers.hpp"
+#include "bssrdf/reduced.hpp"
 
 namespace bssrdf::adding_doubling {
 
@@ -91,5 +92,9 @@ std::vector<Totals> solve(const Slab& slab, const std::vector<Incidence>& incide
 // layers (slides); the scattering layers between them must share one index and may not contain a
 // non-scattering layer (InvalidInput otherwise).
 Slab slab_of(const LayerStack& stack, std::size_t channel);
+
+// A semi-infinite medium of relative index m.eta in air, one channel: the thick limit, per entered
+// flux with Totals::entered_scale().
+Slab half_space(const Reduced<double>& m);
 
 }  // namespace bssrdf::adding_doubling
