@@ -3,6 +3,7 @@
 // entered flux, over (alpha', g, eta) and radii in transport mean free paths.
 //
 //   generate_exact_table run   --state DIR [--photons N] [--chunk N] [--hours H]   (resumable)
+//                              [--runs 0.01,1] [--g-min G] [--g-max G]   (top up only those runs)
 //   generate_exact_table build --state DIR --out data/exact/exact_profile.bin
 //
 // Each part is exact or validated:
@@ -18,14 +19,16 @@
 //    scatterings, where the largest albedo's weight is below e^-6 = 0.25 % and the photons still inside (P(k > K) ~
 //    K^-1/2, under 1 %) carry a fraction of the total of order 1e-5 (the lost part is reported);
 //  - single scattering: the exact integral (single_scattering.hpp), evaluated at each node radius;
-//  - the total: adding-doubling of the semi-infinite medium; the Monte Carlo multiple-scattering
-//    part is scaled to (adding-doubling total - exact single-scattering total), and the scale's
-//    deviation from 1, in standard errors, is recorded for every node as a check of both.
+//  - the total: adding-doubling of the semi-infinite medium where it is the more precise; the Monte
+//    Carlo multiple-scattering part is scaled to (adding-doubling total - exact single-scattering
+//    total), and the scale's deviation from 1, in standard errors, is recorded for every node as a
+//    check of both (at low albedo, where multiple scattering is ~0.1 % of the total, the Monte Carlo
+//    is the more precise and its own total stands).
 // Resumable: every (g, eta) node keeps its sums in DIR/node_G_E.bin, rewritten atomically after
 // each chunk of photons; `run` continues until every node has --photons photons (or --hours pass),
 // in passes of one chunk per node, so an interrupted run still leaves a complete, evenly sampled
-// grid. Chunk c of node (g, eta) uses seed splitmix(seed, g, eta, c): results do not depend on how
-// often the run was interrupted nor on the thread count.
+// grid (--runs, --g-min and --g-max top up only some runs: RunFocus). Chunk c of node (g, eta) uses seed splitmix(seed,
+// g, eta, c): results do not depend on how often the run was interrupted nor on the thread count.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -39,6 +42,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -57,7 +61,7 @@ namespace {
 
 using namespace bssrdf;
 
-constexpr int kGeneratorVersion = 2;
+constexpr int kGeneratorVersion = 3;
 constexpr int kSmoothingHalf = 3;  // radial smoothing window (smooth_radially): 7 bins, 0.58 decades
 constexpr int kSmoothingWide = 5;  // where a bin's error exceeds 3 %: 11 bins
 
@@ -259,7 +263,22 @@ std::string describe_node(const Grid& grid, std::size_t gi, std::size_t ei) {
   return text;
 }
 
-int run(const std::filesystem::path& dir, std::uint64_t target, std::uint64_t chunk, double hours, std::uint64_t seed) {
+// What one `run` tops up: by default every run of every node; --runs (base alpha' values, 1 for the
+// non-absorbing run) and --g-min / --g-max focus the photons where the table is noisiest (the
+// non-absorbing runs serve alpha' > 0.99, the base-0.01 runs the lowest albedos). Chunk seeds depend
+// only on the chunk's index, so a focused run gives the same sums as an unfocused one reaching the
+// same counts.
+struct RunFocus {
+  std::vector<double> runs;  // empty: all
+  double g_min = 0, g_max = 1;
+  bool includes(const Grid& grid, std::size_t gi, std::size_t b) const {
+    if (grid.g[gi] < g_min || grid.g[gi] > g_max) return false;
+    return runs.empty() || std::find(runs.begin(), runs.end(), grid.run_albedo_prime(b)) != runs.end();
+  }
+};
+
+int run(const std::filesystem::path& dir, std::uint64_t target, std::uint64_t chunk, double hours, std::uint64_t seed,
+        const RunFocus& focus) {
   const Grid grid;
   std::filesystem::create_directories(dir);
   const auto start = std::chrono::steady_clock::now();
@@ -271,6 +290,7 @@ int run(const std::filesystem::path& dir, std::uint64_t target, std::uint64_t ch
     for (std::size_t ei = 0; ei < grid.eta.size(); ++ei) {
       for (std::size_t gi = 0; gi < grid.g.size(); ++gi) {
         for (std::size_t b = 0; b < grid.runs(); ++b) {
+          if (!focus.includes(grid, gi, b)) continue;
           NodeSums sums;
           const auto path = node_path(dir, grid, gi, ei, b);
           load(sums, path, grid);
@@ -295,7 +315,7 @@ int run(const std::filesystem::path& dir, std::uint64_t target, std::uint64_t ch
     }
     if (!any) break;
   }
-  std::cerr << "every node has " << target << " photons\n";
+  std::cerr << "every node in focus has " << target << " photons\n";
   return 0;
 }
 
@@ -443,6 +463,9 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   table.total.assign(table.nodes(), 0.0);
 
   std::uint64_t min_photons = UINT64_MAX, max_photons = 0, interactions = 0, photons = 0;
+  // Photons per run and g (the fewest over eta): `run --runs --g-min --g-max` tops up unevenly.
+  std::vector<std::vector<std::uint64_t>> run_photons(grid.runs(),
+                                                      std::vector<std::uint64_t>(grid.g.size(), UINT64_MAX));
   double cpu_seconds = 0, worst_scale_sigma = 0, worst_ss_sigma = 0, worst_lost = 0, largest_r999 = 0;
   std::string worst_scale_at, worst_ss_at;
   std::size_t extrapolated = 0, monte_carlo_totals = 0;
@@ -461,6 +484,7 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
           min_photons = std::min(min_photons, s.photons);
           max_photons = std::max(max_photons, s.photons);
         }
+        run_photons[b][gi] = std::min(run_photons[b][gi], s.photons);
         photons += s.photons;
         interactions += s.interactions;
         cpu_seconds += s.seconds;
@@ -483,17 +507,22 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
         };
         const auto [ms_mc, ms_se] = mean_se(s.ms_sum[a], s.ms_sq[a]);
         const auto [ss_mc, ss_se] = mean_se(s.ss_sum[a], s.ss_sq[a]);
-        // Adding-doubling is the total where it has converged (its own error estimate, from
-        // doubling the angles, within 2e-4 of the total); with g near 1 and low albedo delta-M
-        // with 128 angles does not converge (even negative totals at alpha' 0.001, g 0.99), and
-        // the Monte Carlo total (exact single scattering + multiple scattering) stands.
+        // The multiple-scattering total from the more precise solver. Adding-doubling where it has
+        // converged (its error estimate, from doubling the angles, within 2e-4 of the total) and
+        // that estimate is under a quarter of the Monte Carlo's standard error: at low albedo the
+        // multiple scattering is ~0.1 % of the total, so 2e-4 of the total is up to 4 % of it, and
+        // the estimate can understate the error (alpha' 0.001, g 0.8, eta 1.3: 0.24 % estimated,
+        // 2.8 % from a Monte Carlo precise to 0.29 %). Elsewhere the Monte Carlo total stands
+        // (exact single scattering + multiple scattering; delta-M with 128 angles does not
+        // converge at all with g near 1 and low albedo: negative totals at alpha' 0.001, g 0.99).
         const bool ad_converged = totals.converged();
-        const double ms_exact = ad_converged ? ad_total - ss_total : ms_mc;
+        const bool ad_used = ad_converged && totals.error_estimate <= 0.25 * ms_se;
+        const double ms_exact = ad_used ? ad_total - ss_total : ms_mc;
         const double total = ss_total + ms_exact;
         const double scale = ms_mc > 0 ? ms_exact / ms_mc : 0.0;
         char where[96];
         std::snprintf(where, sizeof where, "alpha' %.6g, g %.2f, eta %.2f", ap, g, eta);
-        if (ad_converged && ms_se > 0) {
+        if (ad_used && ms_se > 0) {
           const double scale_sigma = (ms_mc - ms_exact) / ms_se;
           if (std::abs(scale_sigma) > std::abs(worst_scale_sigma)) {
             worst_scale_sigma = scale_sigma;
@@ -507,7 +536,8 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
           worst_ss_sigma = ss_sigma;
           worst_ss_at = where;
         }
-        scale_check.push_back({ap, g, eta, ms_mc, ms_se, ad_converged ? ms_exact : NAN, totals.error_estimate});
+        scale_check.push_back({ap, g, eta, ms_mc, ms_se, ad_converged ? ad_total - ss_total : NAN,
+                               totals.error_estimate, ad_used ? "adding-doubling" : "monte-carlo"});
         table.total[table.node(ei, gi, a)] = total;
 
         // Multiple scattering per node radius: bin means of dE/d ln r, scaled to the exact total.
@@ -633,6 +663,13 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
       "adding-doubling total minus exact single scattering; single scattering: exact integral";
   p["photons_per_g_eta_node_white_run"] = {{"min", min_photons}, {"max", max_photons}};
   p["absorbing_runs"] = {{"base_albedo_prime", grid.base_albedo_prime}, {"photon_factor", grid.base_photon_factor}};
+  nlohmann::json per_g = {{"g", grid.g}};
+  for (std::size_t b = 0; b < grid.runs(); ++b) {
+    char label[32];
+    std::snprintf(label, sizeof label, "base alpha' %g", grid.run_albedo_prime(b));
+    per_g[b == grid.white() ? std::string("non-absorbing") : std::string(label)] = run_photons[b];
+  }
+  p["photons_per_node_fewest_over_eta"] = per_g;
   p["photons_total"] = photons;
   p["scatterings_total"] = interactions;
   p["monte_carlo_seconds"] = cpu_seconds;
@@ -641,7 +678,9 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
       "chunk c of node (g index, eta index): s = splitmix(splitmix(splitmix(seed ^ g) ^ (eta << 20)) ^ c); "
       "absorbing run b: splitmix(s ^ ((b + 1) << 40))";
   p["adding_doubling_tolerance"] = "1e-5 alpha' absolute";
-  p["totals"] = "adding-doubling where its error estimate is within 2e-4 of the total, else the Monte Carlo total";
+  p["totals"] =
+      "multiple scattering from adding-doubling (its total minus exact single scattering) where its error estimate is "
+      "within 2e-4 of the total and under a quarter of the Monte Carlo's standard error, else from the Monte Carlo";
   p["monte_carlo_totals"] = monte_carlo_totals;
   p["fine_totals"] = {{"total_eta", grid.total_eta},
                       {"source",
@@ -676,8 +715,8 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   std::cout << p.dump(2) << "\n";
   // The per-node check, for the record (tools/exact_table/total_check.tsv).
   std::ofstream check(std::filesystem::path(out_path).parent_path() / "total_check.tsv");
-  check << "# alpha'\tg\teta\tms_monte_carlo\tms_stderr\tms_exact(adding-doubling - single scattering; nan: "
-           "not converged)\tadding_doubling_error_estimate\n";
+  check << "# alpha'\tg\teta\tms_monte_carlo\tms_stderr\tms_adding_doubling(total - exact single scattering; null: "
+           "not converged)\tadding_doubling_error_estimate\tms_total_used\n";
   for (const auto& row : scale_check) {
     for (std::size_t i = 0; i < row.size(); ++i) check << (i ? "\t" : "") << row[i].dump();
     check << '\n';
@@ -692,12 +731,14 @@ int main(int argc, char** argv) {
     std::vector<std::string> args(argv + 1, argv + argc);
     if (args.empty() || (args[0] != "run" && args[0] != "build")) {
       std::cerr << "usage: generate_exact_table run --state DIR [--photons N] [--chunk N] [--hours H] [--seed S]\n"
+                   "                                [--runs A,B,...] [--g-min G] [--g-max G]\n"
                    "       generate_exact_table build --state DIR --out FILE [--seed S]\n";
       return 2;
     }
     std::string state, out;
     std::uint64_t photons = 1'000'000, chunk = 16384, seed = 20261201;
     double hours = 1e9;
+    RunFocus focus;
     for (std::size_t i = 1; i + 1 < args.size(); i += 2) {
       if (args[i] == "--state")
         state = args[i + 1];
@@ -711,11 +752,18 @@ int main(int argc, char** argv) {
         hours = std::stod(args[i + 1]);
       else if (args[i] == "--seed")
         seed = std::stoull(args[i + 1]);
+      else if (args[i] == "--runs") {
+        std::stringstream list(args[i + 1]);
+        for (std::string item; std::getline(list, item, ',');) focus.runs.push_back(std::stod(item));
+      } else if (args[i] == "--g-min")
+        focus.g_min = std::stod(args[i + 1]);
+      else if (args[i] == "--g-max")
+        focus.g_max = std::stod(args[i + 1]);
       else
         throw std::invalid_argument("unknown option " + args[i]);
     }
     if (state.empty()) throw std::invalid_argument("--state DIR is required");
-    if (args[0] == "run") return run(state, photons, chunk, hours, seed);
+    if (args[0] == "run") return run(state, photons, chunk, hours, seed, focus);
     if (out.empty()) throw std::invalid_argument("--out FILE is required");
     return build(state, out, seed);
   } catch (const std::exception& e) {
