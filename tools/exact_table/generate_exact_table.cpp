@@ -415,15 +415,21 @@ bool usable_shape(const AddingDoublingTotal& t) {
 // The totals on the fine eta axis: the coarse totals' interpolation times adding-doubling's own
 // ratio of its value to its interpolation from the coarse eta nodes (1 at those nodes, so the node
 // totals stand; between them it restores the bend the coarse nodes miss). Where adding-doubling's
-// shape is not usable at every eta of a (g, alpha'), that row keeps the plain interpolation.
-// `coarse_ad` holds adding-doubling at the coarse nodes ([eta][g][albedo]). Returns how many
-// (g, alpha') rows kept the plain interpolation.
+// shape is not usable at every eta of a (g, alpha') (low albedo with g near 1, where single
+// scattering is most of the total), the row's fine total is the exact single-scattering total at
+// that eta plus the coarse multiple-scattering totals' interpolation: the bend of the larger part
+// is then exact too. `coarse_ad` holds adding-doubling and single scattering at the coarse nodes
+// ([eta][g][albedo]). Returns how many (g, alpha') rows took single scattering + interpolation.
 std::size_t add_fine_totals(const Grid& grid, ExactTable& table, const std::vector<AddingDoublingTotal>& coarse_ad) {
   table.prepare();
   ExactTable shape = table;  // adding-doubling at the coarse nodes, for its own interpolation
   for (std::size_t i = 0; i < shape.total.size(); ++i)
     shape.total[i] = usable_shape(coarse_ad[i]) ? coarse_ad[i].total : table.total[i];
   shape.prepare();
+  ExactTable multiple = table;  // the coarse multiple-scattering totals, for rows without a usable shape
+  for (std::size_t i = 0; i < multiple.total.size(); ++i)
+    multiple.total[i] = table.total[i] - coarse_ad[i].single_scattering;
+  multiple.prepare();
   const std::size_t albedos = grid.albedo_prime.size(), rows = grid.g.size() * albedos;
   std::vector<double> fine(grid.total_eta.size() * rows);
   std::vector<char> plain(rows, 0);
@@ -438,8 +444,12 @@ std::size_t add_fine_totals(const Grid& grid, ExactTable& table, const std::vect
       usable = usable_shape(t);
       ratio[e] = t.total / exact_total(shape, ap, g, grid.total_eta[e]);
     }
-    for (std::size_t e = 0; e < grid.total_eta.size(); ++e)
-      fine[table.node(e, gi, a)] = exact_total(table, ap, g, grid.total_eta[e]) * (usable ? ratio[e] : 1.0);
+    for (std::size_t e = 0; e < grid.total_eta.size(); ++e) {
+      const double eta = grid.total_eta[e];
+      fine[table.node(e, gi, a)] =
+          usable ? exact_total(table, ap, g, eta) * ratio[e]
+                 : single_scattering_total(albedo_from_reduced(ap, g), g, eta) + exact_total(multiple, ap, g, eta);
+    }
     plain[row] = !usable;
   });
   table.total_eta = grid.total_eta;
@@ -659,8 +669,8 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   p["source_revision"] = git_revision();
   p["built"] = date;
   p["method"] =
-      "multiple scattering: project Monte Carlo, non-absorbing run per (g, eta) reweighted by albedo^k, scaled to "
-      "adding-doubling total minus exact single scattering; single scattering: exact integral";
+      "multiple scattering: project Monte Carlo, a non-absorbing run and absorbing runs per (g, eta) reweighted by "
+      "albedo^k, scaled to the multiple-scattering total (see totals); single scattering: exact integral";
   p["photons_per_g_eta_node_white_run"] = {{"min", min_photons}, {"max", max_photons}};
   p["absorbing_runs"] = {{"base_albedo_prime", grid.base_albedo_prime}, {"photon_factor", grid.base_photon_factor}};
   nlohmann::json per_g = {{"g", grid.g}};
@@ -686,8 +696,9 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
                       {"source",
                        "the coarse totals interpolated in eta, times adding-doubling's ratio of its value "
                        "to its own interpolation from the coarse eta nodes (where its error estimate is "
-                       "within 1 % at every eta of that g, alpha'; else 1)"},
-                      {"plain_interpolation_g_albedo_rows", interpolated_rows}};
+                       "within 1 % at every eta of that g, alpha'; else the exact single-scattering total "
+                       "at that eta plus the coarse multiple-scattering totals interpolated in eta)"},
+                      {"single_scattering_plus_interpolation_g_albedo_rows", interpolated_rows}};
   p["worst_total_check_sigma"] = {{"value", worst_scale_sigma},
                                   {"at", worst_scale_at},
                                   {"meaning", "(Monte Carlo - exact) multiple-scattering total / its standard error"}};
