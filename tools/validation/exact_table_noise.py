@@ -1,0 +1,68 @@
+#!/usr/bin/python3
+"""The exact table's own noise, from its stored per-entry standard errors.
+
+    tools/validation/exact_table_noise.py [data/exact/exact_profile.bin ...]
+
+Per node: the relative L2 of r R(r) over dr inside and beyond one transport mfp (the measure of
+tools/validation/validate_exact), with R from the stored y = 2 pi r^2 R and the noise from the
+stored relative standard error of y (entries marked 65535, continued past the measured radii, count
+as noiseless). Printed: median and worst over the nodes each kind of Monte Carlo run serves
+(data/exact/README.md, "How each part is computed").
+"""
+import json
+import struct
+import sys
+
+import numpy as np
+
+
+def load(path):
+    data = open(path, 'rb').read()
+    if data[:8] != b'BSSRDFX1':
+        raise SystemExit(f'{path}: not an exact table')
+    length = struct.unpack('<Q', data[8:16])[0]
+    header = json.loads(data[16:16 + length])
+    offset = 16 + length
+    shape = (len(header['eta']), len(header['g']), len(header['albedo_prime']), header['radii'])
+    count = int(np.prod(shape))
+    ln_y = np.frombuffer(data, '<f4', count, offset).reshape(shape)
+    relative = np.frombuffer(data, '<u2', count, offset + 4 * count).reshape(shape)
+    return header, ln_y.astype(float), relative
+
+
+def noise(path):
+    header, ln_y, relative = load(path)
+    r = np.exp(header['ln_r0'] + header['d_ln_r'] * np.arange(header['radii']))
+    r_R = np.exp(ln_y) / r  # 2 pi r R(r)
+    error = np.where(relative == 65535, 0, relative) * 1e-4
+    dr = r  # per unit ln r
+
+    def l2(inside):
+        return np.sqrt(np.sum((r_R * error) ** 2 * dr * inside, axis=-1) / np.sum(r_R ** 2 * dr * inside, axis=-1))
+
+    return header, l2(r <= 1), l2(r > 1)
+
+
+def main():
+    paths = sys.argv[1:] or ['data/exact/exact_profile.bin']
+    for path in paths:
+        header, near, far = noise(path)
+        albedo = np.array(header['albedo_prime'])[None, None, :]
+        g = np.array(header['g'])[None, :, None]
+        print(f'# {path}: relative L2 of r R(r) from the stored standard errors, % (median, worst)')
+        print(f'# {"nodes":34s} {"near median":>11s} {"worst":>6s} {"far median":>10s} {"worst":>6s}')
+        parts = [("alpha' > 0.99 (non-absorbing run)", 0.99, 1, 0, 1),
+                 ("  of which g >= 0.85", 0.99, 1, 0.85, 1),
+                 ("0.9 < alpha' <= 0.99 (base 0.99)", 0.9, 0.99, 0, 1),
+                 ("0.5 < alpha' <= 0.9 (base 0.9)", 0.5, 0.9, 0, 1),
+                 ("0.1 < alpha' <= 0.5 (base 0.5)", 0.1, 0.5, 0, 1),
+                 ("alpha' <= 0.1 (bases 0.01, 0.1)", 0, 0.1, 0, 1),
+                 ("  of which alpha' <= 0.012, g >= 0.8", 0, 0.012, 0.8, 1)]
+        for name, lo, hi, g_lo, g_hi in parts:
+            mask = np.broadcast_to((albedo > lo) & (albedo <= hi) & (g >= g_lo) & (g <= g_hi), near.shape)
+            print(f'{name:36s} {100 * np.median(near[mask]):11.2f} {100 * near[mask].max():6.2f} '
+                  f'{100 * np.median(far[mask]):10.2f} {100 * far[mask].max():6.2f}')
+
+
+if __name__ == '__main__':
+    main()
