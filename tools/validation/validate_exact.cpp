@@ -5,6 +5,8 @@
 //   validate_exact [points=40] [scatterings per point=4e9] [seed=7] [materials=1] [points below alpha' 0.001=10]
 //                  [alpha'_min=0.001 alpha'_max=0.9999 g_max=0.99 g_min=0]   (a part of the domain only)
 //                  [photons per point at most=5e7]
+//   validate_exact at SCATTERINGS MAX_PHOTONS SEED ALPHA',G,ETA [...]   (given points, e.g. again with
+//                  more photons where a random point's run was too noisy to resolve the goal)
 //
 // Each point: alpha' log-uniform in logit over [0.001, 0.9999], g uniform in -ln(1 - g) over
 // [0, 0.99], eta uniform over [1, 1.6], drawn with a generator independent of the table's seeds; a
@@ -62,35 +64,66 @@ MonteCarloResult run(const Medium& medium, const Model& model, double scattering
 
 }  // namespace
 
+struct Point {
+  double albedo_prime, g, eta;
+};
+
 int main(int argc, char** argv) {
-  const int points = argc > 1 ? std::atoi(argv[1]) : 40;
+  // `validate_exact at SCATTERINGS MAX_PHOTONS SEED ALPHA',G,ETA ...`: given points again with more
+  // photons (where a random point's run was too noisy to resolve the goal).
+  const bool given = argc > 1 && std::string(argv[1]) == "at";
+  if (given && argc < 6) {
+    std::fprintf(stderr, "usage: validate_exact at SCATTERINGS MAX_PHOTONS SEED ALPHA',G,ETA [...]\n");
+    return 2;
+  }
+  std::vector<Point> given_points;
+  for (int i = 5; given && i < argc; ++i) {
+    Point p{};
+    if (std::sscanf(argv[i], "%lf,%lf,%lf", &p.albedo_prime, &p.g, &p.eta) != 3) {
+      std::fprintf(stderr, "validate_exact: point %s: expected ALPHA',G,ETA\n", argv[i]);
+      return 2;
+    }
+    given_points.push_back(p);
+  }
+  const int points = given ? 0 : argc > 1 ? std::atoi(argv[1]) : 40;
   const double scatterings = argc > 2 ? std::atof(argv[2]) : 4e9;
-  const unsigned seed = argc > 3 ? static_cast<unsigned>(std::atoi(argv[3])) : 7;
-  const bool materials = argc > 4 ? std::atoi(argv[4]) != 0 : true;
-  const int low_points = argc > 5 ? std::atoi(argv[5]) : 10;
+  const unsigned seed = static_cast<unsigned>(given ? std::atoi(argv[4]) : argc > 3 ? std::atoi(argv[3]) : 7);
+  const bool materials = given ? false : argc > 4 ? std::atoi(argv[4]) != 0 : true;
+  const int low_points = !given && argc > 5 ? std::atoi(argv[5]) : 10;
   // Optionally a part of the domain only (a region's band in the registry): alpha' and g bounds.
-  const double ap_min = argc > 6 ? std::atof(argv[6]) : 0.001, ap_max = argc > 7 ? std::atof(argv[7]) : 0.9999;
-  const double g_max = argc > 8 ? std::atof(argv[8]) : 0.99;
+  const double ap_min = !given && argc > 6 ? std::atof(argv[6]) : 0.001,
+               ap_max = !given && argc > 7 ? std::atof(argv[7]) : 0.9999;
+  const double g_max = !given && argc > 8 ? std::atof(argv[8]) : 0.99;
   // ... and a g floor and a photon cap, to resolve a few percent where the runs are noisiest (far field
   // at low albedo and high g).
-  const double g_min = argc > 9 ? std::atof(argv[9]) : 0.0;
-  const double max_photons = argc > 10 ? std::atof(argv[10]) : 5e7;
+  const double g_min = !given && argc > 9 ? std::atof(argv[9]) : 0.0;
+  const double max_photons = given ? std::atof(argv[3]) : argc > 10 ? std::atof(argv[10]) : 5e7;
   const auto model = make_model("exact");
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> uniform(0, 1);
   const double g_lo = -std::log1p(-g_min), g_hi = -std::log1p(-g_max);
 
-  // One section of random points: alpha' log-uniform in logit over [ap_lo, ap_hi].
-  const auto section = [&](int n, double ap_lo, double ap_hi, std::uint64_t seed_offset, double max_photons) {
+  // Random points: alpha' log-uniform in logit over [ap_lo, ap_hi], g uniform in -ln(1 - g), eta uniform.
+  const auto draw = [&](int n, double ap_lo, double ap_hi) {
     const double lo = std::log(ap_lo / (1 - ap_lo)), hi = std::log(ap_hi / (1 - ap_hi));
+    std::vector<Point> out;
+    for (int i = 0; i < n; ++i) {
+      const double ap = 1 / (1 + std::exp(-(lo + (hi - lo) * uniform(rng))));
+      const double g = 1 - std::exp(-(g_lo + (g_hi - g_lo) * uniform(rng)));
+      const double eta = 1 + 0.6 * uniform(rng);
+      out.push_back({ap, g, eta});
+    }
+    return out;
+  };
+  // One section: each point against its own fresh run.
+  const auto section = [&](const std::vector<Point>& list, std::uint64_t seed_offset, double max_photons) {
+    const int n = static_cast<int>(list.size());
     std::printf("# %9s %6s %6s %10s %8s %7s %8s %8s %8s %8s\n", "alpha'", "g", "eta", "photons", "total%", "sigma",
                 "near%", "noise%", "far%", "noise%");
     int total_ok = 0, near_ok = 0, far_ok = 0, near_excess_ok = 0, far_excess_ok = 0;
     double worst_total = 0, worst_near = 0, worst_far = 0, worst_near_excess = 0, worst_far_excess = 0;
     for (int i = 0; i < n; ++i) {
-      const double ap = 1 / (1 + std::exp(-(lo + (hi - lo) * uniform(rng))));
-      const double g = 1 - std::exp(-(g_lo + (g_hi - g_lo) * uniform(rng)));
-      const double eta = 1 + 0.6 * uniform(rng);
+      const auto [ap, g, eta] = list[static_cast<std::size_t>(i)];
       // Transport units: sigma_t' = 1.
       const Medium medium = Medium::single_channel(1 - ap, ap / (1 - g), g, eta);
       const auto mc =
@@ -128,19 +161,27 @@ int main(int argc, char** argv) {
         near_excess_ok, n, 100 * worst_near_excess, far_excess_ok, n, 100 * worst_far_excess);
   };
 
+  if (given) {
+    std::printf(
+        "# exact model vs fresh Monte Carlo at given points (seed %u, %.3g scatterings per point, up to %.3g "
+        "photons)\n",
+        seed, scatterings, max_photons);
+    section(given_points, 0, max_photons);
+    return 0;
+  }
   if (points > 0) {
     std::printf(
         "# exact model vs fresh Monte Carlo at random off-grid points (seed %u, %.3g scatterings per point; alpha' "
         "%g-%g, g %g-%g, up to %.3g photons)\n",
         seed, scatterings, ap_min, ap_max, g_min, g_max, max_photons);
-    section(points, ap_min, ap_max, 0, max_photons);
+    section(draw(points, ap_min, ap_max), 0, max_photons);
   }
   if (low_points > 0) {
     std::printf(
         "\n# below the table's first albedo node (alpha' 1e-5 to 0.001: exact single scattering + the node's "
         "multiple scattering scaled), seed %u, up to 1e9 photons per point\n",
         seed);
-    section(low_points, 1e-5, 0.001, 500, 1e9);  // few photons reflect: many are needed
+    section(draw(low_points, 1e-5, 0.001), 500, 1e9);  // few photons reflect: many are needed
   }
   if (!materials) return 0;
 
