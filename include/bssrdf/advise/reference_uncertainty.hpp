@@ -8,7 +8,7 @@
 //    0 for a formula). Two standard errors, as `reference-table` was always stated.
 //  - B: the band error. Each channel with a measured band (ReferenceSource: total T, shape P; the
 //    exact model's is its registry band at the channel's alpha' and g, measured against fresh Monte
-//    Carlo: total 1.4 %, shape 4.8 % anywhere, 0.3 % and 1.6 % for 0.05 <= alpha' <= 0.99, g <= 0.9)
+//    Carlo: total 0.6 %, shape 3 % anywhere, 0.3 % and 1.8 % for 0.05 <= alpha' <= 0.9999, g <= 0.9)
 //    is perturbed within it,
 //      R'(r) = (1 + s_T T) (1 + s_P e(r)) R(r),   e(r) = +e_near inside one transport mfp, -e_far beyond,
 //    with e_near f = e_far (1 - f) (f: the reference's fraction of light inside one transport mfp; the
