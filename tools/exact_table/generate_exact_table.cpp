@@ -737,6 +737,23 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
 
 }  // namespace
 
+// A flag's number, or an error naming the flag and the text (std::stod alone says only "stod").
+double number(const std::string& flag, const std::string& text, double lo, double hi) {
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !(value >= lo && value <= hi)) {
+    std::ostringstream message;
+    message << flag << ": " << text << ": accepted range is " << lo << " to " << hi;
+    throw std::invalid_argument(message.str());
+  }
+  return value;
+}
+
 int main(int argc, char** argv) {
   try {
     std::vector<std::string> args(argv + 1, argv + argc);
@@ -756,20 +773,33 @@ int main(int argc, char** argv) {
       else if (args[i] == "--out")
         out = args[i + 1];
       else if (args[i] == "--photons")
-        photons = std::stoull(args[i + 1]);
+        photons = static_cast<std::uint64_t>(number("--photons", args[i + 1], 1, 1e15));
       else if (args[i] == "--chunk")
-        chunk = std::stoull(args[i + 1]);
+        chunk = static_cast<std::uint64_t>(number("--chunk", args[i + 1], 1, 1e12));
       else if (args[i] == "--hours")
-        hours = std::stod(args[i + 1]);
+        hours = number("--hours", args[i + 1], 0, 1e9);
       else if (args[i] == "--seed")
-        seed = std::stoull(args[i + 1]);
+        seed = static_cast<std::uint64_t>(number("--seed", args[i + 1], 0, 9e15));
       else if (args[i] == "--runs") {
         std::stringstream list(args[i + 1]);
-        for (std::string item; std::getline(list, item, ',');) focus.runs.push_back(std::stod(item));
+        const Grid grid;
+        for (std::string item; std::getline(list, item, ',');) {
+          const double run = number("--runs", item, 0, 1);
+          bool known = run == 1;
+          for (std::size_t b = 0; b < grid.base_albedo_prime.size(); ++b)
+            known = known || run == grid.run_albedo_prime(b);
+          if (!known) {
+            std::ostringstream accepted;
+            for (double a : grid.base_albedo_prime) accepted << a << ", ";
+            throw std::invalid_argument("--runs: " + item + ": accepted are the base albedos " + accepted.str() +
+                                        "and 1 (non-absorbing)");
+          }
+          focus.runs.push_back(run);
+        }
       } else if (args[i] == "--g-min")
-        focus.g_min = std::stod(args[i + 1]);
+        focus.g_min = number("--g-min", args[i + 1], 0, 1);
       else if (args[i] == "--g-max")
-        focus.g_max = std::stod(args[i + 1]);
+        focus.g_max = number("--g-max", args[i + 1], 0, 1);
       else
         throw std::invalid_argument("unknown option " + args[i]);
     }
