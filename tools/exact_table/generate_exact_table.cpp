@@ -117,6 +117,12 @@ struct Grid {
 
 double single_albedo(double albedo_prime, double g) { return albedo_from_reduced(albedo_prime, g); }
 
+// The exact single-scattering total per entered flux at a node (transport units), for the coarse
+// totals and the fine eta axis alike.
+double node_single_scattering(double albedo_prime, double g, double eta) {
+  return single_scattering_total(single_albedo(albedo_prime, g), g, eta);
+}
+
 std::uint64_t splitmix(std::uint64_t x) {
   x += 0x9E3779B97F4A7C15ull;
   x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
@@ -403,7 +409,7 @@ AddingDoublingTotal adding_doubling_total(double albedo_prime, double g, double 
   const auto totals =
       adding_doubling::solve(adding_doubling::half_space(m), adding_doubling::Incidence::collimated, ad);
   return {totals.diffuse_reflectance * totals.entered_scale(), totals.error_estimate,
-          single_scattering_total(m.albedo(), g, eta)};
+          node_single_scattering(albedo_prime, g, eta)};
 }
 
 // Adding-doubling's shape in eta is trusted where its error estimate is within 1 % of the total
@@ -446,9 +452,8 @@ std::size_t add_fine_totals(const Grid& grid, ExactTable& table, const std::vect
     }
     for (std::size_t e = 0; e < grid.total_eta.size(); ++e) {
       const double eta = grid.total_eta[e];
-      fine[table.node(e, gi, a)] =
-          usable ? exact_total(table, ap, g, eta) * ratio[e]
-                 : single_scattering_total(albedo_from_reduced(ap, g), g, eta) + exact_total(multiple, ap, g, eta);
+      fine[table.node(e, gi, a)] = usable ? exact_total(table, ap, g, eta) * ratio[e]
+                                          : node_single_scattering(ap, g, eta) + exact_total(multiple, ap, g, eta);
     }
     plain[row] = !usable;
   });

@@ -16,10 +16,18 @@ import sys
 import numpy as np
 
 
+def fail(message):
+    print(f'exact_table_noise.py: {message}', file=sys.stderr)
+    sys.exit(2)
+
+
 def load(path):
-    data = open(path, 'rb').read()
+    try:
+        data = open(path, 'rb').read()
+    except OSError as error:
+        fail(f'{path}: {error.strerror}')
     if data[:8] != b'BSSRDFX1':
-        raise SystemExit(f'{path}: not an exact table')
+        fail(f'{path}: not an exact table (no BSSRDFX1 magic)')
     length = struct.unpack('<Q', data[8:16])[0]
     header = json.loads(data[16:16 + length])
     offset = 16 + length

@@ -83,21 +83,27 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "validate_exact: point %s: expected ALPHA',G,ETA\n", argv[i]);
       return 2;
     }
+    // The exact model's domain (models/exact.hpp).
+    if (!(p.albedo_prime > 0 && p.albedo_prime <= 0.9999 && p.g >= 0 && p.g <= 0.99 && p.eta >= 1 && p.eta <= 1.6)) {
+      std::fprintf(
+          stderr, "validate_exact: point %s: accepted range is 0 < alpha' <= 0.9999, 0 <= g <= 0.99, 1 <= eta <= 1.6\n",
+          argv[i]);
+      return 2;
+    }
     given_points.push_back(p);
   }
-  const int points = given ? 0 : argc > 1 ? std::atoi(argv[1]) : 40;
-  const double scatterings = argc > 2 ? std::atof(argv[2]) : 4e9;
-  const unsigned seed = static_cast<unsigned>(given ? std::atoi(argv[4]) : argc > 3 ? std::atoi(argv[3]) : 7);
-  const bool materials = given ? false : argc > 4 ? std::atoi(argv[4]) != 0 : true;
-  const int low_points = !given && argc > 5 ? std::atoi(argv[5]) : 10;
-  // Optionally a part of the domain only (a region's band in the registry): alpha' and g bounds.
-  const double ap_min = !given && argc > 6 ? std::atof(argv[6]) : 0.001,
-               ap_max = !given && argc > 7 ? std::atof(argv[7]) : 0.9999;
-  const double g_max = !given && argc > 8 ? std::atof(argv[8]) : 0.99;
-  // ... and a g floor and a photon cap, to resolve a few percent where the runs are noisiest (far field
-  // at low albedo and high g).
-  const double g_min = !given && argc > 9 ? std::atof(argv[9]) : 0.0;
-  const double max_photons = given ? std::atof(argv[3]) : argc > 10 ? std::atof(argv[10]) : 5e7;
+  // Positional arguments of the random-point mode (the `at` mode reads its own three).
+  const auto arg = [&](int i, double fallback) { return !given && argc > i ? std::atof(argv[i]) : fallback; };
+  const int points = given ? 0 : static_cast<int>(arg(1, 40));
+  const double scatterings = std::atof(argc > 2 ? argv[2] : "4e9");
+  const unsigned seed = static_cast<unsigned>(given ? std::atoi(argv[4]) : arg(3, 7));
+  const bool materials = !given && arg(4, 1) != 0;
+  const int low_points = static_cast<int>(arg(5, 10));
+  // Optionally a part of the domain only (a region's band in the registry): alpha' and g bounds,
+  // and a photon cap, to resolve a few percent where the runs are noisiest (far field at low albedo
+  // and high g).
+  const double ap_min = arg(6, 0.001), ap_max = arg(7, 0.9999), g_max = arg(8, 0.99), g_min = arg(9, 0.0);
+  const double max_photons = given ? std::atof(argv[3]) : arg(10, 5e7);
   const auto model = make_model("exact");
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> uniform(0, 1);
