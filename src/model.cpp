@@ -7,7 +7,6 @@
 
 #include "bssrdf/check.hpp"
 #include "bssrdf/error.hpp"
-#include "bssrdf/model_registry.hpp"
 #include "bssrdf/quadrature.hpp"
 
 namespace bssrdf {
@@ -111,15 +110,6 @@ SampledProfile Model::sample(const Reduced<double>& m, const std::vector<double>
   p.value.reserve(radii.size());
   for (double r : radii) p.value.push_back(reflectance(m, r));
   return p;
-}
-
-std::unique_ptr<Model> make_model(std::string_view name) { return model_entry(name).make(); }
-
-std::vector<std::string> model_names() {
-  std::vector<std::string> names;
-  for (const auto& e : model_registry())
-    if (e.listed) names.push_back(e.name);
-  return names;
 }
 
 }  // namespace bssrdf

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/model_registry.hpp"
+#include "bssrdf/models/diffusion_validity.hpp"
 #include "bssrdf/models/exact.hpp"
 #include "bssrdf/validity.hpp"
 #include "model_error_table.hpp"
@@ -52,7 +54,7 @@ ModelErrorEstimate estimate_for(const ModelEntry& entry, const Reduced<double>& 
   est.cost_ns = entry.cost_ns;
   est.source = source;
   if (entry.reference_accuracy) {
-    const auto band = entry.reference_accuracy->at(m.albedo_prime, m.g);
+    const auto band = entry.reference_accuracy->at(m);
     est.total_error = band.total;
     est.profile_error = band.profile;
   }
@@ -250,6 +252,88 @@ ModelChoice choose_model(const Medium& medium, double accuracy) {
           " for this medium: the most accurate valid model, " + best.model +
           ", was measured within that of the Monte Carlo reference here" +
           (excluded.empty() ? "" : " (" + excluded + " mark themselves invalid here and are never chosen)"));
+}
+
+DefaultModel default_model(const Medium& medium) {
+  medium.validate();
+  std::string outside;
+  for (std::size_t c = 0; c < medium.channels(); ++c) {
+    const auto m = medium.reduced(c);
+    const auto report = exact_domain(bundled_exact_table(), m.albedo_prime, m.g, m.eta);
+    if (!report.empty())
+      outside += (outside.empty() ? "" : "; ") + ("channel " + medium.channel_names[c] + ": ") + report.front().message;
+  }
+  if (outside.empty()) return {"exact", ""};
+  // Every other candidate's worst error over the channels, from the best source each channel has.
+  struct Score {
+    const ModelEntry* entry;
+    bool invalid = false;
+    double worst = 0;
+    std::string source;
+  };
+  std::vector<Score> scores;
+  for (const auto& c : candidates()) {
+    if (c.entry->reference_accuracy) continue;  // exact: outside its domain in some channel
+    Score s{c.entry, false, 0.0, ""};
+    const auto model = c.entry->make();
+    for (std::size_t ch = 0; ch < medium.channels() && !s.invalid; ++ch) {
+      const auto m = medium.reduced(ch);
+      s.invalid = worst(model->validity(m)) == Severity::invalid;
+      double error = std::numeric_limits<double>::infinity();
+      std::string source = "not measured here";
+      if (const auto e = estimate_model_error(c.entry->name, m)) {
+        error = e->error();
+        source = e->source == "exact" ? "against the exact model" : "against Monte Carlo (validation table)";
+      } else if (c.entry->limits) {
+        error = documented_total_error(*c.entry->limits, m.albedo_prime, m.g);
+        source = "total against adding-doubling (its bands)";
+      }
+      if (!(error <= s.worst)) {
+        s.worst = error;
+        s.source = source;
+      }
+    }
+    scores.push_back(s);
+  }
+  // Valid first, then the smallest worst error; ties keep the registry's order.
+  const auto best = std::min_element(scores.begin(), scores.end(), [](const Score& x, const Score& y) {
+    return std::pair{x.invalid, x.worst} < std::pair{y.invalid, y.worst};
+  });
+  std::string why = outside + "; " + best->entry->name;
+  if (best->invalid)
+    why +=
+        " is the first model here, though every model marks itself invalid for this medium: run the Monte Carlo "
+        "reference (bssrdf reference)";
+  else if (std::isfinite(best->worst))
+    why += " is the most accurate model measured here (worst channel " +
+           format_number(std::round(best->worst * 1000) / 10) + " %, " + best->source + ")";
+  else
+    why += " is the first valid model: no model's accuracy is measured here";
+  return {best->entry->name, why};
+}
+
+DefaultModel default_model(const Reduced<double>& m) {
+  return default_model(Medium::single_channel(m.sigma_a, m.sigma_s, m.g, m.eta));
+}
+
+DefaultModel default_model_over_albedos(const std::vector<double>& g, double eta_min, double eta_max) {
+  const ExactTable& table = bundled_exact_table();
+  const std::vector<double> gs = g.empty() ? std::vector<double>{0.0} : g;
+  bool inside = true;
+  for (double gc : gs)
+    for (double eta : {eta_min, eta_max}) inside = inside && exact_domain(table, 0.5, gc, eta).empty();
+  if (inside) return {"exact", ""};
+  Medium judged;
+  for (std::size_t c = 0; c < gs.size(); ++c) {
+    judged.sigma_a.push_back(0.1);
+    judged.sigma_s.push_back(0.9 / (1 - gs[c]));
+    judged.g.push_back(gs[c]);
+    judged.channel_names.push_back(gs.size() == 1 ? "all" : "c" + std::to_string(c));
+  }
+  judged.eta = eta_max;
+  DefaultModel d = default_model(judged);
+  d.reason = "judged at alpha' 0.9 (the fit finds the albedo): " + d.reason;
+  return d;
 }
 
 }  // namespace bssrdf

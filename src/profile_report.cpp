@@ -242,6 +242,9 @@ std::string to_json(const ProfileReport& report) {
 
 std::string to_csv(const ProfileReport& report) {
   std::ostringstream out;
+  // Which model produced the numbers, and why when it was not the exact one (read_profile_csv skips it).
+  out << "# model: " << report.model << '\n';
+  if (!report.model_choice.empty()) out << "# model_choice: " << report.model_choice << '\n';
   const std::string u(symbol(report.unit));
   out << "radius_" << u;
   for (const auto& ch : report.channels) out << ',' << ch.name << "_per_" << u << "2";

@@ -14,6 +14,10 @@ std::string_view to_string(Severity severity) {
   return "note";
 }
 
+std::string describe(const ValidityNote& note) {
+  return std::string(to_string(note.severity)) + " [" + note.code + "] " + note.message;
+}
+
 Severity worst(const ValidityReport& report) {
   Severity result = Severity::note;
   for (const auto& entry : report)

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/models/diffusion_validity.hpp"
 #include "bssrdf/single_scattering.hpp"
 #include "reference_data.hpp"

@@ -13,6 +13,7 @@
 #include "bssrdf/lut/projected_profile.hpp"
 #include "bssrdf/materials.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "cli_runner.hpp"
 
 using namespace bssrdf;

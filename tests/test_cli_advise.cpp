@@ -118,7 +118,7 @@ TEST(CliAdvise, BadInputExitsTwoWithOneLine) {
         "--material Skin1 --pixel 0.1 --tolerance 0", "--material Skin1 --pixel 0.1 --tolerance nan",
         "--material Skin1 --pixel 0.1 --target mobile", "--material Skin1 --pixel 0.1 --object-size -3",
         "--material Skin1", "--material Skin1 --pixel 0.1 -n 5", "--all --material Skin1 --pixel 1",
-        "--material Spectralon --pixel 1 --reference exact"}) {
+        "--sigma-a 0.1 --sigma-s 10 --g -0.3 --pixel 1 --reference exact"}) {  // g < 0: outside its domain
     const auto r = run(std::string("advise ") + args);
     EXPECT_EQ(r.status, 2) << args << ": " << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;
@@ -252,14 +252,14 @@ TEST(CliAdvise, AllNamesEachMaterialsReference) {
     if (line.rfind("Skin1", 0) == 0) {
       EXPECT_NE(line.find("exact,exact,exact"), std::string::npos) << line;
     }
-    if (line.rfind("Spectralon", 0) == 0) {
-      EXPECT_EQ(line.find("exact"), std::string::npos) << line;
+    if (line.rfind("Spectralon", 0) == 0) {  // alpha' 1: the exact model continues to it
+      EXPECT_NE(line.find("exact,exact,exact"), std::string::npos) << line;
     }
     if (line.rfind("Coke", 0) == 0) {  // alpha' below 0.001 and 0: the exact model continues there
       EXPECT_NE(line.find("exact,exact,exact"), std::string::npos) << line;
     }
-    if (line.rfind("Strawberry Shampoo", 0) == 0) {  // channel B: g 0.994, beyond the table
-      EXPECT_NE(line.find("montecarlo"), std::string::npos) << line;
+    if (line.rfind("Strawberry Shampoo", 0) == 0) {  // channel B: g 0.994, continued beyond the last g node
+      EXPECT_NE(line.find("exact,exact,exact"), std::string::npos) << line;
     }
   }
 }

@@ -15,6 +15,7 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/materials.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/models/exact.hpp"
 #include "bssrdf/models/normalized_diffusion.hpp"
 #include "cli_runner.hpp"
@@ -140,17 +141,20 @@ TEST(CliMaterials, ShowGivesEveryQuantityPerChannel) {
   ASSERT_EQ(doc["channels"].size(), 3u);
   for (const auto& c : doc["channels"])
     for (const char* key : {"sigma_a", "sigma_s", "g", "albedo_prime", "mfp", "transport_mfp", "diffuse_mfp",
-                            "burley_d", "burley_fit_error", "surface_albedo", "diffusion_valid", "reason"})
+                            "burley_d", "burley_fit_error", "surface_albedo", "valid", "validity"})
       EXPECT_TRUE(c.contains(key)) << key;
-  EXPECT_EQ(doc["channels"][0]["diffusion_valid"], false);
-  EXPECT_NE(doc["channels"][0]["reason"].get<std::string>().find("alpha'"), std::string::npos);
+  // Coke R: the exact profile is valid. Sprite's transport mfp (about 500 mm) exceeds the 10 mm object.
+  EXPECT_EQ(doc["channels"][0]["valid"], true);
+  const auto sprite = json::parse(run("materials show sprite -f json").out);
+  EXPECT_EQ(sprite["channels"][0]["valid"], true);
+  EXPECT_NE(sprite["channels"][0]["validity"].dump().find("object_size"), std::string::npos);
   // Units: cm divides lengths by 10 and multiplies coefficients by 10.
   const auto mm = json::parse(run("materials show skin1 -f json").out);
   const auto cm = json::parse(run("materials show skin1 -f json --unit cm").out);
   EXPECT_NEAR(cm["channels"][0]["transport_mfp"].get<double>() * 10, mm["channels"][0]["transport_mfp"].get<double>(),
               1e-12);
   EXPECT_NEAR(cm["channels"][0]["sigma_a"].get<double>(), 10 * mm["channels"][0]["sigma_a"].get<double>(), 1e-12);
-  EXPECT_EQ(mm["channels"][0]["diffusion_valid"], true);
+  EXPECT_EQ(mm["channels"][0]["valid"], true);
   r = run("materials show skin1");
   EXPECT_NE(r.out.find("Burley d [mm]"), std::string::npos);
 }

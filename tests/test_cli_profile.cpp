@@ -7,6 +7,7 @@
 
 #include "bssrdf/materials.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "cli_runner.hpp"
 
 using namespace bssrdf;
@@ -54,7 +55,7 @@ TEST(CliProfile, WritesTheFileAndPrintsTheTable) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("R_total"), std::string::npos);
   const auto doc = json::parse(test_cli::slurp(path));
-  EXPECT_EQ(doc["model"], "better-dipole");
+  EXPECT_EQ(doc["model"], "exact");  // the registry's default inside its domain
   EXPECT_EQ(doc["eta"], 1.5);
 }
 
@@ -90,8 +91,9 @@ TEST(CliProfile, ModelSpecificForms) {
     EXPECT_GT(ch["burley_d"].get<double>(), 0.0);
   }
   // --single-scattering adds the exact term: totals grow by the single-scattering total.
-  const auto ms = json::parse(run("profile --material Skin1 --samples 8 -f json").out);
-  const auto with = json::parse(run("profile --material Skin1 --samples 8 --single-scattering -f json").out);
+  const auto ms = json::parse(run("profile --material Skin1 --model better-dipole --samples 8 -f json").out);
+  const auto with =
+      json::parse(run("profile --material Skin1 --model better-dipole --samples 8 --single-scattering -f json").out);
   EXPECT_EQ(with["model"], "better-dipole+ss");
   EXPECT_EQ(with["includes_single_scattering"], true);
   EXPECT_GT(with["channels"][0]["total_reflectance"].get<double>(),
@@ -99,12 +101,20 @@ TEST(CliProfile, ModelSpecificForms) {
 }
 
 TEST(CliProfile, CsvAndGrids) {
+  // A linear grid from r = 0 needs a model finite there (exact's single scattering is 1/r).
   const auto r =
-      run("profile --sigma-a 0.01,0.02 --sigma-s 1 --channels a,b --spacing linear --r-max 5 --samples 11 -f csv");
+      run("profile --sigma-a 0.01,0.02 --sigma-s 1 --channels a,b --model better-dipole --spacing linear --r-max 5 "
+          "--samples 11 -f csv");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_EQ(r.out.substr(0, r.out.find('\n')), "radius_mm,a_per_mm2,b_per_mm2");
-  EXPECT_EQ(count_lines(r.out), 12);
-  EXPECT_EQ(r.out.substr(r.out.find('\n') + 1, 2), "0,");
+  const std::string body = r.out.substr(r.out.find('\n') + 1);  // after "# model: better-dipole"
+  EXPECT_EQ(r.out.substr(0, r.out.find('\n')), "# model: better-dipole");
+  EXPECT_EQ(body.substr(0, body.find('\n')), "radius_mm,a_per_mm2,b_per_mm2");
+  EXPECT_EQ(count_lines(body), 12);
+  EXPECT_EQ(body.substr(body.find('\n') + 1, 2), "0,");
+  // The default model refuses r = 0 with the reason.
+  const auto zero = run("profile --sigma-a 0.01 --sigma-s 1 --spacing linear --r-max 5 --samples 11 -f csv");
+  EXPECT_EQ(zero.status, 2);
+  EXPECT_NE(zero.err.find("infinite at r = 0"), std::string::npos) << zero.err;
 }
 
 TEST(CliProfile, VersionAndHelp) {
@@ -153,7 +163,9 @@ TEST(CliProfile, MultipoleSlabGivesReflectanceAndTransmittance) {
   for (const auto& v : ch["validity"]) warned |= v["code"] == "thin_slab" && v["severity"] == "warning";
   EXPECT_TRUE(warned);
   const auto csv = run("profile --sigma-a 0.01 --sigma-s 1 --thickness 3 --samples 4 -f csv");
-  EXPECT_EQ(csv.out.substr(0, csv.out.find('\n')), "radius_mm,c0_per_mm2,c0_transmittance_per_mm2");
+  EXPECT_EQ(csv.out.substr(0, csv.out.find('\n')), "# model: multipole");
+  const std::string body = csv.out.substr(csv.out.find('\n') + 1);
+  EXPECT_EQ(body.substr(0, body.find('\n')), "radius_mm,c0_per_mm2,c0_transmittance_per_mm2");
 }
 
 TEST(CliProfile, LayerStackFromTheFileSharedWithTheReference) {

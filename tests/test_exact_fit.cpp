@@ -9,6 +9,7 @@
 #include "bssrdf/fit/inverse_fits.hpp"
 #include "bssrdf/fit/profile_fit.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/models/exact.hpp"
 #include "bssrdf/profile.hpp"
 

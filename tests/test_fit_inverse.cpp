@@ -7,6 +7,7 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/fit/inverse_fits.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/models/multipole.hpp"
 #include "bssrdf/models/normalized_diffusion.hpp"
 #include "bssrdf/models/quantized_diffusion.hpp"

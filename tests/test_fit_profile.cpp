@@ -8,6 +8,7 @@
 #include "bssrdf/fit/profile_fit.hpp"
 #include "bssrdf/layers.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/montecarlo.hpp"
 #include "bssrdf/profile.hpp"
 
@@ -67,6 +68,7 @@ TEST(FitProfile, NoiseFreeRoundTripsForEveryModel) {
 TEST(FitProfile, SharedEtaAndUnknownScale) {
   const auto data = synthesize("better-dipole", kSkin, 1.4, 0, nullptr, 0.37);
   ProfileFitOptions options;
+  options.model = "better-dipole";  // the model that made the data
   options.eta = 1.3;
   options.fit_eta = true;
   options.fit_scale = true;
@@ -84,6 +86,7 @@ TEST(FitProfile, NoisyRoundTripsLieWithinTheReportedUncertainty) {
     const Truth truth{{0.05}, {1.2}};
     const auto data = synthesize("better-dipole", truth, 1.3, 0.01, &rng);
     ProfileFitOptions options;
+    options.model = "better-dipole";  // the model that made the data
     const auto report = fit_profile(data, options);
     for (const char* p : {"sigma_a", "sigma_s_prime"}) {
       const auto* e = report.find(p, "R");

@@ -1,4 +1,4 @@
-// The image-space error (advise/image_error.hpp): exact pixel values against a closed form, and the
+// The image-space error (image/image_error.hpp): exact pixel values against a closed form, and the
 // properties issue 16 asks for: error -> 0 as a representation converges, a tolerance met at a
 // pixel size is met at coarser ones, a Lambertian surface is exact when scattering is far below a
 // pixel, and the stated Monte Carlo noise predicts the difference between two seeds.
@@ -9,10 +9,11 @@
 #include <numbers>
 
 #include "bssrdf/advise/advise.hpp"
-#include "bssrdf/advise/image_error.hpp"
-#include "bssrdf/advise/reference_profile.hpp"
+#include "bssrdf/image/image_error.hpp"
+#include "bssrdf/image/reference_profile.hpp"
 #include "bssrdf/materials.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_registry.hpp"
 
 using namespace bssrdf;
 

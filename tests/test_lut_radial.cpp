@@ -21,6 +21,7 @@
 #include "bssrdf/io/exr_table.hpp"
 #include "bssrdf/lut/radial_table.hpp"
 #include "bssrdf/materials.hpp"
+#include "bssrdf/model_registry.hpp"
 
 using namespace bssrdf;
 

@@ -16,6 +16,8 @@
 #include "bssrdf/lut/projected_profile.hpp"
 #include "bssrdf/lut/separable_kernel.hpp"
 #include "bssrdf/materials.hpp"
+#include "bssrdf/model_choice.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/models/quantized_diffusion.hpp"
 #include "cli_runner.hpp"
 #include "exr_reader.hpp"
@@ -290,7 +292,8 @@ TEST(CliLutRealtime, FilesCarryValuesAndAttributes) {
   PreintegratedOptions o;
   o.width = 32;
   o.height = 8;
-  const auto t = build_preintegrated_table(material("Skin1"), *make_model("pbd"), o);
+  // The command's default model (the registry's: exact for Skin1).
+  const auto t = build_preintegrated_table(material("Skin1"), *make_model(default_model(material("Skin1")).name), o);
   for (std::size_t i = 0; i < 256; ++i) EXPECT_FLOAT_EQ(p.channels.at("G")[i], static_cast<float>(t.value[1][i]));
 
   r = test_cli::run("lut --material Skin1 --kind separable --taps 11 --range jimenez -q -o " + ker.string());
@@ -347,7 +350,7 @@ TEST(CliLutRealtime, PenumbraExrReadsBack) {
   o.width = 32;
   o.height = 8;
   o.width_max = 10;  // mm
-  const auto t = build_penumbra_table(material("Skin1"), *make_model("pbd"), o);
+  const auto t = build_penumbra_table(material("Skin1"), *make_model(default_model(material("Skin1")).name), o);
   for (std::size_t i = 0; i < 256; ++i) EXPECT_FLOAT_EQ(p.channels.at("R")[i], static_cast<float>(t.value[0][i]));
   // CSV for plots carries both axes: row, column, w (cm), s, then the channels.
   const auto csv = temp("pen.csv");
@@ -355,7 +358,9 @@ TEST(CliLutRealtime, PenumbraExrReadsBack) {
       test_cli::run("lut --material Skin1 --kind penumbra --size 32x8 --width-max 1 --unit cm -q -o " + csv.string())
           .status,
       0);
-  const auto text = test_cli::slurp(csv);
+  const auto file_text = test_cli::slurp(csv);
+  EXPECT_EQ(file_text.substr(0, file_text.find('\n')), "# model: exact");  // which model made it, first
+  const std::string text = file_text.substr(file_text.find('\n') + 1);
   EXPECT_EQ(text.substr(0, text.find('\n')), "row,column,penumbra_width (cm),shadow,R,G,B");
   EXPECT_EQ(test_cli::count_lines(text), 1 + 256);
   EXPECT_NE(text.find("\n7,31,0.9375,0.984375,"), std::string::npos);  // w_7 = 1 cm * 7.5/8, s_31 = 31.5/32

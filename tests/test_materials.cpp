@@ -12,6 +12,8 @@
 #include "bssrdf/io/renderer_export.hpp"
 #include "bssrdf/materials.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_choice.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/models/exact.hpp"
 #include "cli_runner.hpp"
 #include "json_schema_subset.hpp"
@@ -279,7 +281,7 @@ TEST(DerivedQuantities, MatchHandComputedValues) {
   EXPECT_DOUBLE_EQ(r.transport_mfp, 1 / 0.772);
   EXPECT_NEAR(r.diffuse_mfp, 1 / std::sqrt(3 * 0.032 * 0.772), 1e-12);
   EXPECT_EQ(q.physical_model, "exact");  // every channel inside the exact model's domain
-  for (const auto& c : q.channels) EXPECT_TRUE(c.diffusion_valid) << c.name << ": " << c.reason;
+  for (const auto& c : q.channels) EXPECT_TRUE(c.valid()) << c.name << ": " << describe(c.validity.front());
   // Lowfat Milk B (Narasimhan 2006): sigma_s 17.9572, sigma_a 0.0115, g 0.859.
   q = derive_quantities(db.find("Lowfat Milk").medium);
   const auto& b = q.channels[2];
@@ -340,49 +342,60 @@ TEST(DerivedQuantities, BurleyDIsFittedToTheExactProfileInsideItsDomain) {
                   now.name.c_str(), now.burley_d, old.channels[c].burley_d, e_exact, e_pbd);
     }
   }
-  // Spectralon: every channel at alpha' 1 falls back; a mixed material names its fallen channels.
-  EXPECT_EQ(derive_quantities(db.find("Spectralon").medium).physical_model, "pbd");
-  EXPECT_EQ(derive_quantities(db.find("Coke").medium).physical_model, "exact");  // alpha' < 0.001 and 0
+  // Spectralon (alpha' 1) and Coke (alpha' below 0.001, and 0) are inside the exact domain now; every
+  // channel takes the registry's default (default_model), and a medium outside names what it took.
+  EXPECT_EQ(derive_quantities(db.find("Spectralon").medium).physical_model, "exact");
+  EXPECT_EQ(derive_quantities(db.find("Coke").medium).physical_model, "exact");
   for (const auto& m : db.all()) {
     const auto q = derive_quantities(m.medium);
-    int outside = 0;
-    for (std::size_t c = 0; c < m.medium.channels(); ++c) {
-      const auto r = m.medium.reduced(c);
-      const bool inside = exact_domain(bundled_exact_table(), r.albedo_prime, r.g, r.eta).empty();
-      EXPECT_EQ(q.channels[c].physical_model, inside ? "exact" : "pbd") << m.name << " " << q.channels[c].name;
-      outside += !inside;
-    }
-    if (outside > 0 && outside < static_cast<int>(m.medium.channels())) {
-      EXPECT_NE(q.physical_model.find("exact (pbd for "), std::string::npos) << m.name << ": " << q.physical_model;
-    }
+    for (std::size_t c = 0; c < m.medium.channels(); ++c)
+      EXPECT_EQ(q.channels[c].physical_model, default_model(m.medium.reduced(c)).name) << m.name;
   }
+  Medium mixed = db.find("Skin1").medium;
+  mixed.g = {0.0, -0.3, 0.0};  // G outside the exact domain (g < 0)
+  const auto q = derive_quantities(mixed);
+  const std::string other = default_model(mixed.reduced(1)).name;
+  EXPECT_EQ(q.physical_model, "exact (" + other + " for G)");
+  EXPECT_NE(q.channels[1].model_choice.find("g = -0.3"), std::string::npos) << q.channels[1].model_choice;
 }
 
-TEST(DerivedQuantities, MarkWhereDiffusionDoesNotApply) {
+namespace {
+bool has(const ValidityReport& report, const std::string& code) {
+  for (const auto& note : report)
+    if (note.code == code) return true;
+  return false;
+}
+}  // namespace
+
+TEST(DerivedQuantities, ValidityIsTheProfileModelsWithTheObjectSize) {
   const auto db = MaterialDatabase::load(default_materials_dir());
-  // Sprite: alpha' ~ 0.003 and a transport mfp of ~500 mm.
+  // Sprite: alpha' ~ 0.003 (the exact profile is valid there: no diffusion approximation) and a
+  // transport mfp of ~500 mm, which the object size flags.
   auto q = derive_quantities(db.find("Sprite").medium);
   for (const auto& c : q.channels) {
-    EXPECT_FALSE(c.diffusion_valid);
-    EXPECT_NE(c.reason.find("alpha'"), std::string::npos) << c.reason;
-    EXPECT_NE(c.reason.find("exceeds the object size 10 mm"), std::string::npos) << c.reason;
+    EXPECT_TRUE(c.valid()) << c.name;
+    EXPECT_TRUE(has(c.validity, "object_size")) << c.name;
   }
-  // Merlot G and B do not scatter at all: no Burley fit, and the reason says so.
+  // The same medium under a diffusion model carries that model's own verdict, as `profile` prints it.
+  DerivationOptions dipole;
+  dipole.physical_model = "dipole";
+  for (const auto& c : derive_quantities(db.find("Sprite").medium, dipole).channels) EXPECT_FALSE(c.valid()) << c.name;
+  // Merlot G and B do not scatter at all: no Burley fit, and a note says so.
   q = derive_quantities(db.find("Merlot").medium);
   EXPECT_TRUE(std::isnan(q.channels[1].burley_d));
-  EXPECT_NE(q.channels[1].reason.find("no scattering"), std::string::npos);
+  EXPECT_TRUE(has(q.channels[1].validity, "no_scattering"));
   // The object size is the user's: Skin1 R (ell = 1.3 mm) is not diffuse in a 1 mm object.
   DerivationOptions small;
   small.object_size_mm = 1;
   q = derive_quantities(db.find("Skin1").medium, small);
-  EXPECT_FALSE(q.channels[0].diffusion_valid);
-  EXPECT_TRUE(q.channels[2].diffusion_valid);  // ell = 0.67 mm
-  // How many of the database's channels diffusion covers at 10 mm (printed for the README).
-  int valid = 0, total = 0;
+  EXPECT_TRUE(has(q.channels[0].validity, "object_size"));
+  EXPECT_FALSE(has(q.channels[2].validity, "object_size"));  // ell = 0.67 mm
+  // How many of the database's channels the default profile serves without a warning at 10 mm.
+  int clean = 0, total = 0;
   for (const auto& m : db.all())
-    for (const auto& c : derive_quantities(m.medium).channels) valid += c.diffusion_valid, ++total;
-  std::printf("diffusion valid in %d of %d channels (object size 10 mm)\n", valid, total);
-  EXPECT_LT(valid, total);
+    for (const auto& c : derive_quantities(m.medium).channels) clean += worst(c.validity) == Severity::note, ++total;
+  std::printf("no warning in %d of %d channels (object size 10 mm)\n", clean, total);
+  EXPECT_LT(clean, total);
 }
 
 TEST(Materials, JsonExportRoundTripsThroughEveryUnit) {

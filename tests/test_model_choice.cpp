@@ -48,8 +48,8 @@ TEST(ModelChoice, EstimatesAtMeasuredCasesAreTheValidationTable) {
     ASSERT_EQ(estimates->size(), candidates);
     for (const auto& e : *estimates) {
       if (const auto band = model_entry(e.model).reference_accuracy) {  // exact: its own band, no column
-        EXPECT_EQ(e.total_error, band->at(m.albedo_prime, m.g).total);
-        EXPECT_EQ(e.profile_error, band->at(m.albedo_prime, m.g).profile);
+        EXPECT_EQ(e.total_error, band->at(m).total);
+        EXPECT_EQ(e.profile_error, band->at(m).profile);
         continue;
       }
       EXPECT_NEAR(e.total_error, std::abs(row.at(e.model + "_total")), 1e-12) << e.model;
@@ -123,18 +123,20 @@ TEST(ModelChoice, PicksTheCheapestWithinTheAccuracyForEveryChannel) {
     FAIL();
   } catch (const InvalidInput& e) {
     const auto m = skin.reduced(0);
-    EXPECT_NE(std::string(e.what()).find(
-                  ">= " + format_number(model_entry("exact").reference_accuracy->at(m.albedo_prime, m.g).profile)),
+    EXPECT_NE(std::string(e.what()).find(">= " + format_number(model_entry("exact").reference_accuracy->at(m).profile)),
               std::string::npos)
         << e.what();
     EXPECT_NE(std::string(e.what()).find("exact"), std::string::npos) << e.what();
   }
   EXPECT_EQ(choose_model(db.find("Ketchup").medium, 0.1).model, "exact");  // refused before (alpha' 0.07)
+  // Channel B: g 0.994, beyond the last g node, continued: served (refused before).
+  EXPECT_EQ(choose_model(db.find("Strawberry Shampoo").medium, 0.1).model, "exact");
+  // Outside the exact domain and the measured table (g < 0): the channel and a command that works.
   try {
-    choose_model(db.find("Strawberry Shampoo").medium, 0.1);  // channel B: g 0.994
+    choose_model(Medium::single_channel(0.01, 1.0, -0.5, 1.3), 0.1);
     FAIL();
   } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("channel B"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("channel x"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("bssrdf reference"), std::string::npos) << e.what();
   }
   EXPECT_EQ(choose_model(db.find("Coke").medium, 0.1).model, "exact");  // refused before (alpha' < 0.001)
@@ -184,9 +186,10 @@ TEST(ModelChoice, CommandLineAutoSaysWhichModelAndWhy) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("auto: "), std::string::npos) << r.out;
   for (const std::string args :
-       {"profile --material Skin1 --model auto --accuracy 0.01", "profile --material 'Strawberry Shampoo' --model auto",
-        "profile --material Skin1 --accuracy 0.1", "lut --material Skin1 --model auto --accuracy -1 -o x.exr",
-        "models --accuracy 0.1", "profile --material Skin1 --model auto --single-scattering"}) {
+       {"profile --material Skin1 --model auto --accuracy 0.01",
+        "profile --sigma-a 0.01 --sigma-s 1 --g -0.5 --model auto", "profile --material Skin1 --accuracy 0.1",
+        "lut --material Skin1 --model auto --accuracy -1 -o x.exr", "models --accuracy 0.1",
+        "profile --material Skin1 --model auto --single-scattering"}) {
     r = test_cli::run(args);
     EXPECT_EQ(r.status, 2) << args;
     EXPECT_EQ(test_cli::count_lines(r.err), 1) << args << ": " << r.err;

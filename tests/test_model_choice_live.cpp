@@ -83,8 +83,8 @@ TEST(ModelChoiceLive, InsideTheDomainEstimatesAreLiveAndExactIsACandidate) {
       exact_seen = true;
       // alpha' 0.94, g 0.6: inside the region with its own, tighter band.
       const auto& accuracy = *model_entry("exact").reference_accuracy;
-      EXPECT_EQ(e.total_error, accuracy.at(m.albedo_prime, m.g).total);
-      EXPECT_EQ(e.profile_error, accuracy.at(m.albedo_prime, m.g).profile);
+      EXPECT_EQ(e.total_error, accuracy.at(m).total);
+      EXPECT_EQ(e.profile_error, accuracy.at(m).profile);
       EXPECT_LT(e.profile_error, accuracy.profile);
       continue;
     }
@@ -92,23 +92,24 @@ TEST(ModelChoiceLive, InsideTheDomainEstimatesAreLiveAndExactIsACandidate) {
     EXPECT_GT(e.profile_error, 0) << e.model;  // no approximation is the transport solution
   }
   EXPECT_TRUE(exact_seen);
-  // Beyond the region (alpha' 0.98 with g 0.95 > 0.9) exact carries the domain-wide band.
-  const auto white = estimate_model_errors(reduce(0.001, 1.0, 0.95, 1.4));
+  // Beyond every region (alpha' 0.98 with g 0.95: milk-like ends at alpha' 0.998, forward mid at
+  // 0.99, tissue at g 0.9) exact carries the domain-wide band.
+  const auto white = estimate_model_errors(reduce(0.0001, 1.0, 0.95, 1.4));
   ASSERT_TRUE(white);
   for (const auto& e : *white)
     if (e.model == "exact") {
       EXPECT_EQ(e.total_error, model_entry("exact").reference_accuracy->total);
       EXPECT_EQ(e.profile_error, model_entry("exact").reference_accuracy->profile);
     }
-  // Outside the exact domain (alpha' 0.99995) the table's estimates serve, and exact marks itself invalid.
-  const auto outside = estimate_model_errors(reduce(0.00005, 1.0, 0.0, 1.3));
-  ASSERT_TRUE(outside);
-  for (const auto& e : *outside) {
-    EXPECT_EQ(e.source, "table") << e.model;
-    if (e.model == "exact") {
-      EXPECT_NE(e.invalid.find("exact_albedo"), std::string::npos) << e.invalid;
-    }
-  }
+  // alpha' 0.99995 is inside the exact domain now (continued above its last node): every estimate
+  // is live there, and the Monte Carlo table (which it covers) is what a caller may still ask for.
+  const auto near_one = reduce(0.00005, 1.0, 0.0, 1.3);
+  const auto near_live = estimate_model_errors(near_one);
+  ASSERT_TRUE(near_live);
+  for (const auto& e : *near_live) EXPECT_EQ(e.source, "exact") << e.model;
+  const auto table = tabulated_model_errors(near_one);
+  ASSERT_TRUE(table);
+  for (const auto& e : *table) EXPECT_EQ(e.source, "table") << e.model;
 }
 
 // Over the 47 bundled materials: the served set grows with the accuracy, every served choice is
@@ -128,7 +129,7 @@ TEST(ModelChoiceLive, ALooserAccuracyNeverServesFewerMaterials) {
       double exact_band = 0;  // what the exact model is measured within in this material's worst channel
       for (std::size_t c = 0; c < material.medium.channels(); ++c) {
         const auto m = material.medium.reduced(c);
-        const auto band = model_entry("exact").reference_accuracy->at(m.albedo_prime, m.g);
+        const auto band = model_entry("exact").reference_accuracy->at(m);
         exact_band = std::max({exact_band, band.total, band.profile});
       }
       try {
@@ -161,8 +162,9 @@ TEST(ModelChoiceLive, ALooserAccuracyNeverServesFewerMaterials) {
 // the very estimate estimate_model_errors lists, live inside the exact domain and from the table
 // outside it; a name that is no candidate has none.
 TEST(ModelChoiceLive, OneModelsEstimateIsTheSameAsInTheList) {
-  const Reduced<double> inside = reduce(0.05, 2.0, 0.4, 1.33), table_only = reduce(0.0, 1.0, 0.0, 1.3);
-  for (const auto& m : {inside, table_only}) {
+  // alpha' 1 is inside the exact domain now, as every medium the Monte Carlo table covers.
+  const Reduced<double> inside = reduce(0.05, 2.0, 0.4, 1.33), white = reduce(0.0, 1.0, 0.0, 1.3);
+  for (const auto& m : {inside, white}) {
     const auto all = estimate_model_errors(m);
     ASSERT_TRUE(all.has_value());
     for (const auto& e : *all) {
@@ -175,16 +177,17 @@ TEST(ModelChoiceLive, OneModelsEstimateIsTheSameAsInTheList) {
     }
   }
   EXPECT_EQ((*estimate_model_errors(inside))[0].source, "exact");
-  EXPECT_EQ((*estimate_model_errors(table_only))[0].source, "table");
+  EXPECT_EQ((*estimate_model_errors(white))[0].source, "exact");
+  EXPECT_FALSE(estimate_model_errors(reduce(0.05, 2.0, -0.4, 1.33)).has_value());  // g < 0: no estimate
   EXPECT_FALSE(estimate_model_error("no-such-model", inside).has_value());
 }
 
 TEST(ModelChoiceLive, RefusalOutsideTheDomainNamesTheChannelAndACommandThatWorks) {
-  const auto r = test_cli::run("profile --material 'Strawberry Shampoo' --model auto");  // channel B: g 0.994
+  const auto r = test_cli::run("profile --sigma-a 0.01,0.01 --sigma-s 1 --g 0.5,-0.5 --model auto");  // c1: g < 0
   EXPECT_EQ(r.status, 2);
   EXPECT_TRUE(r.out.empty());
   EXPECT_EQ(test_cli::count_lines(r.err), 1) << r.err;
-  EXPECT_NE(r.err.find("channel B"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("channel c1"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("bssrdf reference"), std::string::npos) << r.err;
   const auto served = test_cli::run("profile --material Ketchup --model auto --accuracy 0.1 --samples 8");
   ASSERT_EQ(served.status, 0) << served.err;

@@ -52,7 +52,13 @@ TEST(ModelRegistry, ValidityBandsComeFromTheRegistry) {
       EXPECT_THROW(measured_limits(e.name), std::out_of_range) << e.name;
       continue;
     }
-    EXPECT_EQ(&measured_limits(e.name), &*e.limits) << e.name;
+    // The registry quotes the bands of models/measured_bands.cpp (below it): the same numbers.
+    const auto& bands = measured_limits(e.name);
+    ASSERT_EQ(bands.isotropic_bands.size(), e.limits->isotropic_bands.size()) << e.name;
+    for (std::size_t i = 0; i < bands.isotropic_bands.size(); ++i) {
+      EXPECT_EQ(bands.isotropic_bands[i].worst_error, e.limits->isotropic_bands[i].worst_error) << e.name;
+      EXPECT_EQ(bands.forward_bands[i].worst_error, e.limits->forward_bands[i].worst_error) << e.name;
+    }
   }
 }
 

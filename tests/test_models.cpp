@@ -8,6 +8,7 @@
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/models/better_dipole.hpp"
 #include "bssrdf/models/dipole.hpp"
 #include "bssrdf/quadrature.hpp"

@@ -8,6 +8,7 @@
 
 #include "bssrdf/layers.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/montecarlo.hpp"
 #include "bssrdf/reference_comparison.hpp"
 #include "bssrdf/single_scattering.hpp"

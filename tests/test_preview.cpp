@@ -10,6 +10,7 @@
 #include "bssrdf/lut/material_preview.hpp"
 #include "bssrdf/lut/projected_profile.hpp"
 #include "bssrdf/materials.hpp"
+#include "bssrdf/model_registry.hpp"
 
 using namespace bssrdf;
 

@@ -5,6 +5,7 @@
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/profile.hpp"
 
 using namespace bssrdf;

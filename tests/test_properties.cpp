@@ -14,6 +14,7 @@
 #include "bssrdf/materials.hpp"
 #include "bssrdf/medium.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/montecarlo.hpp"
 #include "bssrdf/profile_report.hpp"
 
@@ -137,7 +138,9 @@ TEST(FitProperties, OneSigmaCoversTheTruthAtItsStatedRate) {
   int within1 = 0, within2 = 0;
   for (int t = 0; t < trials; ++t) {
     const auto data = measure("better-dipole", 0.05, 1.2, 0.03, rng);
-    const auto report = fit_profile(data, {});
+    ProfileFitOptions options;
+    options.model = "better-dipole";  // the model that made the data
+    const auto report = fit_profile(data, options);
     const auto* a = report.find("sigma_a", "R");
     ASSERT_TRUE(std::isfinite(a->standard_error) && a->standard_error > 0);
     const double z = std::abs(a->value - 0.05) / a->standard_error;

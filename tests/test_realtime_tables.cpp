@@ -1,4 +1,4 @@
-// The real-time tables sized by the image-space error (advise/realtime_tables.hpp): a screen-space
+// The real-time tables sized by the image-space error (image/realtime_tables.hpp): a screen-space
 // tap kernel renders as a direct sum says, kernels and tables converge to the model they represent
 // as they grow, and a tighter tolerance never buys a smaller table.
 #include <gtest/gtest.h>
@@ -12,11 +12,12 @@
 
 #include "bssrdf/advise/advise.hpp"
 #include "bssrdf/advise/advise_files.hpp"
-#include "bssrdf/advise/image_error.hpp"
-#include "bssrdf/advise/realtime_tables.hpp"
-#include "bssrdf/advise/reference_profile.hpp"
+#include "bssrdf/image/image_error.hpp"
+#include "bssrdf/image/realtime_tables.hpp"
+#include "bssrdf/image/reference_profile.hpp"
 #include "bssrdf/materials.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_registry.hpp"
 
 using namespace bssrdf;
 

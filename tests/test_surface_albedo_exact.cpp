@@ -6,6 +6,7 @@
 #include "bssrdf/derived_quantities.hpp"
 #include "bssrdf/materials.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/models/exact.hpp"
 
 using namespace bssrdf;

@@ -12,6 +12,8 @@
 #include "bssrdf/lut/table_kinds.hpp"
 #include "bssrdf/materials.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_choice.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/models/exact.hpp"
 #include "cli_runner.hpp"
 
@@ -27,7 +29,8 @@ const Material& skin1() {
 
 // Skin1 under a model, in mm: the context a profile kind tabulates.
 struct Skin1 {
-  explicit Skin1(const std::string& model_name = "pbd") : model(make_model(model_name)) {}
+  // By default the registry's default model: what `bssrdf lut` takes without --model.
+  explicit Skin1(const std::string& model_name = default_model(skin1().medium).name) : model(make_model(model_name)) {}
   std::unique_ptr<Model> model;
   TableContext context() const { return {skin1(), &skin1().medium, model.get(), LengthUnit::millimetre}; }
 };
@@ -97,6 +100,7 @@ TEST(TableKinds, AlbedoRadiusFamilyLayout) {
   options.layout = AlbedoRadiusLayoutRule::family;
   options.albedos = 12;
   options.radii = 10;
+  options.table.shape = RowShape::exact;  // the command's default at this g and eta (the registry's)
   const auto built = tabulate_albedo_radius(options);
   EXPECT_EQ(to_json(built.table),
             written_by_cli("--kind albedo-radius --layout family --size 12x10 --g 0.5 --eta 1.4"));

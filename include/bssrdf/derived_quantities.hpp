@@ -1,24 +1,26 @@
 // What a material's coefficients imply, per channel: albedos, the four distance conventions
 // renderers use (mfp 1/sigma_t, transport mfp 1/sigma_t', dmfp 1/sigma_tr, Burley's d), the surface albedo and Burley's
-// d fitted to a physical profile (the exact model's inside its domain), and whether diffusion applies at all. Computed
-// from the coefficients on demand, never stored in material files, so they cannot disagree with them.
+// d fitted to a physical profile (the registry's default model: exact inside its domain), and that profile's validity
+// (the same verdict `bssrdf profile` prints). Computed from the coefficients on demand, never stored in material
+// files, so they cannot disagree with them.
 //
-//   const auto q = bssrdf::derive_quantities(material.medium);      // exact (pbd outside), object size 10 mm
-//   for (const auto& c : q.channels) if (!c.diffusion_valid) std::cout << c.reason;
+//   const auto q = bssrdf::derive_quantities(material.medium);      // the default model, object size 10 mm
+//   for (const auto& c : q.channels) for (const auto& note : c.validity) std::cout << describe(note);
 //
 //   mfp            1/sigma_t     (unreduced; Blender's Random Walk radius, Mitsuba's sigma_t)
 //   transport_mfp  ell = 1/sigma_t'
 //   diffuse_mfp    ell_d = 1/sigma_tr, sigma_tr = sqrt(3 sigma_a sigma_t') (classical)
 //   burley_d       d of R(r) = A (e^{-r/d} + e^{-r/3d}) / (8 pi d r), A = the surface albedo, d by
 //                  least squares against the physical model's R(r) (fit_burley), with its relative L2 error;
-//                  the physical model is the exact one (the radiative-transfer solution, models/exact.hpp)
-//                  for every channel inside its domain and `fallback_model` for the others
+//                  the physical model is the registry's default for the channel (default_model: the exact
+//                  radiative-transfer solution inside its domain, models/exact.hpp) unless one is given
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "bssrdf/medium.hpp"
+#include "bssrdf/validity.hpp"
 
 namespace bssrdf {
 
@@ -38,22 +40,22 @@ struct DerivedChannel {
   // NaN when the channel does not scatter (sigma_s = 0).
   double burley_d = 0, burley_albedo = 0, burley_error = 0;
   std::string physical_model;  // the profile this channel's Burley d is fitted to
-  bool diffusion_valid = true;
-  std::string reason;  // why diffusion does not apply (empty when it does)
+  std::string model_choice;    // why physical_model is not `exact` when it is the default (default_model); else empty
+  // The physical model's own validity (Model::validity, what `bssrdf profile` reports for it), then
+  // the object-size warning, the surface-albedo note and "no scattering" (a note: R = 0) where they apply.
+  ValidityReport validity;
+  bool valid() const { return worst(validity) != Severity::invalid; }
 };
 
 struct DerivationOptions {
-  // The profile Burley's d is fitted to; "exact" takes `fallback_model` for channels outside its
-  // domain (alpha' 0.001-0.9999, g 0-0.99, eta 1-1.6); with "exact", `fallback_model`'s validity
-  // decides diffusion_valid (whether diffusion applies is a diffusion model's verdict).
-  std::string physical_model = "exact";
-  std::string fallback_model = "pbd";
-  double object_size_mm = 10;  // diffusion needs the transport mfp below this
+  // The profile Burley's d is fitted to; empty: each channel's default (default_model).
+  std::string physical_model;
+  double object_size_mm = 10;  // a warning where the transport mfp exceeds it: light leaves before it becomes diffuse
   std::size_t radii = 100;     // samples of the physical profile for the fit
 };
 
 struct DerivedQuantities {
-  // The model every channel used ("exact", "pbd"), or "exact (pbd for R, G)" when some fell back.
+  // The model every channel used ("exact"), or "exact (pbd for R, G)" when they differ.
   std::string physical_model;
   double object_size_mm = 0;
   std::vector<DerivedChannel> channels;

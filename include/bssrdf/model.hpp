@@ -1,8 +1,9 @@
-// The interface every radial-profile model implements: the classical and better dipoles here, and
-// later multipole, photon beam diffusion, quantized diffusion, normalized diffusion and tabulated
-// Monte Carlo. A model evaluates one channel at a time from its reduced coefficients.
+// The interface every radial-profile model implements (models/*: the dipoles, multipole, photon beam
+// diffusion, quantized and normalized diffusion, the exact tabulated transport solution). A model
+// evaluates one channel at a time from its reduced coefficients. Models are made by name through the
+// registry above this interface (model_registry.hpp: make_model), which nothing here includes.
 //
-//   auto model = bssrdf::make_model("better-dipole");
+//   auto model = bssrdf::make_model("better-dipole");     // model_registry.hpp
 //   auto m = medium.reduced(0);
 //   double R = model->reflectance(m, 0.5);          // per unit entered flux, 1/mm^2
 //   double total = model->total_reflectance(m);     // int 2 pi r R(r) dr
@@ -64,9 +65,5 @@ class Model {
 // `start` * 2^60.
 double radius_where(const std::function<double(double)>& cumulative, double target, double start,
                     double precision = 1e-12);
-
-// The models by command-line name. Throws InvalidInput listing the known names.
-std::unique_ptr<Model> make_model(std::string_view name);
-std::vector<std::string> model_names();
 
 }  // namespace bssrdf

@@ -83,4 +83,20 @@ struct ModelChoice {
 // its error when none meets `accuracy`.
 ModelChoice choose_model(const Medium& medium, double accuracy);
 
+// The default profile model, decided here and nowhere else (every command without --model takes
+// it): `exact`, the radiative-transfer solution, wherever every channel is inside its domain;
+// otherwise the most accurate valid model measured there, by its worst channel: live against
+// `exact` for the channels inside, from the Monte Carlo table where it has the channel, else
+// from the model's total-error bands against adding-doubling (model registry).
+struct DefaultModel {
+  std::string name;
+  std::string reason;  // why it is not `exact`: the channel and parameter outside, the error used; empty for exact
+};
+DefaultModel default_model(const Medium& medium);
+DefaultModel default_model(const Reduced<double>& m);
+// For a fit, whose albedo is what it finds: `exact` when every g and every eta in [eta_min,
+// eta_max] are inside its domain (it spans every albedo); otherwise default_model() of the medium
+// with those g at alpha' 0.9 and eta_max, which the reason states.
+DefaultModel default_model_over_albedos(const std::vector<double>& g, double eta_min, double eta_max);
+
 }  // namespace bssrdf

@@ -63,20 +63,25 @@ struct ModelEntry {
     // Anywhere in its domain: |relative total error| and relative L2 of r R(r) (the worse of near
     // and far), beyond the validation runs' own noise, at the worst validation point.
     double total = 0, profile = 0;
-    // Tighter bands measured on the validation points inside part of the domain (inclusive ranges).
+    // Bands measured on the validation points inside a part of the domain (inclusive ranges), each
+    // the worst of its points; the first region holding a medium gives its band.
     struct Region {
-      double albedo_prime_min = 0, albedo_prime_max = 1, g_max = 1;
+      std::string name;
+      double albedo_prime_min = 0, albedo_prime_max = 1, g_min = 0, g_max = 1, eta_min = 0, eta_max = 10;
       double total = 0, profile = 0;
+      bool holds(const Reduced<double>& m) const {
+        return m.albedo_prime >= albedo_prime_min && m.albedo_prime <= albedo_prime_max && m.g >= g_min &&
+               m.g <= g_max && m.eta >= eta_min && m.eta <= eta_max;
+      }
     };
     std::vector<Region> regions;
     struct Band {
       double total = 0, profile = 0;
     };
-    // The band at (alpha', g): the first region holding it, else the domain-wide one.
-    Band at(double albedo_prime, double g) const {
+    // The band at m: the first region holding it, else the domain-wide one.
+    Band at(const Reduced<double>& m) const {
       for (const Region& r : regions)
-        if (albedo_prime >= r.albedo_prime_min && albedo_prime <= r.albedo_prime_max && g <= r.g_max)
-          return {r.total, r.profile};
+        if (r.holds(m)) return {r.total, r.profile};
       return {total, profile};
     }
   };
@@ -92,6 +97,11 @@ struct ModelEntry {
   // The same model with a given surface albedo A (profile --surface-albedo); null if it takes none.
   std::function<std::unique_ptr<Model>(double)> with_surface_albedo;
 };
+
+// The models by command-line name. Throws InvalidInput listing the known names.
+std::unique_ptr<Model> make_model(std::string_view name);
+// The listed names, in the registry's order.
+std::vector<std::string> model_names();
 
 // The table, in the order `bssrdf models` lists it.
 const std::vector<ModelEntry>& model_registry();

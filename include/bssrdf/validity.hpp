@@ -26,4 +26,7 @@ std::string_view to_string(Severity severity);
 // The most severe entry, or Severity::note for an empty report.
 Severity worst(const ValidityReport& report);
 
+// "warning [code] message": how every command prints an entry (profile, materials show, stderr).
+std::string describe(const ValidityNote& note);
+
 }  // namespace bssrdf

@@ -7,8 +7,8 @@
 #include <numbers>
 #include <sstream>
 
-#include "bssrdf/advise/realtime_tables.hpp"
 #include "bssrdf/error.hpp"
+#include "bssrdf/image/realtime_tables.hpp"
 #include "bssrdf/model.hpp"
 #include "bssrdf/model_choice.hpp"
 #include "bssrdf/model_registry.hpp"
@@ -61,45 +61,6 @@ ReferenceTable tabulate_reference(const Medium& medium, const ReferenceProfiles&
 }
 
 }  // namespace
-
-RadialTableNodes radial_table_nodes(const std::function<double(double)>& reflectance, const Reduced<double>& m,
-                                    std::size_t n, double lo_ell, double hi_ell) {
-  if (n < 2) throw InvalidInput("radial table radii", std::to_string(n), ">= 2");
-  const double lo = lo_ell * m.ell;
-  // By default as far as the reference's annuli reach (profile_extent: the light left out is invisible).
-  const double hi = hi_ell > 0 ? hi_ell * m.ell : profile_extent(m);
-  RadialTableNodes nodes;
-  for (std::size_t j = 0; j < n; ++j) {
-    nodes.radius.push_back(lo * std::pow(hi / lo, static_cast<double>(j) / static_cast<double>(n - 1)));
-    nodes.value.push_back(reflectance(nodes.radius.back()));
-  }
-  return nodes;
-}
-
-RadialTableNodes radial_table_nodes(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell,
-                                    double hi_ell) {
-  return radial_table_nodes([&](double r) { return model.reflectance(m, r); }, m, n, lo_ell, hi_ell);
-}
-
-std::function<double(double)> radial_table(const RadialTableNodes& nodes) {
-  const std::size_t n = nodes.radius.size();
-  const double lo = nodes.radius.front(), hi = nodes.radius.back(),
-               step = std::log(hi / lo) / static_cast<double>(n - 1);
-  std::vector<double> log_R;
-  for (double R : nodes.value) log_R.push_back(std::log(std::max(R, 1e-300)));
-  return [lo, hi, step, log_R](double r) {
-    if (r > hi) return 0.0;
-    const double u = std::log(std::max(r, lo) / lo) / step;
-    const auto j = std::min(static_cast<std::size_t>(u), log_R.size() - 2);
-    const double t = u - static_cast<double>(j);
-    return std::exp((1 - t) * log_R[j] + t * log_R[j + 1]);
-  };
-}
-
-std::function<double(double)> radial_table(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell,
-                                           double hi_ell) {
-  return radial_table(radial_table_nodes(model, m, n, lo_ell, hi_ell));
-}
 
 AdviseTarget parse_advise_target(const std::string& text) {
   if (text == "realtime") return AdviseTarget::realtime;

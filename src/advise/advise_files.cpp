@@ -1,10 +1,11 @@
 #include "bssrdf/advise/advise_files.hpp"
+#include "bssrdf/model_registry.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "bssrdf/advise/realtime_tables.hpp"
 #include "bssrdf/error.hpp"
+#include "bssrdf/image/realtime_tables.hpp"
 #include "bssrdf/io/atomic_file.hpp"
 #include "bssrdf/layers.hpp"
 #include "bssrdf/lut/gaussian_mixture_table.hpp"

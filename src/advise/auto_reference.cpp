@@ -67,7 +67,7 @@ ReferenceProfiles AutoReference::profiles(const Medium& medium) const {
     std::string label = source.name;
     if (source.name == "exact") {
       const Model* exact = models_.at("exact").get();
-      const auto band = model_entry("exact").reference_accuracy->at(m.albedo_prime, m.g);
+      const auto band = model_entry("exact").reference_accuracy->at(m);
       source.total_band = band.total;
       source.profile_band = band.profile;
       source.reflectance = [exact, m](double r) { return exact->reflectance(m, r); };

@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "../io/canvas.hpp"
-#include "bssrdf/advise/image_error.hpp"
 #include "bssrdf/error.hpp"
+#include "bssrdf/image/image_error.hpp"
 #include "bssrdf/model_choice.hpp"
 #include "bssrdf/model_registry.hpp"
 

@@ -108,6 +108,18 @@ Chart speed_accuracy_chart(const std::optional<MediumOptions::Resolved>& medium)
       l2.points.push_back({m.model, m.cost_ns, percent(median(m.profile_error)), percent(*l2_lo), percent(*l2_hi)});
       total.points.push_back({"", m.cost_ns, percent(median(m.total_error)), 0, 0});
     }
+    // The reference models (exact) carry their own band against fresh Monte Carlo instead of a column.
+    for (const auto& e : model_registry()) {
+      if (!e.reference_accuracy || !e.listed) continue;
+      const auto& band = *e.reference_accuracy;
+      double lo = band.profile;
+      for (const auto& region : band.regions) lo = std::min(lo, region.profile);
+      l2.points.push_back({e.name, e.cost_ns, percent(band.profile), percent(lo), percent(band.profile)});
+      total.points.push_back({"", e.cost_ns, percent(band.total), 0, 0});
+      chart.notes.push_back(e.name +
+                            ": its worst error against fresh Monte Carlo over its validation points (bar "
+                            "down to its best region's band), not a median");
+    }
   }
   chart.series = {l2, total};
   return chart;
@@ -204,8 +216,10 @@ Action register_models(CLI::App& app) {
         domain = "against fresh Monte Carlo: total within " + pc(accuracy->total) + ", r R(r) within " +
                  pc(accuracy->profile) + " (relative L2 beyond the runs' noise) in its domain";
         for (const auto& r : accuracy->regions)
-          domain += "; " + pc(r.total) + " and " + pc(r.profile) + " for " + format_number(r.albedo_prime_min) +
-                    " <= alpha' <= " + format_number(r.albedo_prime_max) + ", g <= " + format_number(r.g_max);
+          domain += "; " + pc(r.total) + " and " + pc(r.profile) + " in " + r.name + " (" +
+                    format_number(r.albedo_prime_min) + " <= alpha' <= " + format_number(r.albedo_prime_max) + ", " +
+                    format_number(r.g_min) + " <= g <= " + format_number(r.g_max) + ", " + format_number(r.eta_min) +
+                    " <= eta <= " + format_number(r.eta_max) + ")";
       }
       if (*json) {
         list.push_back({{"name", name},

@@ -252,6 +252,18 @@ void emit(const OutputOptions& options, const std::function<std::string()>& json
   }
 }
 
+void warn_validity(const std::string& model, const std::string& channel, const ValidityReport& report) {
+  std::string line;
+  for (const auto& note : report)
+    if (note.severity != Severity::note) line += (line.empty() ? "" : "; ") + describe(note);
+  if (!line.empty()) std::cerr << "bssrdf: validity: channel " << channel << ", " << model << ": " << line << '\n';
+}
+
+void warn_validity(const Model& model, const Medium& medium) {
+  for (std::size_t c = 0; c < medium.channels(); ++c)
+    warn_validity(model.name(), medium.channel_names[c], model.validity(medium.reduced(c)));
+}
+
 std::function<void(std::uint64_t, std::uint64_t)> progress_bar(const std::string& label) {
   if (!::isatty(STDERR_FILENO)) return nullptr;
   auto last = std::make_shared<int>(-1);
@@ -277,7 +289,9 @@ double parse_accuracy(const std::string& text) {
 ChosenModel resolve_model(const std::string& name, const std::string& accuracy, const Medium& medium) {
   if (name != "auto") {
     if (!accuracy.empty()) throw InvalidInput("--accuracy: only with --model auto (it chooses the model to meet it)");
-    return {name, ""};
+    if (!name.empty()) return {name, ""};
+    const auto chosen = default_model(medium);
+    return {chosen.name, chosen.reason.empty() ? "" : "default: " + chosen.reason};
   }
   const double a = parse_accuracy(accuracy);
   const auto choice = choose_model(medium, a);

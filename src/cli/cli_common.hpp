@@ -15,7 +15,9 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/materials.hpp"
 #include "bssrdf/medium.hpp"
+#include "bssrdf/model.hpp"
 #include "bssrdf/units.hpp"
+#include "bssrdf/validity.hpp"
 
 namespace bssrdf {
 struct SlabThicknessRange;
@@ -74,10 +76,12 @@ struct MediumOptions {
 };
 
 // --model auto: the cheapest model measured within `accuracy` of the Monte Carlo reference for this
-// medium (model_choice.hpp), with a line for people saying why; any other name is returned as given.
+// medium (model_choice.hpp), with a line for people saying why; no --model (an empty name): the
+// registry's default (default_model), with its reason when it is not `exact`; any other name is
+// returned as given.
 struct ChosenModel {
   std::string name;
-  std::string note;  // empty unless chosen
+  std::string note;  // why this model: --model auto's choice, or why the default is not exact; else empty
 };
 ChosenModel resolve_model(const std::string& name, const std::string& accuracy, const Medium& medium);
 // --accuracy: a relative error, 0 < value < 10; empty gives the default 0.1.
@@ -124,6 +128,12 @@ void emit(const OutputOptions& options, const std::string& file_content, const s
 // table, which is also what stdout shows with -o.
 void emit(const OutputOptions& options, const std::function<std::string()>& json,
           const std::function<std::string()>& csv, const std::string& table);
+
+// Validity is never hidden: each channel whose report has a warning or an invalid entry gets one
+// line on stderr ("bssrdf: validity: channel G, better-dipole: invalid [code] message; ..."),
+// whatever the output format and -q (which silences only the table).
+void warn_validity(const std::string& model, const std::string& channel, const ValidityReport& report);
+void warn_validity(const Model& model, const Medium& medium);
 
 // A one-line progress bar on stderr, only when stderr is a terminal (nullptr otherwise).
 std::function<void(std::uint64_t done, std::uint64_t total)> progress_bar(const std::string& label);

@@ -9,6 +9,7 @@
 #include "bssrdf/fit/rxt_fit.hpp"
 #include "bssrdf/io/profile_csv.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/profile_report.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -46,14 +47,16 @@ void emit_report(const OutputOptions& output, const FitReport& report) {
 // A profile to fit for gaussians/burley: a CSV file, or a model's R(r) for a medium.
 struct ProfileSource {
   MediumOptions medium;
-  std::string data, model = "better-dipole";
+  std::string data, model;
   int samples = 128;
 
   void add_to(CLI::App& app) {
     auto* d = app.add_option("--data", data,
                              "Profile CSV (radius, one column per channel), e.g. from 'bssrdf profile -f csv'");
     medium.add_to(app);
-    app.add_option("--model", model, "Model whose profile is fitted when no --data is given [better-dipole]");
+    app.add_option(
+        "--model", model,
+        "Model whose profile is fitted when no --data is given [the registry's default: exact inside its domain]");
     add_count_option(app, "--samples", samples, 8, 100000, "Radii sampled from the model [128]");
     d->excludes(app.get_option("--material"))->excludes(app.get_option("--sigma-a"));
   }
@@ -76,13 +79,15 @@ struct ProfileSource {
     }
     const auto resolved = medium.resolve();
     unit = resolved.unit;
-    const auto m = make_model(model);
+    const auto chosen = resolve_model(model, "", resolved.medium);
+    const auto m = make_model(chosen.name);
     if (samples < 8 || samples > 100000) throw InvalidInput("--samples", std::to_string(samples), "8 to 100000");
     const auto report =
         compute_profile_report(resolved.medium, *m, default_radii_mm(resolved.medium, *m, samples), unit);
     for (const auto& ch : report.channels) out.push_back({ch.name, ch.profile});
-    return {out,
-            model + " profile of " + (resolved.material ? resolved.material->name : std::string("the given medium"))};
+    return {out, chosen.name + " profile of " +
+                     (resolved.material ? resolved.material->name : std::string("the given medium")) +
+                     (chosen.note.empty() ? "" : " (" + chosen.note + ")")};
   }
 };
 
@@ -94,7 +99,7 @@ Action register_fit(CLI::App& app) {
 
   // fit profile
   struct ProfileOptions {
-    std::string file, model = "better-dipole", eta = "1.3", g, loss = "none", unit;
+    std::string file, model, eta = "1.3", g, loss = "none", unit;
     bool fit_eta = false, fit_scale = false;
     double loss_scale = 1;
     OutputOptions output;
@@ -104,7 +109,9 @@ Action register_fit(CLI::App& app) {
   profile
       ->add_option("file", po->file, "Profile CSV: radius, one column per channel, optional <channel>_stderr columns")
       ->required();
-  profile->add_option("--model", po->model, "Forward model (any of 'bssrdf models', NAME+ss too) [better-dipole]");
+  profile->add_option(
+      "--model", po->model,
+      "Forward model (any of 'bssrdf models', NAME+ss too) [the registry's default: exact inside its domain]");
   profile->add_option("--eta", po->eta, "Relative index; the start value with --fit-eta [1.3]");
   profile->add_flag("--fit-eta", po->fit_eta, "Fit one eta shared by all channels (within [1, 2])");
   profile->add_flag("--fit-scale", po->fit_scale, "Fit an unknown overall scale (uncalibrated camera)");
@@ -117,7 +124,7 @@ Action register_fit(CLI::App& app) {
 
   // fit albedo
   struct AlbedoOptions {
-    std::string albedo, distance, convention = "mfp", unit = "mm", model = "better-dipole", eta = "1.3", g, channels;
+    std::string albedo, distance, convention = "mfp", unit = "mm", model, eta = "1.3", g, channels;
     OutputOptions output;
   };
   auto ao = std::make_shared<AlbedoOptions>();
@@ -130,7 +137,8 @@ Action register_fit(CLI::App& app) {
                    "mfp (1/sigma_t), transport-mfp (1/sigma_t') or dmfp (1/sigma_tr) [mfp]")
       ->check(CLI::IsMember({"mfp", "transport-mfp", "dmfp"}));
   albedo->add_option("--unit", ao->unit, "Length unit: um, mm, cm, m [mm]");
-  albedo->add_option("--model", ao->model, "Model whose total is inverted [better-dipole]");
+  albedo->add_option("--model", ao->model,
+                     "Model whose total is inverted [the registry's default: exact inside its domain]");
   albedo->add_option("--eta", ao->eta, "Relative index [1.3]");
   albedo->add_option("--g", ao->g, "Anisotropy per channel [0]");
   albedo->add_option("--channels", ao->channels, "Channel names [R,G,B for three]");

@@ -137,9 +137,11 @@ Action register_lut(CLI::App& app) {
   sub->add_option("--size", o->size,
                   "albedo-radius with --layout family: ALBEDOSxRADII, e.g. 64x48; preintegrated: N.LxCURVATURES; "
                   "penumbra: SHADOWSxWIDTHS [256x256]");
-  auto* model_option = sub->add_option("--model", o->model,
-                                       "Profile model (see 'bssrdf models'), or auto: the cheapest measured within "
-                                       "--accuracy of Monte Carlo here [pbd]");
+  auto* model_option =
+      sub->add_option("--model", o->model,
+                      "Profile model (see 'bssrdf models'), or auto: the cheapest measured within "
+                      "--accuracy of Monte Carlo here [the registry's default: exact inside its domain, else "
+                      "the most accurate model measured there]");
   sub->add_option("--accuracy", o->accuracy,
                   "With --model auto: relative error allowed in the total and in R(r) (L2) [0.1]");
   sub->add_option("--tolerance", o->tolerance,

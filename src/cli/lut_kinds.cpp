@@ -8,6 +8,8 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/io/layers_json.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_choice.hpp"
+#include "bssrdf/model_registry.hpp"
 
 namespace bssrdf::cli {
 namespace {
@@ -19,7 +21,9 @@ BuiltTable with_model(const LutOptions& o, Tabulate&& tabulate) {
   const auto resolved = o.medium.resolve();
   const auto chosen = resolve_model(o.model, o.accuracy, resolved.medium);
   const auto model = make_model(chosen.name);
-  BuiltTable built = tabulate(resolved, TableContext{resolved.material, &resolved.medium, model.get(), resolved.unit});
+  warn_validity(*model, resolved.medium);
+  BuiltTable built =
+      tabulate(resolved, TableContext{resolved.material, &resolved.medium, model.get(), resolved.unit, chosen.note});
   if (!chosen.note.empty()) built.summary = chosen.note + "\n" + built.summary;
   return built;
 }
@@ -74,10 +78,20 @@ BuiltTable build_albedo_radius(const LutOptions& o) {
     if (!o.medium.g.empty()) options.g = parse_number(o.medium.g, "--g");
     if (!o.medium.eta.empty()) options.eta = parse_number(o.medium.eta, "--eta");
   }
-  if (o.model != "pbd" && o.model != "exact")
+  if (!o.accuracy.empty()) throw InvalidInput("--accuracy: not for --kind albedo-radius (its rows span every albedo)");
+  std::string note;  // why the rows are not the exact model's, when they are not by default
+  if (o.model.empty()) {
+    const auto chosen = default_model_over_albedos({options.g}, options.eta, options.eta);
+    if (chosen.name == "exact")
+      options.table.shape = RowShape::exact;
+    else
+      note = "default: " + chosen.reason + "; albedo-radius rows take the exact model or the library's default";
+  } else if (o.model == "exact") {
+    options.table.shape = RowShape::exact;
+  } else if (o.model != "pbd") {
     throw InvalidInput("--model", "'" + o.model + "'",
                        "pbd (photon beam diffusion, as pbrt) or exact for --kind albedo-radius");
-  if (o.model == "exact") options.table.shape = RowShape::exact;
+  }
   if (!o.tolerance.empty()) options.table.tolerance = positive_fraction(o.tolerance, "--tolerance");
   options.table.threads = o.threads;
   if (o.layout == "pbrt") {
@@ -94,7 +108,9 @@ BuiltTable build_albedo_radius(const LutOptions& o) {
     throw InvalidInput("--layout", "'" + o.layout + "'",
                        "pbrt, family (with --size AxR) or adaptive (with --table-tolerance)");
   }
-  return tabulate_albedo_radius(options);
+  BuiltTable built = tabulate_albedo_radius(options);
+  if (!note.empty()) built.summary = note + "\n" + built.summary;
+  return built;
 }
 
 BuiltTable build_transmission(const LutOptions& o) {

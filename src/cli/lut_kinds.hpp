@@ -18,7 +18,7 @@ namespace bssrdf::cli {
 // What the command line gave; empty strings and zero counts mean "the library's default".
 struct LutOptions {
   MediumOptions medium;
-  std::string kind = "radial", model = "pbd", accuracy, tolerance, energy, interpolation;
+  std::string kind = "radial", model, accuracy, tolerance, energy, interpolation;
   std::string output, format, output_dir, layout = "pbrt", size, table_tolerance;
   bool half = false, all = false, quiet = false;
   unsigned threads = 1;

@@ -8,6 +8,7 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/lut/material_preview.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "lut_kinds.hpp"
 
 namespace bssrdf::cli {
@@ -67,8 +68,10 @@ std::optional<ImageErrorCheck> image_check(const LutOptions& o, LengthUnit unit)
 RenderedPreview render_preview(const LutOptions& o, const MediumOptions::Resolved& resolved) {
   if (std::filesystem::path(o.preview).extension() != ".png")
     throw InvalidInput("--preview", "'" + o.preview + "'", "a file ending in .png");
-  const bool own_model = o.kind == "transmission" || o.kind == "albedo-radius" || !o.model_given;
-  const auto model = make_model(own_model ? "pbd" : resolve_model(o.model, o.accuracy, resolved.medium).name);
+  // Transmission tables name no profile model: the preview then shows the registry's default.
+  const bool own_model = o.kind == "transmission" || !o.model_given;
+  const auto model =
+      make_model(resolve_model(own_model ? "" : o.model, own_model ? "" : o.accuracy, resolved.medium).name);
   PreviewOptions options;
   options.unit = resolved.unit;
   options.label = (resolved.material ? resolved.material->name : std::string("custom medium")) + ", " + model->name();

@@ -31,6 +31,13 @@ json length(double mm, LengthUnit unit) {
   return std::isfinite(v) ? json(v) : json(nullptr);
 }
 json value(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+json validity_json(const ValidityReport& report) {  // as `bssrdf profile -f json` writes it
+  json out = json::array();
+  for (const auto& note : report)
+    out.push_back(
+        {{"severity", std::string(to_string(note.severity))}, {"code", note.code}, {"message", note.message}});
+  return out;
+}
 
 json show_json(const Material& m, const DerivedQuantities& q, LengthUnit unit) {
   const std::string u(symbol(unit)), per = "1/" + u;
@@ -55,7 +62,7 @@ json show_json(const Material& m, const DerivedQuantities& q, LengthUnit unit) {
         {"surface_albedo",
          "total diffuse reflectance per entered flux: the exact model's inside its domain; outside it the "
          "channel's physical model's, or where that exceeds 1 (the model creates energy) the exact total by "
-         "adding-doubling, and the channel's reason says so"},
+         "adding-doubling, and the channel's validity says so (code surface_albedo)"},
         {"coefficients", per}}},
       {"notes", m.notes}};
   doc["channels"] = json::array();
@@ -76,9 +83,10 @@ json show_json(const Material& m, const DerivedQuantities& q, LengthUnit unit) {
                                {"burley_albedo", value(c.burley_albedo)},
                                {"burley_fit_error", value(c.burley_error)},
                                {"physical_model", c.physical_model},
+                               {"model_choice", c.model_choice},
                                {"surface_albedo", c.surface_albedo},
-                               {"diffusion_valid", c.diffusion_valid},
-                               {"reason", c.reason}});
+                               {"valid", c.valid()},
+                               {"validity", validity_json(c.validity)}});
   }
   return doc;
 }
@@ -120,9 +128,13 @@ std::string show_table(const Material& m, const DerivedQuantities& q, LengthUnit
   row("surface albedo", [](const DerivedChannel& c) { return c.surface_albedo; });
   out << "physical profile: " << q.physical_model << "; object size " << from_mm(q.object_size_mm, unit) << " " << u
       << "\n";
-  for (const auto& c : q.channels)
-    out << "  " << c.name << ": " << (c.diffusion_valid ? "diffusion valid" : "diffusion NOT valid: " + c.reason)
-        << "\n";
+  for (const auto& c : q.channels) {
+    if (!c.model_choice.empty()) out << "  " << c.name << ": " << c.model_choice << "\n";
+    bool any = false;
+    for (const auto& note : c.validity)
+      if (note.severity != Severity::note) out << "  " << c.name << ": " << describe(note) << "\n", any = true;
+    if (!any) out << "  " << c.name << ": " << c.physical_model << " valid\n";
+  }
   return out.str();
 }
 
@@ -220,6 +232,7 @@ Action register_materials(CLI::App& app) {
       const auto db = MaterialDatabase::load_with_user(o->db);
       const auto& m = db.find(o->name);
       const auto q = derive_quantities(m.medium, options);
+      for (const auto& c : q.channels) warn_validity(c.physical_model, c.name, c.validity);
       std::cout << (o->format == "json" ? show_json(m, q, unit).dump(2) + "\n" : show_table(m, q, unit));
     } else if (exp->parsed()) {
       const auto target = with_flag_names({{"to", "--to"}}, [&] { return parse_renderer_target(o->to); });
@@ -233,6 +246,8 @@ Action register_materials(CLI::App& app) {
       const auto add = [&](const Material& m) {
         entries.push_back(
             {m, target == RendererTarget::json ? DerivedQuantities{} : derive_quantities(m.medium, options)});
+        for (const auto& c : entries.back().derived.channels)
+          warn_validity(c.physical_model, (o->all ? m.name + " " : "") + c.name, c.validity);
       };
       if (o->all) {
         for (const auto& m : db.all())

@@ -57,7 +57,7 @@ Action register_profile(CLI::App& app) {
   struct Options {
     MediumOptions medium;
     OutputOptions output;
-    std::string model = "better-dipole", radii, r_min, r_max, spacing = "log", thickness, layers;
+    std::string model, radii, r_min, r_max, spacing = "log", thickness, layers;
     double pair_tolerance = 1e-5;
     int samples = 64;
     bool single_scattering = false;
@@ -70,7 +70,8 @@ Action register_profile(CLI::App& app) {
   for (const auto& name : model_names()) names += name + ", ";
   sub->add_option("--model", options->model,
                   "Model: " + names +
-                      "multipole (slabs: needs --thickness or --layers); 'bssrdf models' lists them [better-dipole; "
+                      "multipole (slabs: needs --thickness or --layers); 'bssrdf models' lists them [exact, the "
+                      "radiative-transfer solution, inside its domain, else the most accurate model measured there; "
                       "multipole with --thickness or --layers]; auto: the cheapest measured within --accuracy of "
                       "the radiative-transfer solution here");
   auto* model_option = sub->get_option("--model");
@@ -151,8 +152,11 @@ Action register_profile(CLI::App& app) {
       model = std::move(slab_model);
     } else {
       const auto chosen = resolve_model(options->model, options->accuracy, resolved.medium);
-      if (!chosen.note.empty() && options->single_scattering)
+      if (options->model == "auto" && options->single_scattering)
         throw InvalidInput("--single-scattering: not with --model auto (the choice includes NAME+ss models)");
+      if (options->model.empty() && options->single_scattering && model_entry(chosen.name).includes_single_scattering)
+        throw InvalidInput("--single-scattering: the default model here, " + chosen.name +
+                           ", includes single scattering already; give --model NAME for one that omits it");
       auto_note = chosen.note;
       model = make_model(chosen.name + (options->single_scattering ? "+ss" : ""));
     }
@@ -202,6 +206,7 @@ Action register_profile(CLI::App& app) {
     });
     report.material = resolved.material;
     report.model_choice = auto_note;
+    for (const auto& ch : report.channels) warn_validity(report.model, ch.name, ch.validity);
     emit(
         options->output, [&] { return to_json(report); }, [&] { return to_csv(report); }, to_table(report));
   };

@@ -6,6 +6,8 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/fit/inverse_fits.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_choice.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "fit_common.hpp"
 
 namespace bssrdf {
@@ -59,10 +61,18 @@ AlbedoInversion invert_albedo(const std::string& model_name, double total, doubl
 }
 
 FitReport fit_albedo(const std::vector<ChannelInput>& channels, DistanceConvention convention, LengthUnit unit,
-                     const std::string& model, double eta) {
+                     const std::string& given_model, double eta) {
   const auto start = std::chrono::steady_clock::now();
   FitReport report;
   report.kind = "albedo";
+  std::string model = given_model;
+  if (model.empty()) {
+    std::vector<double> g;
+    for (const auto& c : channels) g.push_back(c.g);
+    const auto chosen = default_model_over_albedos(g, eta, eta);
+    model = chosen.name;
+    report.model_choice = chosen.reason;
+  }
   report.model = model;
   report.data_source = "surface albedo and " + std::string(to_string(convention)) + " per channel";
   report.termination = "exact";

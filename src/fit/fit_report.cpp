@@ -32,6 +32,7 @@ std::string FitReport::to_json() const {
   doc["source"] = "fit";
   doc["kind"] = kind;
   doc["model"] = model;
+  if (!model_choice.empty()) doc["model_choice"] = model_choice;
   doc["data"] = data_source;
   nlohmann::json shared = nlohmann::json::object();
   std::vector<std::string> order;
@@ -67,6 +68,7 @@ std::string FitReport::to_json() const {
 std::string FitReport::full_report() const {
   std::ostringstream out;
   out << "bssrdf fit " << kind << " — model " << model << "\n";
+  if (!model_choice.empty()) out << "model choice: " << model_choice << "\n";
   out << "data      " << data_source << "\n";
   out << "solver    " << termination << (converged ? "" : " (NOT converged)") << ", " << iterations << " iterations, "
       << format_number(std::round(seconds * 1e6) / 1e3) << " ms\n";

@@ -45,7 +45,8 @@ MeasuredProfile parse_profile_csv(const std::string& text, const std::string& na
   std::vector<std::string> header;
   std::vector<int> value_column, stderr_column;  // per channel
   std::map<std::string, std::size_t> channel_index;
-  std::vector<double> raw_radius;
+  std::vector<double> raw_radius, raw_inner, raw_outer;
+  int inner_column = -1, outer_column = -1;  // Monte Carlo bins' edges
   bool monte_carlo = false;
   while (std::getline(in, line)) {
     ++line_number;
@@ -71,6 +72,10 @@ MeasuredProfile parse_profile_csv(const std::string& text, const std::string& na
       // 'bssrdf reference -f csv' output: the channels are the "<channel>_R_entered" columns (per
       // entered flux, the models' normalisation); bin edges, per-incident and T(r) columns are not fitted.
       for (const auto& h : header) monte_carlo |= ends_with(h, kMonteCarloChannel);
+      for (std::size_t i = 1; i < header.size() && monte_carlo; ++i) {
+        if (header[i].rfind("radius_inner", 0) == 0) inner_column = static_cast<int>(i);
+        if (header[i].rfind("radius_outer", 0) == 0) outer_column = static_cast<int>(i);
+      }
       // Channels first, then their standard errors.
       for (std::size_t i = 1; i < header.size(); ++i) {
         std::string h = header[i];
@@ -137,6 +142,16 @@ MeasuredProfile parse_profile_csv(const std::string& text, const std::string& na
       continue;
     }
     raw_radius.push_back(r);
+    if (inner_column >= 0 && outer_column >= 0) {
+      const double inner = number(static_cast<std::size_t>(inner_column)),
+                   outer = number(static_cast<std::size_t>(outer_column));
+      if (!(inner >= 0 && inner <= r && r <= outer && inner < outer))
+        throw FileError(name, line_number,
+                        "bin " + format_number(inner) + " to " + format_number(outer) +
+                            ": accepted is 0 <= inner <= radius <= outer, inner < outer");
+      raw_inner.push_back(inner);
+      raw_outer.push_back(outer);
+    }
     for (std::size_t c = 0; c < out.channels.size(); ++c) {
       const double v = number(static_cast<std::size_t>(value_column[c]));
       if (!(v >= 0 && v <= kMaxProfileValue))
@@ -160,6 +175,8 @@ MeasuredProfile parse_profile_csv(const std::string& text, const std::string& na
     throw FileError(name, line_number, std::to_string(raw_radius.size()) + " data rows: accepted range is at least 4");
   const double mm = millimetres_per(out.unit);
   for (double r : raw_radius) out.radius.push_back(r * mm);
+  for (double r : raw_inner) out.radius_inner.push_back(r * mm);
+  for (double r : raw_outer) out.radius_outer.push_back(r * mm);
   for (auto& c : out.channels) {
     for (auto& v : c.value) v /= mm * mm;
     for (auto& s : c.standard_error) s /= mm * mm;

@@ -63,6 +63,10 @@ std::string to_json(const LookupTable& table) {
 
 std::string to_csv(const LookupTable& table) {
   std::ostringstream out;
+  // Which model produced the numbers, and why when it was not the exact one: a leading comment.
+  for (const char* key : {"bssrdf:model", "bssrdf:model_choice"})
+    if (const auto* v = table.attribute(key); v && std::holds_alternative<std::string>(*v))
+      out << "# " << (key + 7) << ": " << std::get<std::string>(*v) << '\n';
   const bool two_d = table.height > 1;
   const bool y_axis = two_d && table.y_axis.values.size() == table.height,
              x_axis = two_d && table.x_axis.values.size() == table.width;

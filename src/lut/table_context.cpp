@@ -29,6 +29,7 @@ void describe(LookupTable& table, const TableContext& context) {
   if (context.model) {
     table.set("bssrdf:model", context.model->name());
     table.set("bssrdf:model_description", context.model->description());
+    if (!context.model_choice.empty()) table.set("bssrdf:model_choice", context.model_choice);
     table.set("bssrdf:includes_single_scattering",
               std::string(context.model->includes_single_scattering() ? "yes" : "no"));
   }

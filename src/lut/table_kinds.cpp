@@ -6,9 +6,9 @@
 #include <cmath>
 #include <memory>
 
-#include "bssrdf/advise/realtime_tables.hpp"
 #include "bssrdf/check.hpp"
 #include "bssrdf/error.hpp"
+#include "bssrdf/image/realtime_tables.hpp"
 #include "bssrdf/lut/gaussian_mixture_table.hpp"
 #include "bssrdf/model_registry.hpp"
 #include "bssrdf/models/multipole.hpp"

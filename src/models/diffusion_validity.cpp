@@ -6,15 +6,8 @@
 #include <stdexcept>
 
 #include "bssrdf/error.hpp"
-#include "bssrdf/model_registry.hpp"
 
 namespace bssrdf {
-
-const DiffusionLimits& measured_limits(std::string_view model_name) {
-  const auto* entry = find_model_entry(model_name);
-  if (!entry || !entry->limits) throw std::out_of_range("no measured accuracy for model " + std::string(model_name));
-  return *entry->limits;
-}
 
 double documented_total_error(const DiffusionLimits& limits, double albedo_prime, double g) {
   for (const auto& band : g >= 0.5 ? limits.forward_bands : limits.isotropic_bands)

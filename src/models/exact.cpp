@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "bssrdf/error.hpp"
+#include "bssrdf/models/dipole.hpp"
 #include "bssrdf/single_scattering.hpp"
 
 namespace bssrdf {
@@ -96,6 +97,33 @@ Weights hermite_weights(const std::vector<double>& axis, double (*f)(double), do
   return out;
 }
 
+// Beyond the last g node (0.99, to kForwardLimit): ln y continues linearly in x = 1 - g from that
+// node, with the slope of the least-squares line through it and the three nodes before it (x 0.01 to
+// 0.05). In transport units a strongly forward medium approaches its reduced counterpart smoothly as
+// x -> 0 (the small-angle limit), so the profile is linear in x to first order; anchoring at the last
+// node keeps the model continuous there, and a slope from four nodes keeps their Monte Carlo noise
+// from being amplified (the extrapolated value's noise is 1.04 times the last node's at x = 0.001).
+constexpr double kForwardLimit = 0.999;
+Weights forward_weights(const std::vector<double>& axis, double g) {
+  Weights out;
+  const std::size_t last = axis.size() - 1, first = last >= 3 ? last - 3 : 0;
+  const double x_last = 1 - axis[last], x = 1 - g;
+  double spread = 0;
+  for (std::size_t i = first; i < last; ++i) spread += (1 - axis[i] - x_last) * (1 - axis[i] - x_last);
+  double rest = 1;
+  for (std::size_t i = first; i < last; ++i) {
+    const double c = (x - x_last) * (1 - axis[i] - x_last) / spread;
+    out.node[out.count] = i;
+    out.w[out.count] = c;
+    ++out.count;
+    rest -= c;
+  }
+  out.node[out.count] = last;
+  out.w[out.count] = rest;
+  ++out.count;
+  return out;
+}
+
 struct NodeWeights {
   Weights a, g, e;
   Weights e_total;  // on the totals' eta axis (ExactTable::ln_total_eta)
@@ -107,15 +135,17 @@ NodeWeights weights_at(const ExactTable& table, double albedo_prime, double g, d
     const ValidityNote& note = outside.front();
     const std::string field = note.code == "exact_albedo" ? "albedo'" : note.code == "exact_g" ? "g" : "eta";
     const double value = note.code == "exact_albedo" ? albedo_prime : note.code == "exact_g" ? g : eta;
-    const auto& axis = note.code == "exact_albedo" ? table.albedo_prime : note.code == "exact_g" ? table.g : table.eta;
+    const auto range = note.code == "exact_albedo" ? exact_albedo_range(table)
+                       : note.code == "exact_g"    ? exact_g_range(table)
+                                                   : exact_eta_range(table);
     throw InvalidInput(field, format_number(value),
-                       format_number(note.code == "exact_albedo" ? 0.0 : axis.front()) + " to " +
-                           format_number(axis.back()) +
-                           " (the exact model's table; outside it use the Monte Carlo reference: bssrdf reference)");
+                       format_number(range.first) + " to " + format_number(range.second) +
+                           " (the exact model's domain; outside it use the Monte Carlo reference: bssrdf reference)");
   }
-  return {hermite_weights(table.albedo_prime, albedo_coordinate, albedo_prime),
-          hermite_weights(table.g, g_coordinate, g), hermite_weights(table.eta, eta_coordinate, eta),
-          hermite_weights(table.ln_total_eta(), eta_coordinate, eta)};
+  // Above the last albedo node the last node's values stand here (AboveLastNode continues them).
+  return {hermite_weights(table.albedo_prime, albedo_coordinate, std::min(albedo_prime, table.albedo_prime.back())),
+          g > table.g.back() ? forward_weights(table.g, g) : hermite_weights(table.g, g_coordinate, g),
+          hermite_weights(table.eta, eta_coordinate, eta), hermite_weights(table.ln_total_eta(), eta_coordinate, eta)};
 }
 
 double interpolated_ln_total(const ExactTable& table, const NodeWeights& w) {
@@ -128,10 +158,11 @@ double interpolated_ln_total(const ExactTable& table, const NodeWeights& w) {
   return sum;
 }
 
-// A small tolerance on the domain's ends, so that values printed and read back stay inside.
-bool inside(double v, const std::vector<double>& axis) {
-  const double slack = 1e-9 * std::max(1.0, std::abs(axis.back()));
-  return v >= axis.front() - slack && v <= axis.back() + slack;
+// A small tolerance on the domain's ends, so that values printed and read back stay inside (and
+// alpha' computed as sigma_s' / sigma_t' may round just above 1).
+bool inside(double v, std::pair<double, double> range) {
+  const double slack = 1e-9 * std::max(1.0, std::abs(range.second));
+  return v >= range.first - slack && v <= range.second + slack;
 }
 
 // Below the first albedo node (0.001) the table continues exactly: single scattering is the exact
@@ -180,28 +211,87 @@ struct BelowFirstNode {
   }
 };
 
+// Above the last albedo node (0.9999) up to 1 the model continues with diffusion where diffusion
+// is exact, the far field of a nearly conservative medium: R(r) is the last node's times the
+// classical dipole's ratio R_d(r; alpha') / R_d(r; alpha'_0), which is 1 in the near field (the
+// transport there does not see absorption of 1e-4) and the ratio of diffusion's tails far out
+// (sigma_tr = sqrt(3 (1 - alpha')) in transport units; the exact asymptotic decay rate differs from it
+// by a relative O(1 - alpha') < 1e-4). The total follows the half-space's albedo problem near
+// conservative scattering, 1 - T = c1 s + c2 s^2 in s = sqrt(1 - alpha'), through the last two nodes'
+// totals to T = 1 at alpha' = 1, where no light is absorbed and a half-space returns all that entered.
+struct AboveLastNode {
+  Reduced<double> medium, node;  // transport units
+  double s, s_last, s_before;    // sqrt(1 - alpha') of the medium, the last node and the one before it
+  AboveLastNode(const ExactTable& table, double albedo_prime, double g, double eta)
+      : medium(reduce(1 - albedo_prime, albedo_prime / (1 - g), g, eta)),
+        node(reduce(1 - table.albedo_prime.back(), table.albedo_prime.back() / (1 - g), g, eta)),
+        s(std::sqrt(std::max(0.0, 1 - albedo_prime))),
+        s_last(std::sqrt(1 - table.albedo_prime.back())),
+        s_before(std::sqrt(1 - table.albedo_prime[table.albedo_prime.size() - 2])) {}
+  // c1, c2 of 1 - T = c1 s + c2 s^2 from the totals at the last two nodes.
+  static std::pair<double, double> coefficients(double s1, double t1, double s0, double t0) {
+    const double c2 = ((1 - t0) / s0 - (1 - t1) / s1) / (s0 - s1);
+    return {(1 - t1) / s1 - c2 * s1, c2};
+  }
+  double total(double t_last, double t_before) const {
+    const auto [c1, c2] = coefficients(s_last, t_last, s_before, t_before);
+    return 1 - (c1 + c2 * s) * s;
+  }
+  // The alpha' whose total is `total` (between the last node's and 1).
+  double albedo_prime_for(double total, double t_last, double t_before) const {
+    const auto [c1, c2] = coefficients(s_last, t_last, s_before, t_before);
+    const double loss = std::max(0.0, 1 - total);
+    const double root = c2 != 0 ? (-c1 + std::sqrt(c1 * c1 + 4 * c2 * loss)) / (2 * c2) : loss / c1;
+    return 1 - root * root;
+  }
+  void continue_profile(const ExactTable& table, std::vector<double>& ln_y) const {
+    for (std::size_t k = 0; k < ln_y.size(); ++k) {
+      const double r = table.radius(k);
+      ln_y[k] += std::log(classical_dipole::reflectance(medium, r) / classical_dipole::reflectance(node, r));
+    }
+  }
+};
+
+// The last two albedo nodes' totals at the weights' g and eta (AboveLastNode's fit).
+std::pair<double, double> last_totals(const ExactTable& table, NodeWeights w) {
+  const std::size_t last = table.albedo_prime.size() - 1;
+  w.a = {{last}, {1.0}, 1};
+  const double t_last = std::exp(interpolated_ln_total(table, w));
+  w.a = {{last - 1}, {1.0}, 1};
+  return {t_last, std::exp(interpolated_ln_total(table, w))};
+}
+
 }  // namespace
+
+std::pair<double, double> exact_albedo_range(const ExactTable&) { return {0.0, 1.0}; }
+std::pair<double, double> exact_g_range(const ExactTable& table) {
+  return {table.g.front(), table.g.back() >= 0.99 ? std::max(table.g.back(), kForwardLimit) : table.g.back()};
+}
+std::pair<double, double> exact_eta_range(const ExactTable& table) { return {table.eta.front(), table.eta.back()}; }
 
 ValidityReport exact_domain(const ExactTable& table, double albedo_prime, double g, double eta) {
   ValidityReport report;
-  const auto check = [&](const char* code, const char* name, double v, const std::vector<double>& axis) {
-    if (!inside(v, axis))
+  const auto check = [&](const char* code, const char* name, double v, std::pair<double, double> range) {
+    if (!inside(v, range))
       report.push_back({Severity::invalid, code,
-                        std::string(name) + " = " + format_number(v) + " is outside the exact table (" +
-                            format_number(axis.front()) + " to " + format_number(axis.back()) + ")"});
+                        std::string(name) + " = " + format_number(v) + " is outside the exact model's domain (" +
+                            format_number(range.first) + " to " + format_number(range.second) + ")"});
   };
-  // Below the first albedo node the model continues exactly (below_first_node), down to 0.
-  if (!(albedo_prime >= 0 && albedo_prime <= table.albedo_prime.back() + 1e-9 * table.albedo_prime.back()))
-    report.push_back({Severity::invalid, "exact_albedo",
-                      "alpha' = " + format_number(albedo_prime) + " is outside the exact table (0 to " +
-                          format_number(table.albedo_prime.back()) + ")"});
-  check("exact_g", "g", g, table.g);
-  check("exact_eta", "eta", eta, table.eta);
+  // Below the first albedo node the model continues exactly (BelowFirstNode), down to 0; above the
+  // last, by diffusion (AboveLastNode), up to 1; beyond the last g node linearly in 1 - g.
+  check("exact_albedo", "alpha'", albedo_prime, exact_albedo_range(table));
+  check("exact_g", "g", g, exact_g_range(table));
+  check("exact_eta", "eta", eta, exact_eta_range(table));
   return report;
 }
 
 double exact_total(const ExactTable& table, double albedo_prime, double g, double eta) {
-  const double node_total = std::exp(interpolated_ln_total(table, weights_at(table, albedo_prime, g, eta)));
+  const NodeWeights w = weights_at(table, albedo_prime, g, eta);
+  if (albedo_prime > table.albedo_prime.back()) {
+    const auto [t_last, t_before] = last_totals(table, w);
+    return AboveLastNode(table, albedo_prime, g, eta).total(t_last, t_before);
+  }
+  const double node_total = std::exp(interpolated_ln_total(table, w));
   if (albedo_prime >= table.albedo_prime.front()) return node_total;
   if (albedo_prime == 0) return 0;
   return BelowFirstNode(table, albedo_prime, g, eta).total(node_total);
@@ -210,10 +300,14 @@ double exact_total(const ExactTable& table, double albedo_prime, double g, doubl
 double exact_albedo_prime_from_total(const ExactTable& table, double total, double g, double eta) {
   const double lo_a = table.albedo_prime.front(), hi_a = table.albedo_prime.back();
   const double lo_t = exact_total(table, lo_a, g, eta), hi_t = exact_total(table, hi_a, g, eta);
-  if (!(total >= lo_t && total <= hi_t))
+  if (!(total >= lo_t && total <= 1))
     throw InvalidInput("total_reflectance", format_number(total),
-                       "[" + format_number(lo_t) + ", " + format_number(hi_t) + "] for the exact model at g = " +
-                           format_number(g) + ", eta = " + format_number(eta) + " (alpha' 0.001 to 0.9999)");
+                       "[" + format_number(lo_t) + ", 1] for the exact model at g = " + format_number(g) +
+                           ", eta = " + format_number(eta) + " (alpha' 0.001 to 1)");
+  if (total > hi_t) {  // above the last node: the continuation's own inverse
+    const auto [t_last, t_before] = last_totals(table, weights_at(table, hi_a, g, eta));
+    return AboveLastNode(table, hi_a, g, eta).albedo_prime_for(total, t_last, t_before);
+  }
   // ln T is smooth and increasing in u = logit(alpha'): regula falsi with the Illinois
   // modification (superlinear, always bracketed), a handful of evaluations.
   const auto from = [](double u) { return 1 / (1 + std::exp(-u)); };
@@ -260,6 +354,11 @@ ExactProfile::ExactProfile(const ExactTable& table, double albedo_prime, double 
         const float* row = &table.ln_y[table.index(w.e.node[e], w.g.node[gi], w.a.node[a], 0)];
         for (std::size_t k = 0; k < radii; ++k) ln_y_[k] += weight * row[k];
       }
+  std::optional<AboveLastNode> above;
+  if (albedo_prime > table.albedo_prime.back()) {
+    above.emplace(table, albedo_prime, g, eta);
+    above->continue_profile(table, ln_y_);
+  }
   std::optional<BelowFirstNode> below;
   if (albedo_prime < table.albedo_prime.front()) {
     below.emplace(table, albedo_prime, g, eta);
@@ -289,6 +388,10 @@ ExactProfile::ExactProfile(const ExactTable& table, double albedo_prime, double 
   sum += std::exp(ln_y_[radii - 1]) / (-tail_slope_ * r_last);
   total_ = std::exp(interpolated_ln_total(table, w));
   if (below) total_ = below->total(total_);
+  if (above) {
+    const auto [t_last, t_before] = last_totals(table, w);
+    total_ = above->total(t_last, t_before);
+  }
   const double scale = total_ / sum;
   for (auto& v : ln_y_) v += std::log(scale);
   for (auto& c : cumulative_) c *= scale;

@@ -7,6 +7,7 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/model.hpp"
 #include "bssrdf/models/diffusion_validity.hpp"
+#include "bssrdf/models/quantized_diffusion.hpp"
 
 namespace bssrdf::normalized_diffusion {
 
@@ -43,7 +44,7 @@ double Model::surface_albedo(const Reduced<double>& m) const {
   auto it = cache.find(key);
   if (it == cache.end()) {
     const auto optical = reduced_optical(m.albedo_prime, m.g, m.eta);
-    it = cache.emplace(key, make_model("quantized")->total_reflectance(optical)).first;
+    it = cache.emplace(key, quantized_diffusion::Model().total_reflectance(optical)).first;
   }
   return it->second;
 }

@@ -2,6 +2,7 @@
 // channel (sigma_a 0.032/mm, sigma_s' 0.74/mm, eta 1.3), printed for the install test to check.
 #include <bssrdf/medium.hpp>
 #include <bssrdf/model.hpp>
+#include <bssrdf/model_registry.hpp>
 #include <cstdio>
 
 #ifdef BSSRDF_VERSION

@@ -20,6 +20,7 @@
 #include "bssrdf/advise/auto_reference.hpp"
 #include "bssrdf/materials.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/parallel.hpp"
 #include "median_timing.hpp"
 

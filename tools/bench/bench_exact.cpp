@@ -22,6 +22,7 @@
 #include "bssrdf/materials.hpp"
 #include "bssrdf/model.hpp"
 #include "bssrdf/model_choice.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/models/exact.hpp"
 #include "bssrdf/profile.hpp"
 #include "median_timing.hpp"
@@ -98,6 +99,34 @@ int main(int argc, char** argv) {
       repetitions);
   std::printf("  %-28s exact %10.3f us   (100 builds at distinct alpha' < 0.001, per build)\n",
               "one profile build, low alpha'", low_ms * 10);
+  // The continued parts of the domain: above the last albedo node (the dipole ratio at every radius),
+  // beyond the last g node (four g rows), and an eta between the last two nodes.
+  const auto per_build_us = [&](auto make) {
+    return median_ms(
+        [&] {
+          double s = 0;
+          for (int k = 0; k < 1000; ++k) s += make(k).total();
+          return s;
+        },
+        repetitions);
+  };
+  std::printf("  %-28s exact %10.3f us   (1000 builds at distinct alpha' in (0.9999, 1), per build)\n",
+              "one profile build, alpha'>.9999",
+              per_build_us([&](int k) { return ExactProfile(table, 1 - 9e-5 * (k + 1) / 1001.0, 0.3, 1.35); }));
+  std::printf("  %-28s exact %10.3f us   (1000 builds at distinct g in (0.99, 0.999), per build)\n",
+              "one profile build, g > 0.99",
+              per_build_us([&](int k) { return ExactProfile(table, 0.7, 0.99 + 9e-6 * (k + 1), 1.35); }));
+  const double eta_high = exact_eta_range(table).second;
+  std::printf("  %-28s exact %10.3f us   (1000 builds at distinct eta near the largest, per build)\n",
+              "one profile build, high eta",
+              per_build_us([&](int k) { return ExactProfile(table, 0.7, 0.5, eta_high - 1e-4 * (k + 1)); }));
+  const auto above = reduce(1e-5, 0.99999, 0.3, 1.35), forward = reduce(0.3, 70.0, 0.995, 1.35);
+  row("one R(r), alpha' 0.99999",
+      median_ns_per_call([&](double r) { return exact->reflectance(above, r); }, radii, repetitions),
+      median_ns_per_call([&](double r) { return pbd->reflectance(above, r); }, radii, repetitions), "ns", 100);
+  row("one R(r), g 0.995",
+      median_ns_per_call([&](double r) { return exact->reflectance(forward, r); }, radii, repetitions),
+      median_ns_per_call([&](double r) { return pbd->reflectance(forward, r); }, radii, repetitions), "ns", 100);
 
   // A radial LUT for one material (3 channels, default tolerance).
   RadialTableOptions lut;

@@ -21,6 +21,7 @@
 #include "bssrdf/lut/albedo_radius_table.hpp"
 #include "bssrdf/lut/radial_table.hpp"
 #include "bssrdf/materials.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/models/photon_beam_diffusion.hpp"
 #include "bssrdf/parallel.hpp"
 #include "pbrt_style.hpp"

@@ -3,8 +3,11 @@
 // entered flux, over (alpha', g, eta) and radii in transport mean free paths.
 //
 //   generate_exact_table run   --state DIR [--photons N] [--chunk N] [--hours H]   (resumable)
-//                              [--runs 0.01,1] [--g-min G] [--g-max G]   (top up only those runs)
+//                              [--runs 0.01,1] [--g-min G] [--g-max G] [--eta-min E] [--eta-max E]
+//                              (top up only those runs)
 //   generate_exact_table build --state DIR --out data/exact/exact_profile.bin
+//                              [--base TABLE]   (the eta nodes TABLE holds are copied from it, the
+//                              others built from DIR: how a table grows new eta nodes)
 //
 // Each part is exact or validated:
 //  - multiple scattering (two or more scatterings): the project's Monte Carlo (run_monte_carlo,
@@ -42,6 +45,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -61,16 +65,17 @@ namespace {
 
 using namespace bssrdf;
 
-constexpr int kGeneratorVersion = 3;
+constexpr int kGeneratorVersion = 4;
 constexpr int kSmoothingHalf = 3;  // radial smoothing window (smooth_radially): 7 bins, 0.58 decades
 constexpr int kSmoothingWide = 5;  // where a bin's error exceeds 3 %: 11 bins
 
 // ---- the grid ---------------------------------------------------------------------------------
 // alpha': uniform in logit(alpha') from 0.001 to 0.9999 (41 nodes, step 0.40): the profile's
 // shape changes with ln(1 - alpha') near 1 (sigma_tr ~ sqrt(1 - alpha')) and with ln alpha' near 0.
-// g: denser towards 1, where the near field changes fastest; eta: every 0.15, with one more node at
-// 1.05 where the boundary's effect on the near field changes fastest (the Monte Carlo cost is per
-// (g, eta) node, so eta nodes are few).
+// g: denser towards 1, where the near field changes fastest; eta: every 0.15 to 1.6, with one more
+// node at 1.05 where the boundary's effect on the near field changes fastest, then every 0.2 to 2
+// (generator version 4: glass, gems; the profile's shape changes slowly there; the Monte Carlo cost
+// is per (g, eta) node, so eta nodes are few).
 // Radii: 12 per decade from 1e-3 transport mfp to 2154 (beyond the radius that holds 99.9 % of the
 // energy at alpha' = 0.9999, eta = 1.6: checked by `build`).
 struct Grid {
@@ -86,11 +91,12 @@ struct Grid {
       albedo_prime.push_back(i == 0 ? 0.001 : i == n - 1 ? 0.9999 : 1 / (1 + std::exp(-u)));
     }
     g = {0.0, 0.2, 0.4, 0.55, 0.7, 0.8, 0.87, 0.92, 0.95, 0.97, 0.98, 0.99};
-    eta = {1.0, 1.05, 1.15, 1.3, 1.45, 1.6};
+    eta = {1.0, 1.05, 1.15, 1.3, 1.45, 1.6, 1.8, 2.0};
     // The totals' eta axis (adding-doubling only, cheap): the total bends sharply within a few
     // hundredths above 1, where total internal reflection sets in.
-    total_eta = {1.0,  1.0025, 1.005, 1.0075, 1.01, 1.015, 1.02, 1.025, 1.03, 1.04, 1.05, 1.06, 1.07,
-                 1.08, 1.1,    1.12,  1.15,   1.2,  1.25,  1.3,  1.35,  1.4,  1.45, 1.5,  1.55, 1.6};
+    total_eta = {1.0,  1.0025, 1.005, 1.0075, 1.01, 1.015, 1.02, 1.025, 1.03, 1.04, 1.05, 1.06,
+                 1.07, 1.08,   1.1,   1.12,   1.15, 1.2,   1.25, 1.3,   1.35, 1.4,  1.45, 1.5,
+                 1.55, 1.6,    1.65,  1.7,    1.75, 1.8,   1.85, 1.9,   1.95, 2.0};
   }
   std::vector<double> total_eta;
   // Monte Carlo runs per (g, eta): a non-absorbing ("white") one, index kWhite, and absorbing ones
@@ -276,9 +282,10 @@ std::string describe_node(const Grid& grid, std::size_t gi, std::size_t ei) {
 // same counts.
 struct RunFocus {
   std::vector<double> runs;  // empty: all
-  double g_min = 0, g_max = 1;
-  bool includes(const Grid& grid, std::size_t gi, std::size_t b) const {
+  double g_min = 0, g_max = 1, eta_min = 0, eta_max = 10;
+  bool includes(const Grid& grid, std::size_t gi, std::size_t ei, std::size_t b) const {
     if (grid.g[gi] < g_min || grid.g[gi] > g_max) return false;
+    if (grid.eta[ei] < eta_min || grid.eta[ei] > eta_max) return false;
     return runs.empty() || std::find(runs.begin(), runs.end(), grid.run_albedo_prime(b)) != runs.end();
   }
 };
@@ -296,7 +303,7 @@ int run(const std::filesystem::path& dir, std::uint64_t target, std::uint64_t ch
     for (std::size_t ei = 0; ei < grid.eta.size(); ++ei) {
       for (std::size_t gi = 0; gi < grid.g.size(); ++gi) {
         for (std::size_t b = 0; b < grid.runs(); ++b) {
-          if (!focus.includes(grid, gi, b)) continue;
+          if (!focus.includes(grid, gi, ei, b)) continue;
           NodeSums sums;
           const auto path = node_path(dir, grid, gi, ei, b);
           load(sums, path, grid);
@@ -463,8 +470,21 @@ std::size_t add_fine_totals(const Grid& grid, ExactTable& table, const std::vect
   return static_cast<std::size_t>(std::count(plain.begin(), plain.end(), 1));
 }
 
-int build(const std::filesystem::path& dir, const std::string& out_path, std::uint64_t seed) {
+int build(const std::filesystem::path& dir, const std::string& out_path, std::uint64_t seed,
+          const std::string& base_path) {
   const Grid grid;
+  // --base: a table whose eta nodes are copied (its axes must be this grid's but for fewer eta nodes).
+  std::optional<ExactTable> base;
+  std::vector<std::optional<std::size_t>> base_eta(grid.eta.size());
+  if (!base_path.empty()) {
+    base = read_exact_table(base_path);
+    if (base->albedo_prime != grid.albedo_prime || base->g != grid.g || base->radii != grid.radii ||
+        base->ln_r0 != grid.ln_r0 || base->d_ln_r != grid.d_ln_r)
+      throw std::runtime_error(base_path + ": its alpha', g or radius axis is not this grid's");
+    for (std::size_t ei = 0; ei < grid.eta.size(); ++ei)
+      for (std::size_t be = 0; be < base->eta.size(); ++be)
+        if (base->eta[be] == grid.eta[ei]) base_eta[ei] = be;
+  }
   const std::size_t albedos = grid.albedo_prime.size(), bins = grid.bins(), radii = grid.radii;
   ExactTable table;
   table.albedo_prime = grid.albedo_prime;
@@ -490,6 +510,18 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   nlohmann::json scale_check = nlohmann::json::array();
   for (std::size_t ei = 0; ei < grid.eta.size(); ++ei) {
     for (std::size_t gi = 0; gi < grid.g.size(); ++gi) {
+      if (base_eta[ei]) {  // copied from --base: its profiles, errors and totals stand
+        for (std::size_t a = 0; a < albedos; ++a) {
+          const std::size_t from = base->node(*base_eta[ei], gi, a), to = table.node(ei, gi, a);
+          coarse_ad[to] = adding_doubling_total(grid.albedo_prime[a], grid.g[gi], grid.eta[ei]);
+          table.total[to] = base->total[from];
+          for (std::size_t k = 0; k < radii; ++k) {
+            table.ln_y[to * radii + k] = base->ln_y[from * radii + k];
+            table.relative_error[to * radii + k] = base->relative_error[from * radii + k];
+          }
+        }
+        continue;
+      }
       std::vector<NodeSums> runs(grid.runs());
       for (std::size_t b = 0; b < grid.runs(); ++b) {
         NodeSums& s = runs[b];
@@ -726,6 +758,16 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   std::cerr << "radial smoothing +-" << smoothing_half << " (+-" << wide_half << ") bins: bias check chi2/bin "
             << smoothing_chi2 / std::max(1.0, smoothing_bins) << " (" << wide_chi2 / std::max(1.0, smoothing_bins)
             << ") over " << smoothing_bins << " bins\n";
+  if (base) {
+    std::vector<double> copied;
+    for (std::size_t ei = 0; ei < grid.eta.size(); ++ei)
+      if (base_eta[ei]) copied.push_back(grid.eta[ei]);
+    p["base_table"] = {{"eta_nodes_copied", copied},
+                       {"note",
+                        "the Monte Carlo figures above are this build's state only (the other eta nodes); the base "
+                        "table's provenance follows"},
+                       {"provenance", nlohmann::json::parse(base->provenance)}};
+  }
   table.provenance = p.dump();
   write_exact_table(table, out_path);
   std::cout << p.dump(2) << "\n";
@@ -763,12 +805,13 @@ int main(int argc, char** argv) {
   try {
     std::vector<std::string> args(argv + 1, argv + argc);
     if (args.empty() || (args[0] != "run" && args[0] != "build")) {
-      std::cerr << "usage: generate_exact_table run --state DIR [--photons N] [--chunk N] [--hours H] [--seed S]\n"
-                   "                                [--runs A,B,...] [--g-min G] [--g-max G]\n"
-                   "       generate_exact_table build --state DIR --out FILE [--seed S]\n";
+      std::cerr
+          << "usage: generate_exact_table run --state DIR [--photons N] [--chunk N] [--hours H] [--seed S]\n"
+             "                                [--runs A,B,...] [--g-min G] [--g-max G] [--eta-min E] [--eta-max E]\n"
+             "       generate_exact_table build --state DIR --out FILE [--seed S] [--base TABLE]\n";
       return 2;
     }
-    std::string state, out;
+    std::string state, out, base;
     std::uint64_t photons = 1'000'000, chunk = 16384, seed = 20261201;
     double hours = 1e9;
     RunFocus focus;
@@ -805,13 +848,19 @@ int main(int argc, char** argv) {
         focus.g_min = number("--g-min", args[i + 1], 0, 1);
       else if (args[i] == "--g-max")
         focus.g_max = number("--g-max", args[i + 1], 0, 1);
+      else if (args[i] == "--eta-min")
+        focus.eta_min = number("--eta-min", args[i + 1], 1, 10);
+      else if (args[i] == "--eta-max")
+        focus.eta_max = number("--eta-max", args[i + 1], 1, 10);
+      else if (args[i] == "--base")
+        base = args[i + 1];
       else
         throw std::invalid_argument("unknown option " + args[i]);
     }
     if (state.empty()) throw std::invalid_argument("--state DIR is required");
     if (args[0] == "run") return run(state, photons, chunk, hours, seed, focus);
     if (out.empty()) throw std::invalid_argument("--out FILE is required");
-    return build(state, out, seed);
+    return build(state, out, seed, base);
   } catch (const std::exception& e) {
     std::cerr << "generate_exact_table: " << e.what() << "\n";
     return 2;

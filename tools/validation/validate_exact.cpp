@@ -4,12 +4,13 @@
 //
 //   validate_exact [points=40] [scatterings per point=4e9] [seed=7] [materials=1] [points below alpha' 0.001=10]
 //                  [alpha'_min=0.001 alpha'_max=0.9999 g_max=0.99 g_min=0]   (a part of the domain only)
-//                  [photons per point at most=5e7]
+//                  [photons per point at most=5e7] [eta_min=1 eta_max=1.6]
 //   validate_exact at SCATTERINGS MAX_PHOTONS SEED ALPHA',G,ETA [...]   (given points, e.g. again with
 //                  more photons where a random point's run was too noisy to resolve the goal)
 //
-// Each point: alpha' log-uniform in logit over [0.001, 0.9999], g uniform in -ln(1 - g) over
-// [0, 0.99], eta uniform over [1, 1.6], drawn with a generator independent of the table's seeds; a
+// Each point: alpha' log-uniform in logit over [0.001, 0.9999] (1 - alpha' log-uniform where
+// alpha'_min >= 0.9999: the continuation to 1), g uniform in -ln(1 - g) over [0, 0.99], eta uniform
+// over [1, 1.6], drawn with a generator independent of the table's seeds; a
 // Monte Carlo run in transport units (sigma_t' = 1) with 100 log bins from 1e-3 to the radius that
 // holds 99.9 % of the energy, photons chosen to spend the given number of scatterings (a pilot run
 // measures the cost per photon). Reported: the total's deviation (and in standard errors), and the
@@ -29,6 +30,7 @@
 #include "bssrdf/materials.hpp"
 #include "bssrdf/medium.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/model_registry.hpp"
 #include "bssrdf/models/exact.hpp"
 #include "bssrdf/montecarlo.hpp"
 #include "bssrdf/reference_comparison.hpp"
@@ -83,11 +85,15 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "validate_exact: point %s: expected ALPHA',G,ETA\n", argv[i]);
       return 2;
     }
-    // The exact model's domain (models/exact.hpp).
-    if (!(p.albedo_prime > 0 && p.albedo_prime <= 0.9999 && p.g >= 0 && p.g <= 0.99 && p.eta >= 1 && p.eta <= 1.6)) {
-      std::fprintf(
-          stderr, "validate_exact: point %s: accepted range is 0 < alpha' <= 0.9999, 0 <= g <= 0.99, 1 <= eta <= 1.6\n",
-          argv[i]);
+    // The exact model's domain (models/exact.hpp); alpha' = 1 has no finite Monte Carlo run.
+    const ExactTable& table = bundled_exact_table();
+    const auto [g_lo, g_hi] = exact_g_range(table);
+    const auto [eta_lo, eta_hi] = exact_eta_range(table);
+    if (!(p.albedo_prime > 0 && p.albedo_prime < 1 && p.g >= g_lo && p.g <= g_hi && p.eta >= eta_lo &&
+          p.eta <= eta_hi)) {
+      std::fprintf(stderr,
+                   "validate_exact: point %s: accepted range is 0 < alpha' < 1, %g <= g <= %g, %g <= eta <= %g\n",
+                   argv[i], g_lo, g_hi, eta_lo, eta_hi);
       return 2;
     }
     given_points.push_back(p);
@@ -104,6 +110,7 @@ int main(int argc, char** argv) {
   // and high g).
   const double ap_min = arg(6, 0.001), ap_max = arg(7, 0.9999), g_max = arg(8, 0.99), g_min = arg(9, 0.0);
   const double max_photons = given ? std::atof(argv[3]) : arg(10, 5e7);
+  const double eta_min = arg(11, 1.0), eta_max = arg(12, 1.6);
   const auto model = make_model("exact");
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> uniform(0, 1);
@@ -111,12 +118,16 @@ int main(int argc, char** argv) {
 
   // Random points: alpha' log-uniform in logit over [ap_lo, ap_hi], g uniform in -ln(1 - g), eta uniform.
   const auto draw = [&](int n, double ap_lo, double ap_hi) {
-    const double lo = std::log(ap_lo / (1 - ap_lo)), hi = std::log(ap_hi / (1 - ap_hi));
+    // Above 0.9999 (the continuation to alpha' = 1): 1 - alpha' log-uniform, down to 1e-7.
+    const bool near_one = ap_lo >= 0.9999;
+    const double lo = near_one ? std::log(1 - ap_lo) : std::log(ap_lo / (1 - ap_lo));
+    const double hi = near_one ? std::log(std::max(1e-7, 1 - ap_hi)) : std::log(ap_hi / (1 - ap_hi));
     std::vector<Point> out;
     for (int i = 0; i < n; ++i) {
-      const double ap = 1 / (1 + std::exp(-(lo + (hi - lo) * uniform(rng))));
+      const double u = lo + (hi - lo) * uniform(rng);
+      const double ap = near_one ? 1 - std::exp(u) : 1 / (1 + std::exp(-u));
       const double g = 1 - std::exp(-(g_lo + (g_hi - g_lo) * uniform(rng)));
-      const double eta = 1 + 0.6 * uniform(rng);
+      const double eta = eta_min + (eta_max - eta_min) * uniform(rng);
       out.push_back({ap, g, eta});
     }
     return out;
@@ -178,8 +189,8 @@ int main(int argc, char** argv) {
   if (points > 0) {
     std::printf(
         "# exact model vs fresh Monte Carlo at random off-grid points (seed %u, %.3g scatterings per point; alpha' "
-        "%g-%g, g %g-%g, up to %.3g photons)\n",
-        seed, scatterings, ap_min, ap_max, g_min, g_max, max_photons);
+        "%g-%g, g %g-%g, eta %g-%g, up to %.3g photons)\n",
+        seed, scatterings, ap_min, ap_max, g_min, g_max, eta_min, eta_max, max_photons);
     section(draw(points, ap_min, ap_max), 0, max_photons);
   }
   if (low_points > 0) {

@@ -41,9 +41,10 @@
 #include <utility>
 #include <vector>
 
-#include "bssrdf/advise/image_error.hpp"
-#include "bssrdf/advise/reference_profile.hpp"
 #include "bssrdf/advise/reference_uncertainty.hpp"
+#include "bssrdf/image/image_error.hpp"
+#include "bssrdf/image/realtime_tables.hpp"
+#include "bssrdf/image/reference_profile.hpp"
 #include "bssrdf/medium.hpp"
 #include "bssrdf/model.hpp"
 
@@ -82,10 +83,6 @@ struct AdviseCandidate {
   std::vector<std::pair<std::string, double>> parameters;  // a table's chosen size, a kernel's taps and range (mm), ...
 };
 
-struct RadialTableNodes {
-  std::vector<double> radius, value;  // mm, 1/mm^2
-};
-
 struct Advice {
   AdviseOptions options;
   std::string reference;  // its description
@@ -102,19 +99,6 @@ struct Advice {
   double profile_radius = 0;                // mm: the radius holding 99 % of the reference's light, widest channel
   std::string object_warning;               // non-empty when 2 profile_radius exceeds options.object_size
 };
-
-// The radial-table candidate: R(r) of `model` at n >= 2 radii geometric over [lo_ell ell, outer]
-// (ell: transport mean free path; outer: hi_ell ell, or with hi_ell = 0 profile_extent(m), as far
-// as the reference's annuli reach), linear in (ln r, ln R) between them, R(r_0)
-// below and 0 beyond (the table a renderer loads; `advise --write` writes these nodes).
-RadialTableNodes radial_table_nodes(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell = 1e-3,
-                                    double hi_ell = 0);
-// The same nodes of any R(r) (a reference channel's formula).
-RadialTableNodes radial_table_nodes(const std::function<double(double)>& reflectance, const Reduced<double>& m,
-                                    std::size_t n, double lo_ell = 1e-3, double hi_ell = 0);
-std::function<double(double)> radial_table(const RadialTableNodes& nodes);
-std::function<double(double)> radial_table(const Model& model, const Reduced<double>& m, std::size_t n,
-                                           double lo_ell = 1e-3, double hi_ell = 0);
 
 Advice advise(const Medium& medium, const ReferenceProfile& reference, const AdviseOptions& options);
 

@@ -19,7 +19,7 @@
 #include <memory>
 #include <string>
 
-#include "bssrdf/advise/reference_profile.hpp"
+#include "bssrdf/image/reference_profile.hpp"
 #include "bssrdf/model.hpp"
 
 namespace bssrdf {

@@ -26,10 +26,10 @@
 
 #include <vector>
 
-#include "bssrdf/advise/annular_profile.hpp"
-#include "bssrdf/advise/image_error.hpp"
-#include "bssrdf/advise/realtime_tables.hpp"
-#include "bssrdf/advise/reference_profile.hpp"
+#include "bssrdf/image/annular_profile.hpp"
+#include "bssrdf/image/image_error.hpp"
+#include "bssrdf/image/realtime_tables.hpp"
+#include "bssrdf/image/reference_profile.hpp"
 
 namespace bssrdf {
 

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "bssrdf/advise/reference_profile.hpp"
+#include "bssrdf/image/reference_profile.hpp"
 #include "bssrdf/materials.hpp"
 
 namespace bssrdf {

@@ -27,9 +27,10 @@ struct FitResidual {
 };
 
 struct FitReport {
-  std::string kind;         // "profile", "albedo", "slab", "gaussians", "burley"
-  std::string model;        // forward model
-  std::string data_source;  // the data file, or a description of the inputs
+  std::string kind;          // "profile", "albedo", "slab", "gaussians", "burley"
+  std::string model;         // forward model
+  std::string model_choice;  // why this model when it is the default and not `exact` (default_model); else empty
+  std::string data_source;   // the data file, or a description of the inputs
   std::vector<FitParameter> parameters;
   std::vector<FitResidual> residuals;
   double residual_rms = 0;  // of the weighted residuals

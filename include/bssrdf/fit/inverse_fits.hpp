@@ -41,6 +41,7 @@ struct ChannelInput {
   double g = 0;
 };
 
+// `model` empty: the registry's default for these g and eta (default_model_over_albedos: exact inside its domain).
 FitReport fit_albedo(const std::vector<ChannelInput>& channels, DistanceConvention convention, LengthUnit unit,
                      const std::string& model, double eta);
 

@@ -24,7 +24,8 @@
 namespace bssrdf {
 
 struct ProfileFitOptions {
-  std::string model = "better-dipole";
+  std::string
+      model;  // empty: the registry's default for these g and eta (default_model_over_albedos: exact in its domain)
   double eta = 1.3;  // fixed, or the starting value when fit_eta
   bool fit_eta = false;
   double eta_min = 1.0, eta_max = 2.0;

@@ -24,6 +24,10 @@ struct MeasuredProfile {
   std::string file;
   LengthUnit unit = LengthUnit::millimetre;  // as stated in the file (or given)
   std::vector<double> radius;                // mm
+  // The bins' edges (mm) where the file gives them ('bssrdf reference -f csv': radius_inner_*,
+  // radius_outer_*): each value is then R averaged over its annulus, and fits compare it with the
+  // model's own average there (near the entry point R ~ 1/r differs from its bin average); else empty.
+  std::vector<double> radius_inner, radius_outer;
   struct Channel {
     std::string name;
     std::vector<double> value;           // 1/mm^2

@@ -56,7 +56,8 @@ struct LookupTable {
 //  "axes": {"x": {"name", "values"}, "y": {...}} (2D tables with axes), "channels": [{"name",
 //  "description", "values": [...]}]}; pretty-printed, trailing newline.
 std::string to_json(const LookupTable& table);
-// One line per cell: "row,column," (2D tables only), the y and x axis values where the table has
+// A leading "# model: NAME" comment (and "# model_choice: WHY" when the table records one), then
+// one line per cell: "row,column," (2D tables only), the y and x axis values where the table has
 // them, then one column per channel; a header line.
 std::string to_csv(const LookupTable& table);
 

@@ -18,11 +18,12 @@ struct TableContext {
   const Medium* medium = nullptr;    // the coefficients tabulated (1/mm); optional
   const Model* model = nullptr;      // optional (transmission tables come from Monte Carlo)
   LengthUnit unit = LengthUnit::millimetre;
+  std::string model_choice{};  // why this model when it is not `exact` by default or was chosen by auto; else empty
 };
 
 // Adds bssrdf:tool, bssrdf:kind, bssrdf:material (+ source, citation), bssrdf:model (+ description,
-// single scattering), bssrdf:eta, bssrdf:channels and bssrdf:coefficients (sigma_a, sigma_s, g in
-// 1/unit), and bssrdf:normalization.
+// single scattering, and bssrdf:model_choice when the context gives one), bssrdf:eta, bssrdf:channels and
+// bssrdf:coefficients (sigma_a, sigma_s, g in 1/unit), and bssrdf:normalization.
 void describe(LookupTable& table, const TableContext& context);
 
 // A width x height table of `kind`, described, with bssrdf:unit naming the context's length unit.

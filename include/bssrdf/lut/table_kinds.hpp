@@ -1,6 +1,6 @@
 // The table kinds `bssrdf lut` writes, each from its options to a LookupTable ready to encode and the
 // lines for people about it: the kind's own summary (beside its to_lookup_table), and where asked how
-// it was sized and how wrong it looks at a pixel size (advise/realtime_tables.hpp). One entry point a
+// it was sized and how wrong it looks at a pixel size (image/realtime_tables.hpp). One entry point a
 // kind; a caller (the command line, a script, a renderer's build step) only fills the options.
 //
 //   const auto pbd = make_model("pbd");

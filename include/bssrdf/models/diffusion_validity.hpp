@@ -29,8 +29,8 @@ struct DiffusionLimits {
   std::string context;                      // appended to the error figure, e.g. what it omits
 };
 
-// The measured accuracy of a model by its command-line name ("dipole", "better-dipole+ss", ...): its
-// row of the model registry (model_registry.hpp).
+// The measured accuracy of a model by its command-line name ("dipole", "better-dipole+ss", ...):
+// the data in src/models/measured_bands.cpp, which the model registry quotes in its rows.
 // Throws std::out_of_range for a model that has not been measured.
 const DiffusionLimits& measured_limits(std::string_view model_name);
 

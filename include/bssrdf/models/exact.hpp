@@ -12,16 +12,23 @@
 // differences: continuous first derivatives, so fits through it converge) of ln y, y = 2 pi r^2 R,
 // at each tabulated radius; Catmull-Rom in ln r between radii. The curve is then scaled so that its
 // integral equals the interpolated adding-doubling total, which is what total() returns.
-// Domain: alpha' in [0, 0.9999], g in [0, 0.99], eta in [1, 1.6]; outside it the constructor throws
-// InvalidInput naming the parameter: never an extrapolation. Below the table's first albedo node
-// (0.001) single scattering is exact and multiple scattering (at most 0.1 % of the total there) is
-// the first node's scaled by (alpha / alpha_0)^2; at alpha' = 0, R = 0.
+// Domain: alpha' in [0, 1], g in [0, 0.999], eta over the table's nodes (1 to 2); outside it the
+// constructor throws InvalidInput naming the parameter. Beyond the table's nodes the model continues
+// where the continuation is measured to hold (tools/validation/exact_vs_montecarlo.txt):
+//  - below the first albedo node (0.001) single scattering is exact and multiple scattering (at most
+//    0.1 % of the total there) is the first node's scaled by (alpha / alpha_0)^2; at alpha' = 0, R = 0;
+//  - above the last albedo node (0.9999) the last node's profile times the classical dipole's ratio of
+//    the two albedos' profiles (diffusion's far field, exact there), its total from
+//    1 - T = c1 s + c2 s^2, s = sqrt(1 - alpha'), through the last two nodes to T(1) = 1;
+//  - beyond the last g node (0.99) ln y linear in 1 - g from that node, with the slope of the last four
+//    nodes (a strongly forward medium approaches its reduced counterpart smoothly).
 // Accuracy and speed: README "The exact model" (measured against fresh Monte Carlo off the grid).
 #pragma once
 
 #include <array>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bssrdf/models/exact_table.hpp"
@@ -30,7 +37,14 @@
 
 namespace bssrdf {
 
-// The table's domain for one medium: an empty report inside, an "invalid" entry per parameter
+// The model's domain, inclusive: alpha' 0 to 1 (continued below the first albedo node exactly and
+// above the last by diffusion), g from the first node to 0.999 (continued linearly in 1 - g beyond the
+// last node, 0.99), eta over the nodes.
+std::pair<double, double> exact_albedo_range(const ExactTable& table);
+std::pair<double, double> exact_g_range(const ExactTable& table);
+std::pair<double, double> exact_eta_range(const ExactTable& table);
+
+// The model's domain for one medium: an empty report inside, an "invalid" entry per parameter
 // outside (codes exact_albedo, exact_g, exact_eta), each naming the value and the covered range.
 ValidityReport exact_domain(const ExactTable& table, double albedo_prime, double g, double eta);
 

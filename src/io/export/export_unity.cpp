@@ -29,7 +29,7 @@ UnityProfile unity_profile(const ExportEntry& e, LengthUnit unit) {
     p.d.push_back(std::isfinite(c.burley_d) ? c.burley_d : 0.0);
     p.A.push_back(std::isfinite(c.burley_albedo) ? c.burley_albedo : 0.0);
     p.error.push_back(c.burley_error);
-    p.valid.push_back(c.diffusion_valid);
+    p.valid.push_back(c.valid());
     p.d_max = std::max(p.d_max, p.d.back());
   }
   for (double v : p.d) p.color.push_back(p.d_max > 0 ? v / p.d_max : 0.0);

@@ -97,15 +97,19 @@ std::string identifier(const std::string& name) {
 }
 
 std::string validity_summary(const DerivedQuantities& derived) {
-  std::string valid, invalid;
+  std::string valid, problems;
   for (const auto& c : derived.channels) {
-    if (c.diffusion_valid)
-      valid += (valid.empty() ? "" : ", ") + c.name;
-    else
-      invalid += (invalid.empty() ? "" : "; ") + c.name + ": " + c.reason;
+    bool any = false;
+    for (const auto& note : c.validity)
+      if (note.severity != Severity::note) {
+        problems += (problems.empty() ? "" : "; ") + c.name + ": " + describe(note);
+        any = any || note.severity == Severity::invalid;
+      }
+    if (!any) valid += (valid.empty() ? "" : ", ") + c.name;
   }
-  if (invalid.empty()) return "diffusion valid in every channel (object size " + num(derived.object_size_mm) + " mm)";
-  return "diffusion valid in " + (valid.empty() ? std::string("no channel") : valid) + "; not in " + invalid;
+  const std::string model = "the " + derived.physical_model + " profile";
+  if (problems.empty()) return model + " valid in every channel (object size " + num(derived.object_size_mm) + " mm)";
+  return model + " valid in " + (valid.empty() ? std::string("no channel") : valid) + "; " + problems;
 }
 
 }  // namespace export_detail

@@ -33,11 +33,12 @@
 
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <vector>
 
-#include "bssrdf/advise/image_error.hpp"
-#include "bssrdf/advise/reference_profile.hpp"
+#include "bssrdf/image/image_error.hpp"
+#include "bssrdf/image/reference_profile.hpp"
 #include "bssrdf/lut/gaussian_mixture_table.hpp"
 #include "bssrdf/lut/preintegrated_table.hpp"
 #include "bssrdf/lut/projected_profile.hpp"
@@ -47,6 +48,23 @@
 #include "bssrdf/model.hpp"
 
 namespace bssrdf {
+
+struct RadialTableNodes {
+  std::vector<double> radius, value;  // mm, 1/mm^2
+};
+
+// The radial-table candidate: R(r) of `model` at n >= 2 radii geometric over [lo_ell ell, outer]
+// (ell: transport mean free path; outer: hi_ell ell, or with hi_ell = 0 profile_extent(m), as far
+// as the reference's annuli reach), linear in (ln r, ln R) between them, R(r_0)
+// below and 0 beyond (the table a renderer loads; `advise --write` writes these nodes).
+RadialTableNodes radial_table_nodes(const Model& model, const Reduced<double>& m, std::size_t n, double lo_ell = 1e-3,
+                                    double hi_ell = 0);
+// The same nodes of any R(r) (a reference channel's formula).
+RadialTableNodes radial_table_nodes(const std::function<double(double)>& reflectance, const Reduced<double>& m,
+                                    std::size_t n, double lo_ell = 1e-3, double hi_ell = 0);
+std::function<double(double)> radial_table(const RadialTableNodes& nodes);
+std::function<double(double)> radial_table(const Model& model, const Reduced<double>& m, std::size_t n,
+                                           double lo_ell = 1e-3, double hi_ell = 0);
 
 inline constexpr std::array<int, 15> kSeparableTaps = {5, 7, 9, 11, 13, 17, 21, 25, 33, 49, 65, 97, 129, 193, 255};
 inline constexpr std::array<double, 5> kSeparableBands = {0.95, 0.99, 0.999, 0.9999, 0.99999};

@@ -1,4 +1,4 @@
-#include "bssrdf/advise/reference_profile.hpp"
+#include "bssrdf/image/reference_profile.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -91,7 +91,7 @@ ReferenceProfiles ModelReference::profiles(const Medium& medium) const {
     const auto m = medium.reduced(c);
     double total_band = 0, profile_band = 0;  // exact's measured accuracy; none for a model taken as the truth
     if (entry && entry->reference_accuracy) {
-      const auto band = entry->reference_accuracy->at(m.albedo_prime, m.g);
+      const auto band = entry->reference_accuracy->at(m);
       total_band = band.total;
       profile_band = band.profile;
     }

@@ -1,4 +1,4 @@
-#include "bssrdf/advise/annular_profile.hpp"
+#include "bssrdf/image/annular_profile.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "bssrdf/advise/image_error.hpp"
+#include "bssrdf/image/image_error.hpp"
 
 #include <algorithm>
 #include <cmath>

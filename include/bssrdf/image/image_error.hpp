@@ -40,7 +40,7 @@
 #include <string>
 #include <vector>
 
-#include "bssrdf/advise/annular_profile.hpp"
+#include "bssrdf/image/annular_profile.hpp"
 
 namespace bssrdf {
 

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "bssrdf/advise/annular_profile.hpp"
+#include "bssrdf/image/annular_profile.hpp"
 #include "bssrdf/medium.hpp"
 #include "bssrdf/model.hpp"
 

@@ -1,0 +1,73 @@
+#!/usr/bin/env python3
+"""The exact model's accuracy bands per region, from validate_exact's outputs.
+
+    tools/validation/exact_bands.py tools/validation/exact_vs_montecarlo.txt [more outputs ...]
+
+Reads every point line (alpha', g, eta, photons, total %, sigma, near %, noise %, far %, noise %);
+a point given again (validate_exact at ...: the same alpha', g and eta to 5 digits) replaces its
+earlier run. Prints, per region of src/model_registry.cpp (first match wins) and for the whole
+domain, the points, the worst |total| and the worst L2 excess sqrt(L2^2 - noise^2), near and far:
+the band the registry states is the worst total and the worse of the two L2 figures."""
+import math
+import sys
+
+# (name, alpha' min, max, g min, max, eta min, max): keep in step with the registry's regions.
+REGIONS = [
+    ("no scattering", 0, 0, 0, 1, 0, 10),
+    ("tissue", 0.05, 0.9999, 0, 0.9, 1, 1.6),
+    ("forward, mid albedo", 0.05, 0.99, 0.9, 0.99, 1, 1.6),
+    ("low albedo", 0, 0.05, 0, 0.99, 1, 1.6),
+    ("milk-like", 0.99, 0.998, 0.9, 0.95, 1, 1.6),
+    ("near conservative", 0.9999, 1, 0, 0.9, 1, 1.6),
+    ("strongly forward", 0, 1, 0.99, 0.999, 1, 1.6),
+    ("high index", 0, 1, 0, 0.999, 1.6, 2.0),
+]
+
+
+def points(paths):
+    seen = {}
+    for path in paths:
+        for line in open(path, encoding="utf-8"):
+            if line.startswith("#") or not line.strip():
+                continue
+            fields = line.split()
+            if len(fields) != 10:
+                continue
+            try:
+                a, g, eta, photons, total, sigma, near, near_noise, far, far_noise = map(float, fields)
+            except ValueError:
+                continue
+            key = (round(a, 5), round(g, 3), round(eta, 3))
+            seen[key] = dict(a=a, g=g, eta=eta, total=abs(total), sigma=sigma,
+                             near=math.sqrt(max(0.0, near * near - near_noise * near_noise)),
+                             far=math.sqrt(max(0.0, far * far - far_noise * far_noise)))
+    return list(seen.values())
+
+
+def region(p):
+    for name, a0, a1, g0, g1, e0, e1 in REGIONS:
+        if a0 <= p["a"] <= a1 and g0 <= p["g"] <= g1 and e0 <= p["eta"] <= e1:
+            return name
+    return "elsewhere"
+
+
+def main():
+    if len(sys.argv) < 2:
+        print("usage: exact_bands.py VALIDATE_EXACT_OUTPUT...", file=sys.stderr)
+        return 2
+    pts = points(sys.argv[1:])
+    rows = [(name, [p for p in pts if region(p) == name]) for name, *_ in REGIONS] + [("domain", pts)]
+    print(f"{'region':22s} {'points':>6s} {'total %':>8s} {'near %':>7s} {'far %':>7s}   worst profile at")
+    for name, group in rows:
+        if not group:
+            print(f"{name:22s} {0:6d}")
+            continue
+        worst = max(group, key=lambda p: max(p["near"], p["far"]))
+        print(f"{name:22s} {len(group):6d} {max(p['total'] for p in group):8.3f} "
+              f"{max(p['near'] for p in group):7.3f} {max(p['far'] for p in group):7.3f}   "
+              f"alpha' {worst['a']:.6g}, g {worst['g']:.3f}, eta {worst['eta']:.3f}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
