@@ -41,14 +41,15 @@ double adding_doubling_total(double ap, double g, double eta, double* error_esti
 struct Point {
   double albedo_prime, g, eta;
 };
-std::vector<Point> random_points(int n, unsigned seed, double ap_lo = 0.001, double ap_hi = 0.9999,
-                                 double g_hi = 0.99) {
+std::vector<Point> random_points(int n, unsigned seed, double ap_lo = 0.001, double ap_hi = 0.9999, double g_hi = 0.99,
+                                 double eta_lo = 1.0, double eta_hi = 1.6) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
   const double lo = std::log(ap_lo / (1 - ap_lo)), hi = std::log(ap_hi / (1 - ap_hi)), gh = -std::log1p(-g_hi);
   std::vector<Point> points;
   for (int i = 0; i < n; ++i)
-    points.push_back({1 / (1 + std::exp(-(lo + (hi - lo) * u(rng)))), 1 - std::exp(-gh * u(rng)), 1 + 0.6 * u(rng)});
+    points.push_back({1 / (1 + std::exp(-(lo + (hi - lo) * u(rng)))), 1 - std::exp(-gh * u(rng)),
+                      eta_lo + (eta_hi - eta_lo) * u(rng)});
   return points;
 }
 
@@ -61,7 +62,7 @@ TEST(ExactTable, BundledTableCoversTheDomainAndRecordsItsProvenance) {
   EXPECT_LE(t.g.front(), 0.0);
   EXPECT_GE(t.g.back(), 0.99);
   EXPECT_LE(t.eta.front(), 1.0);
-  EXPECT_GE(t.eta.back(), 1.6);
+  EXPECT_GE(t.eta.back(), 2.0);
   EXPECT_LE(t.radius(0), 1e-3 * 1.0001);
   const auto p = nlohmann::json::parse(t.provenance);
   EXPECT_GT(p.at("photons_total").get<double>(), 1e6);
@@ -176,7 +177,9 @@ TEST(ExactModel, TotalsMatchAddingDoublingOffTheGrid) {
   // converges (its own error estimate within 2e-4 of the total: not at g near 1 with low albedo).
   double worst = 0;
   int compared = 0;
-  for (const Point& p : random_points(24, 11)) {
+  std::vector<Point> points = random_points(24, 11);
+  for (const Point& p : random_points(12, 12, 0.001, 0.9999, 0.99, 1.6, 2.0)) points.push_back(p);  // high index
+  for (const Point& p : points) {
     const double exact = exact_total(table(), p.albedo_prime, p.g, p.eta);
     double error_estimate = 0;
     const double reference = adding_doubling_total(p.albedo_prime, p.g, p.eta, &error_estimate);
@@ -185,7 +188,7 @@ TEST(ExactModel, TotalsMatchAddingDoublingOffTheGrid) {
     worst = std::max(worst, std::abs(exact / reference - 1));
     EXPECT_NEAR(exact / reference, 1.0, 5e-3) << p.albedo_prime << " " << p.g << " " << p.eta;
   }
-  EXPECT_GE(compared, 12);
+  EXPECT_GE(compared, 18);
   RecordProperty("worst_total_vs_adding_doubling", std::to_string(worst));
   std::printf("exact totals vs fresh adding-doubling at %d random points: worst %.3f %%\n", compared, 100 * worst);
 }
@@ -336,17 +339,17 @@ TEST(ExactModel, AboveTheLastAlbedoNodeContinuesByDiffusionToOne) {
     }
   }
   // The totals against fresh adding-doubling, which converges here (g < 0.99): the s-law holds to
-  // its second order (measured: within 3e-5 relative, the largest at eta 1.6).
+  // its second order (measured: within 3e-5 relative at eta <= 1.6, 1.5e-4 at eta 2; the goal is 1 %).
   double worst = 0;
   for (double g : {0.0, 0.5, 0.9})
-    for (double eta : {1.0, 1.3, 1.6})
+    for (double eta : {1.0, 1.3, 1.6, 2.0})
       for (double loss : {5e-5, 1e-5, 1e-6}) {
         double error_estimate = 0;
         const double reference = adding_doubling_total(1 - loss, g, eta, &error_estimate);
-        ASSERT_LT(error_estimate, 1e-6);
+        ASSERT_LT(error_estimate, 1e-5 * reference);  // a tenth of the tolerance below
         const double ratio = exact_total(table(), 1 - loss, g, eta) / reference;
         worst = std::max(worst, std::abs(ratio - 1));
-        EXPECT_NEAR(ratio, 1.0, 1e-4) << g << " " << eta << " " << loss;
+        EXPECT_NEAR(ratio, 1.0, eta <= 1.6 ? 1e-4 : 2e-4) << g << " " << eta << " " << loss;
       }
   std::printf("totals above the last albedo node vs adding-doubling: worst %.2g relative\n", worst);
   // The profile against fresh Monte Carlo (the long run: tools/validation/exact_vs_montecarlo.txt).
