@@ -17,7 +17,10 @@ HOSTILE = ["-1", "0", "1e308", "-1e308", "1e-308", "4.9e-324", "nan", "inf", "-i
            "\r", "x\x1b[31m", "1e6", "64", "-0"]
 COMMANDS = {
     "profile": ["--sigma-a", "--sigma-s", "--g", "--eta", "--radii", "--samples", "--r-min", "--r-max",
-                "--thickness", "--model", "--unit"],
+                "--thickness", "--model", "--unit", "--wavelengths", "--colour", "--illuminant"],
+    "skin": ["--melanin", "--eumelanin", "--blood", "--oxygenation", "--epidermis", "--scattering", "--wavelengths",
+             "--colour", "--illuminant", "--specular"],
+    "fit skin": ["--srgb", "--melanin", "--specular", "--min-nm", "--max-nm", "--solve-step"],
     "reference": ["--sigma-a", "--sigma-s", "--g", "--eta", "-n", "--bins", "--seed", "--threads", "--r-max",
                   "--thickness", "--depth-bins", "--roulette-threshold"],
     "transmission": ["--sigma-a", "--sigma-s", "--eta", "--samples", "--d-min", "--d-max"],
@@ -47,7 +50,8 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         for i in range(count):
             command = rng.choice(list(COMMANDS))
-            args = command.split() + ["--sigma-a", "0.1", "--sigma-s", "1"] if command not in ("fit albedo",) else command.split() + ["--albedo", "0.5", "--distance", "1"]
+            base = {"fit albedo": ["--albedo", "0.5", "--distance", "1"], "skin": [], "fit skin": ["--srgb", "0.7,0.5,0.4"]}
+            args = command.split() + base.get(command, ["--sigma-a", "0.1", "--sigma-s", "1"])
             for option in rng.sample(COMMANDS[command], k=rng.randint(1, 3)):
                 value = rng.choice(HOSTILE) if rng.random() < 0.8 or option not in SAFE else SAFE[option]
                 if option in SAFE and is_number(value) and abs(float(value)) > 1e5:

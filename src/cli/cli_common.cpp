@@ -1,5 +1,7 @@
 #include "cli_common.hpp"
 
+#include "bssrdf/spectral/resample.hpp"
+
 #include <unistd.h>
 #include <algorithm>
 #include <charconv>
@@ -112,6 +114,9 @@ void MediumOptions::add_to(CLI::App& app) {
   app.add_option("--eta", eta, "Relative index of refraction n_medium/n_outside [1.3, or the material's]");
   app.add_option("--unit", unit, "Length unit of coefficients, radii and outputs: um, mm, cm, m [mm]");
   app.add_option("--db", db, "Your own materials directory or file, added to the bundled database");
+  app.add_option("--wavelengths", wavelengths,
+                 "A spectral medium: the channels' wavelengths in nm, increasing (one coefficient per wavelength or "
+                 "one for all); with a spectral --material, resamples it (linear in wavelength)");
   mat->excludes(sa)->excludes(ss)->excludes(gg)->excludes(ch);
 }
 
@@ -122,17 +127,22 @@ MediumOptions::Resolved MediumOptions::resolve() const {
     const auto database = MaterialDatabase::load_with_user(db);
     out.material = database.find(material);
     out.medium = out.material->medium;
+    if (!wavelengths.empty())
+      out.medium = spectral::resample(out.medium, parse_number_list(wavelengths, "--wavelengths"));
   } else {
     if (sigma_a.empty() || sigma_s.empty())
       throw InvalidInput("medium: give --material NAME, or both --sigma-a and --sigma-s");
+    if (!wavelengths.empty()) out.medium.wavelength_nm = parse_number_list(wavelengths, "--wavelengths");
+    const char* count_from = wavelengths.empty() ? "--sigma-a" : "--wavelengths";
     const auto a = parse_number_list(sigma_a, "--sigma-a");
-    const std::size_t n = a.size();
-    out.medium.sigma_a = a;
-    out.medium.sigma_s = per_channel(parse_number_list(sigma_s, "--sigma-s"), n, "--sigma-s", "--sigma-a");
+    const std::size_t n = wavelengths.empty() ? a.size() : out.medium.wavelength_nm.size();
+    out.medium.sigma_a = per_channel(a, n, "--sigma-a", count_from);
+    out.medium.sigma_s = per_channel(parse_number_list(sigma_s, "--sigma-s"), n, "--sigma-s", count_from);
     out.medium.g =
-        g.empty() ? std::vector<double>(n, 0.0) : per_channel(parse_number_list(g, "--g"), n, "--g", "--sigma-a");
+        g.empty() ? std::vector<double>(n, 0.0) : per_channel(parse_number_list(g, "--g"), n, "--g", count_from);
     if (channels.empty()) {
-      out.medium.channel_names = default_channel_names(n);
+      out.medium.channel_names =
+          wavelengths.empty() ? default_channel_names(n) : wavelength_channel_names(out.medium.wavelength_nm);
     } else {
       std::string rest = channels;
       std::vector<std::string> names;
@@ -156,7 +166,7 @@ MediumOptions::Resolved MediumOptions::resolve() const {
   } catch (const InvalidInput& e) {
     // Name the option the user typed ("--sigma-a[G] = -1: ..."), not the library's field.
     std::string message = e.what();
-    for (const std::string field : {"sigma_a", "sigma_s", "g", "eta"}) {
+    for (const std::string field : {"sigma_a", "sigma_s", "g", "eta", "wavelengths"}) {
       if (message.rfind(field, 0) != 0) continue;
       const char next = message[field.size()];
       if (next != '[' && next != ' ') continue;

@@ -62,7 +62,7 @@ CLI::Option* add_count_option(CLI::App& app, const std::string& names, Integer& 
 
 // --material NAME | --sigma-a/--sigma-s [--g] [--channels], with --eta, --unit and --db.
 struct MediumOptions {
-  std::string material, sigma_a, sigma_s, g, eta, unit = "mm", channels, db;
+  std::string material, sigma_a, sigma_s, g, eta, unit = "mm", channels, db, wavelengths;
 
   void add_to(CLI::App& app);
 
