@@ -15,6 +15,7 @@
 #include "bssrdf/spectral/colour_profile.hpp"
 #include "bssrdf/spectral/resample.hpp"
 #include "cli_runner.hpp"
+#include "exr_reader.hpp"
 
 namespace bssrdf::spectral {
 namespace {
@@ -245,6 +246,30 @@ TEST(SpectralMaterials, LoadExportAndReload) {
       test_cli::run("profile -m Tinted --db " + file + " --wavelengths 450,500,550,600,650 --colour srgb -f json");
   ASSERT_EQ(profile.status, 0) << profile.err;
   EXPECT_EQ(nlohmann::json::parse(profile.out)["colour"]["wavelength_nm"].size(), 5u);
+}
+
+}  // namespace
+}  // namespace bssrdf::spectral
+
+namespace bssrdf::spectral {
+namespace {
+
+// A spectral medium's radial table in OpenEXR: each wavelength's R(r) channel in the spectral layout of Fichet,
+// Pacanowski and Wilkie (2021), "T.<nm with decimal comma>nm", with spectralLayoutVersion; read back by OpenEXR.
+TEST(SpectralExr, RadialTableUsesTheSpectralLayout) {
+  const auto file = (test_cli::scratch() / "spectral_radial.exr").string();
+  const auto run = test_cli::run(
+      "lut --wavelengths 450,550,650 --sigma-a 0.5,0.1,0.02 --sigma-s 10 --g 0.8 --eta 1.4 "
+      "--kind radial -o " +
+      file + " -q");
+  ASSERT_EQ(run.status, 0) << run.err;
+  const auto exr = test_exr::read_exr(file);
+  std::vector<std::string> names;
+  for (const auto& c : exr.channels) names.push_back(c.first);
+  for (const char* expected : {"T.450,000000nm", "T.550,000000nm", "T.650,000000nm", "cdf.550nm"})
+    EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
+  EXPECT_EQ(exr.strings.at("spectralLayoutVersion"), "1.0");
+  EXPECT_EQ(exr.strings.at("bssrdf:wavelength_nm"), "450,550,650");
 }
 
 }  // namespace

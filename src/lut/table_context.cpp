@@ -43,6 +43,8 @@ void describe(LookupTable& table, const TableContext& context) {
     table.set("bssrdf:sigma_a", join(context.medium->sigma_a, mm) + " " + per_unit);
     table.set("bssrdf:sigma_s", join(context.medium->sigma_s, mm) + " " + per_unit);
     table.set("bssrdf:g", join(context.medium->g, 1.0));
+    // A spectral medium: its channels' wavelengths (the OpenEXR writer lays them out as spectral channels).
+    if (context.medium->spectral()) table.set("bssrdf:wavelength_nm", join(context.medium->wavelength_nm, 1.0));
   }
 }
 
