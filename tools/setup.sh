@@ -9,7 +9,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libstb-dev
   clang libclang-rt-14-dev
-  python3-numpy  # tools/validation/advise_check.py
+  python3-numpy  # tools/validation/advise_check.py, the Python module
+  pybind11-dev python3-dev python3-pytest python3-matplotlib  # the Python module, its tests and examples/
 )
 # Blender (Cycles) for the export checks that run in the real renderer (tests/test_blender_export.cpp;
 # skipped when absent). About 3 minutes and 170 MB; BSSRDF_SKIP_BLENDER=1 leaves it out.

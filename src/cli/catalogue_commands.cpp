@@ -14,6 +14,7 @@
 #include "bssrdf/model.hpp"
 #include "bssrdf/model_choice.hpp"
 #include "bssrdf/model_registry.hpp"
+#include "bssrdf/model_selection.hpp"
 #include "bssrdf/models/diffusion_validity.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -194,33 +195,7 @@ Action register_models(CLI::App& app) {
       if (!entry.listed) continue;
       const auto& name = entry.name;
       const auto model = entry.make();
-      // The validity domain as measured: the lowest alpha' where the total is within 5 %.
-      const auto within = [&](const std::vector<AccuracyBand>& bands, double tolerance) {
-        double lowest = 1;
-        for (const auto& band : bands)
-          if (band.worst_error <= tolerance)
-            lowest = band.min_albedo_prime;
-          else
-            break;
-        return lowest;
-      };
-      std::string domain = "total not measured against adding-doubling";
-      if (const auto& limits = entry.limits) {
-        const double iso = within(limits->isotropic_bands, 0.05), fwd = within(limits->forward_bands, 0.05);
-        domain = "total within 5 % of adding-doubling for alpha' >= " + format_number(iso) +
-                 " (g = 0), >= " + format_number(fwd) + " (g = 0.9); eta 1-1.4";
-        if (iso == 1 && fwd == 1) domain = "total not within 5 % of adding-doubling anywhere measured";
-      }
-      if (const auto& accuracy = entry.reference_accuracy) {  // the reference itself: its measured band
-        const auto pc = [](double v) { return format_number(std::round(1000 * v) / 10) + " %"; };
-        domain = "against fresh Monte Carlo: total within " + pc(accuracy->total) + ", r R(r) within " +
-                 pc(accuracy->profile) + " (relative L2 beyond the runs' noise) in its domain";
-        for (const auto& r : accuracy->regions)
-          domain += "; " + pc(r.total) + " and " + pc(r.profile) + " in " + r.name + " (" +
-                    format_number(r.albedo_prime_min) + " <= alpha' <= " + format_number(r.albedo_prime_max) + ", " +
-                    format_number(r.g_min) + " <= g <= " + format_number(r.g_max) + ", " + format_number(r.eta_min) +
-                    " <= eta <= " + format_number(r.eta_max) + ")";
-      }
+      const std::string domain = measured_domain(entry);
       if (*json) {
         list.push_back({{"name", name},
                         {"description", model->description()},

@@ -13,6 +13,7 @@
 #include "bssrdf/io/atomic_file.hpp"
 #include "bssrdf/lut/transmission_table.hpp"
 #include "bssrdf/model_choice.hpp"
+#include "bssrdf/model_selection.hpp"
 #include "bssrdf/profile.hpp"
 
 namespace bssrdf::cli {
@@ -280,34 +281,16 @@ std::function<void(std::uint64_t, std::uint64_t)> progress_bar(const std::string
 }
 
 double parse_accuracy(const std::string& text) {
-  const double a = text.empty() ? 0.1 : parse_number(text, "--accuracy");
-  if (!(a > 0 && a < 10))
-    throw InvalidInput("--accuracy", format_number(a), "0 < accuracy < 10 (relative error, e.g. 0.05)");
+  const double a = text.empty() ? kDefaultModelAccuracy : parse_number(text, "--accuracy");
+  check_model_accuracy(a, "--accuracy");
   return a;
 }
 
 ChosenModel resolve_model(const std::string& name, const std::string& accuracy, const Medium& medium) {
-  if (name != "auto") {
-    if (!accuracy.empty()) throw InvalidInput("--accuracy: only with --model auto (it chooses the model to meet it)");
-    if (!name.empty()) return {name, ""};
-    const auto chosen = default_model(medium);
-    return {chosen.name, chosen.reason.empty() ? "" : "default: " + chosen.reason};
-  }
-  const double a = parse_accuracy(accuracy);
-  const auto choice = choose_model(medium, a);
-  std::string rejected;
-  for (const auto& e : choice.estimates) {
-    if (e.model == choice.model) break;
-    rejected += (rejected.empty() ? "" : ", ") + e.model + " " +
-                (e.invalid.empty() ? format_number(std::round(e.error() * 1000) / 10) + " %" : "invalid here");
-  }
-  const auto& chosen = *std::find_if(choice.estimates.begin(), choice.estimates.end(),
-                                     [&](const auto& e) { return e.model == choice.model; });
-  return {choice.model, "auto: " + choice.model + ", the cheapest measured within " + short_number(a * 100) +
-                            " % of Monte Carlo for this medium (worst channel: total " +
-                            format_number(std::round(chosen.total_error * 1000) / 10) + " %, profile L2 " +
-                            format_number(std::round(chosen.profile_error * 1000) / 10) + " %)" +
-                            (rejected.empty() ? "" : "; cheaper but worse: " + rejected)};
+  std::optional<double> a;  // without auto any --accuracy is refused as such, whatever its text
+  if (!accuracy.empty()) a = name == "auto" ? parse_accuracy(accuracy) : kDefaultModelAccuracy;
+  const auto chosen = select_model(name, a, medium, "--accuracy", "--model");
+  return {chosen.name, chosen.note};
 }
 
 }  // namespace bssrdf::cli
