@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -39,6 +40,10 @@ std::vector<double> to_vector(const py::handle& object, const std::string& field
 Array to_array(const std::vector<double>& values);
 // rows x columns, row-major.
 Array to_array(const std::vector<std::vector<double>>& rows);
+
+// A whole-number argument in [min, max], taken as signed so that -1 is refused by name (InvalidInput: ValueError)
+// instead of failing pybind11's unsigned conversion (TypeError).
+std::uint64_t checked_count(std::int64_t value, const std::string& field, std::int64_t min, std::int64_t max);
 
 // The library's validity notes as Python objects (bssrdf.ValidityNote).
 py::list to_python(const ValidityReport& report);

@@ -43,6 +43,12 @@ Array to_array(const std::vector<std::vector<double>>& rows) {
   return out;
 }
 
+std::uint64_t checked_count(std::int64_t value, const std::string& field, std::int64_t min, std::int64_t max) {
+  if (value < min || value > max)
+    throw InvalidInput(field, std::to_string(value), std::to_string(min) + " to " + std::to_string(max));
+  return static_cast<std::uint64_t>(value);
+}
+
 py::list to_python(const ValidityReport& report) {
   py::list out;
   for (const auto& note : report) out.append(note);
@@ -88,6 +94,7 @@ MediumHandle make_medium(const py::object& sigma_a, const py::object& sigma_s, c
   Medium& medium = out.medium;
   medium.sigma_a = to_vector(sigma_a, "sigma_a");
   const std::size_t n = medium.sigma_a.size();
+  if (n == 0) throw InvalidInput("sigma_a: give at least one channel (a number, or one per channel)");
   medium.sigma_s = per_channel(to_vector(sigma_s, "sigma_s"), n, "sigma_s");
   medium.g = per_channel(to_vector(g, "g"), n, "g");
   medium.eta = eta;

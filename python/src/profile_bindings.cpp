@@ -163,6 +163,9 @@ R(medium, r) -> channels x radii array: R(r) per unit entered flux, 1/unit^2, ra
             const auto h = to_medium(medium);
             const double mm = millimetres_per(output_unit(unit, h));
             const auto xs = to_vector(x, "x");
+            for (std::size_t i = 0; i < xs.size(); ++i)
+              if (!std::isfinite(xs[i]))
+                throw InvalidInput("x[" + std::to_string(i) + "]", format_number(xs[i]), "finite");
             std::vector<std::vector<double>> rows;
             for (std::size_t c = 0; c < h.medium.channels(); ++c) {
               const ProjectedProfile p(model, h.medium.reduced(c));

@@ -150,23 +150,24 @@ bin_radius (unit).)")
 
   m.def(
       "reference",
-      [](const py::object& medium, std::uint64_t photons, std::optional<double> thickness,
-         const std::optional<std::string>& layers, std::uint64_t seed, unsigned threads, std::optional<double> r_max,
-         std::optional<double> r_min, std::size_t bins, const std::string& spacing, std::size_t depth_bins,
+      [](const py::object& medium, std::int64_t photons, std::optional<double> thickness,
+         const std::optional<std::string>& layers, std::int64_t seed, std::int64_t threads, std::optional<double> r_max,
+         std::optional<double> r_min, std::int64_t bins, const std::string& spacing, std::int64_t depth_bins,
          const std::optional<std::string>& unit, const py::object& progress, const std::string& db) {
         auto [stack, u] = stack_of(medium, thickness, layers, unit, db);
         MonteCarloOptions options;
-        options.photons = photons;
-        options.seed = seed;
-        options.threads = threads;
-        options.bins = bins;
+        // The command line's ranges (cli_common.hpp: kMaxPhotons, kMaxSeed, kMaxThreads, kMaxBins).
+        options.photons = checked_count(photons, "photons", 1, 10'000'000'000);
+        options.seed = checked_count(seed, "seed", 0, INT64_MAX);
+        options.threads = static_cast<unsigned>(checked_count(threads, "threads", 0, 4096));
+        options.bins = checked_count(bins, "bins", 2, 10'000'000);
         if (spacing != "linear" && spacing != "log")
           throw InvalidInput("spacing", "'" + spacing + "'", "linear or log");
         options.spacing = spacing == "log" ? BinSpacing::log : BinSpacing::linear;
-        options.depth_bins = depth_bins;
+        options.depth_bins = checked_count(depth_bins, "depth_bins", 0, 10'000'000);
         if (r_max) {
           options.r_max = to_mm(*r_max, u);
-          if (!(options.r_max >= 1e-9 * static_cast<double>(bins)))
+          if (!(options.r_max >= 1e-9 * static_cast<double>(options.bins)))
             throw InvalidInput("r_max", format_number(*r_max), "> 0 and at least 1e-9 mm per bin");
         }
         if (r_min) {

@@ -304,14 +304,14 @@ r["sigma_a"] -> array over channels of the values; r.stderr("sigma_a") -> their 
   fit.def(
       "rxt",
       [](const std::string& file, double g, double r_stderr, double t_stderr, double u_stderr, bool lost_light,
-         std::uint64_t lost_light_photons) {
+         std::int64_t lost_light_photons) {
         RxtFitOptions options;
         options.g = g;
         options.reflectance_stderr = r_stderr;
         options.transmittance_stderr = t_stderr;
         options.unscattered_stderr = u_stderr;
         options.lost_light = lost_light;
-        options.lost_light_photons = lost_light_photons;
+        options.lost_light_photons = checked_count(lost_light_photons, "lost_light_photons", 1, 10'000'000'000);
         const auto data = read_rxt(file);
         py::gil_scoped_release release;
         return fit_rxt(data, options);
@@ -415,7 +415,7 @@ t["R"] -> the channel as a height x width array (1-D tables: width); t.attribute
          const std::optional<std::string>& size, const std::optional<double> table_tolerance,
          const py::object& thickness, const std::optional<double> d_min, const std::optional<double> d_max, int samples,
          bool reference, bool reference_everywhere, const std::optional<std::string>& layers,
-         std::optional<std::uint64_t> photons, std::uint64_t seed, unsigned threads,
+         std::optional<std::int64_t> photons, std::int64_t seed, std::int64_t threads,
          const std::optional<double> curvature_max, const std::optional<double> width_max, std::optional<int> taps,
          const py::object& range, const std::optional<double> band, std::optional<int> count,
          const std::optional<double> pixel, std::optional<double> g, std::optional<double> eta, const std::string& db) {
@@ -469,9 +469,9 @@ t["R"] -> the channel as a height x width array (1-D tables: width); t.attribute
         o.reference_everywhere = reference_everywhere;
         o.layers = layers.value_or("");
         o.photons_given = photons.has_value();
-        o.photons = photons.value_or(0);
-        o.seed = seed;
-        o.threads = threads;
+        o.photons = photons ? checked_count(*photons, "photons", 1, 10'000'000'000) : 0;
+        o.seed = checked_count(seed, "seed", 0, INT64_MAX);
+        o.threads = static_cast<unsigned>(checked_count(threads, "threads", 0, 4096));
         o.curvature_max = number_text(curvature_max);
         o.width_max = number_text(width_max);
         o.taps = taps.value_or(0);
@@ -546,8 +546,8 @@ lengths in the medium's unit). Returns a Table: arrays, metadata, and .write("t.
   m.def(
       "advise",
       [](const py::object& medium, double pixel, double tolerance, const std::string& target,
-         std::optional<double> object_size, const std::string& reference, std::uint64_t photons, std::uint64_t seed,
-         unsigned threads, const std::optional<std::string>& unit, const std::string& db) {
+         std::optional<double> object_size, const std::string& reference, std::int64_t photons, std::int64_t seed,
+         std::int64_t threads, const std::optional<std::string>& unit, const std::string& db) {
         const auto h = to_medium(medium, db);
         const auto u = output_unit(unit, h);
         AdviseOptions a;
@@ -562,7 +562,9 @@ lengths in the medium's unit). Returns a Table: arrays, metadata, and .write("t.
             throw InvalidInput("object_size", format_number(*object_size), "a length > 0");
           a.object_size = to_mm(*object_size, u);
         }
-        const MonteCarloReferenceOptions mc{photons, seed, threads};
+        const MonteCarloReferenceOptions mc{checked_count(photons, "photons", 1000, 10'000'000'000),
+                                            checked_count(seed, "seed", 0, INT64_MAX),
+                                            static_cast<unsigned>(checked_count(threads, "threads", 0, 4096))};
         std::unique_ptr<ReferenceProfile> ref;
         if (reference == "montecarlo") {
           ref = std::make_unique<MonteCarloReference>(mc);

@@ -99,6 +99,10 @@ def test_lut_reference_and_errors_name_keywords():
     assert "table_tolerance" in str(error.value) and "--" not in str(error.value)
     with pytest.raises(ValueError, match="kind"):
         bssrdf.lut("Skin1", kind="cubic")
+    for kwargs in (dict(photons=-1, reference=True), dict(threads=-1), dict(kind="separable", taps=-3),
+                   dict(kind="penumbra", size="axb")):
+        with pytest.raises(ValueError, match=[k for k in kwargs if k != "kind"][0]):
+            bssrdf.lut("Skin1", **kwargs)
 
 
 def test_advise_matches_the_cli(cli):
@@ -112,3 +116,5 @@ def test_advise_matches_the_cli(cli):
     assert a.choice is None or a.choice.meets_tolerance
     with pytest.raises(ValueError, match="pixel"):
         bssrdf.advise("Skin1", pixel=-1)
+    with pytest.raises(ValueError, match="photons"):
+        bssrdf.advise("Skin1", pixel=0.1, photons=10)

@@ -39,6 +39,7 @@ def test_from_sigma_s_prime_keeps_the_reduced_scattering():
         (dict(sigma_a="abc", sigma_s=1), "sigma_a"),
         (dict(sigma_a=[[1, 2]], sigma_s=1), "sigma_a"),
         (dict(sigma_a=math.nan, sigma_s=1), "sigma_a"),
+        (dict(sigma_a=[], sigma_s=[]), "sigma_a: give at least one channel"),
     ],
 )
 def test_bad_media_raise_value_error_naming_the_field(kwargs, message):

@@ -69,8 +69,10 @@ def test_ctrl_c_stops_the_run_cleanly():
 
 
 def test_reference_bad_input():
-    with pytest.raises(ValueError, match="photons"):
-        bssrdf.reference("Skin1", photons=0)
+    for kwargs in (dict(photons=0), dict(photons=-1), dict(threads=-1), dict(seed=-1), dict(bins=1),
+                   dict(depth_bins=-2)):
+        with pytest.raises(ValueError, match=list(kwargs)[0]):
+            bssrdf.reference("Skin1", **kwargs)
     with pytest.raises(ValueError, match="thickness"):
         bssrdf.reference("Skin1", thickness=-1)
     with pytest.raises(ValueError, match="spacing"):
