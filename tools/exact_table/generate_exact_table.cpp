@@ -485,6 +485,10 @@ std::size_t add_fine_totals(const Grid& grid, ExactTable& table, const std::vect
 int build(const std::filesystem::path& dir, const std::string& out_path, std::uint64_t seed,
           const std::string& base_path) {
   const Grid grid;
+  // A build takes minutes: refuse an output folder that is not there before, not after.
+  const auto out_dir = std::filesystem::absolute(out_path).parent_path();
+  if (!std::filesystem::is_directory(out_dir))
+    throw std::runtime_error("--out " + out_path + ": the folder " + out_dir.string() + " does not exist");
   // --base: a table whose eta nodes are copied (its axes must be this grid's but for fewer eta nodes).
   std::optional<ExactTable> base;
   std::vector<std::optional<std::size_t>> base_eta(grid.eta.size());
