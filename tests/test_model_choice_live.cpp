@@ -187,7 +187,7 @@ TEST(ModelChoiceLive, OneModelsEstimateIsTheSameAsInTheList) {
 }
 
 TEST(ModelChoiceLive, RefusalOutsideTheDomainNamesTheChannelAndACommandThatWorks) {
-  const auto r = test_cli::run("profile --sigma-a 0.01,0.01 --sigma-s 1 --g 0.5,-0.5 --model auto");  // c1: g < 0
+  const auto r = test_cli::run("profile --sigma-a 0.01,0.01 --sigma-s 1,1 --g 0.5,-0.5 --model auto");  // c1: g < 0
   EXPECT_EQ(r.status, 2);
   EXPECT_TRUE(r.out.empty());
   EXPECT_EQ(test_cli::count_lines(r.err), 1) << r.err;

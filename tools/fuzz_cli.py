@@ -25,7 +25,11 @@ COMMANDS = {
             "--size", "--energy", "--band"],
     "fit gaussians": ["--sigma-a", "--sigma-s", "-n", "--samples"],
     "fit albedo": ["--albedo", "--distance", "--eta", "--g"],
+    "materials export": ["--sigma-a", "--sigma-s-prime", "--g", "--eta", "--unit", "--channels", "--to"],
 }
+# The medium each command starts from (the mutated options are added after it).
+BASE = {"fit albedo": ["--albedo", "0.5", "--distance", "1"],
+        "materials export": ["Mine", "--to", "json", "--sigma-a", "0.1", "--sigma-s-prime", "1"]}
 # Small photon counts keep Monte Carlo runs short; the rest are random.
 SAFE = {"-n": "2000", "--photons": "2000"}
 
@@ -47,7 +51,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         for i in range(count):
             command = rng.choice(list(COMMANDS))
-            args = command.split() + ["--sigma-a", "0.1", "--sigma-s", "1"] if command not in ("fit albedo",) else command.split() + ["--albedo", "0.5", "--distance", "1"]
+            args = command.split() + BASE.get(command, ["--sigma-a", "0.1", "--sigma-s", "1"])
             for option in rng.sample(COMMANDS[command], k=rng.randint(1, 3)):
                 value = rng.choice(HOSTILE) if rng.random() < 0.8 or option not in SAFE else SAFE[option]
                 if option in SAFE and is_number(value) and abs(float(value)) > 1e5:
@@ -57,7 +61,7 @@ def main():
             if command == "lut":
                 args += ["-o", output.replace(".json", ".exr")]
             else:
-                args += ["-o", output, "-q"] if command != "fit albedo" else []
+                args += ["-o", output] + (["-q"] if command != "materials export" else []) if command != "fit albedo" else []
             start = time.time()
             try:
                 run = subprocess.run([binary] + args, capture_output=True, timeout=60)

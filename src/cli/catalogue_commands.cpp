@@ -135,7 +135,9 @@ Action register_models(CLI::App& app) {
   auto* sub = app.add_subcommand("models",
                                  "List the profile models: what each includes and where it holds; with a medium, "
                                  "each one's measured error there and the cheapest within --accuracy");
-  sub->add_flag("--json", *json, "Print JSON");
+  auto format = std::make_shared<std::string>("table");
+  sub->add_option("--format,-f", *format, "table or json [table]")->check(CLI::IsMember({"table", "json"}));
+  sub->add_flag("--json", *json, "Same as -f json (kept for scripts)")->group("");
   medium->add_to(*sub);
   sub->add_option("--accuracy", *accuracy, "With a medium: relative error allowed (total and R(r) L2) [0.1]");
   auto chart = std::make_shared<std::string>();
@@ -162,7 +164,8 @@ Action register_models(CLI::App& app) {
   auto photons = std::make_shared<std::uint64_t>(20'000);
   add_count_option(*sub, "--photons,-n", *photons, 1000, kMaxPhotons,
                    "--map --metric image: Monte Carlo photons per cell [20000]");
-  return [json, medium, accuracy, chart, map, map_file, tolerance, photons, map_reference] {
+  return [json, format, medium, accuracy, chart, map, map_file, tolerance, photons, map_reference] {
+    *json = *json || *format == "json";
     if (!map_file->empty()) {  // validity maps (advise/validity_map.hpp)
       map->extension = std::filesystem::path(*map_file).extension().string();
       if (map->extension != ".svg" && map->extension != ".png")

@@ -22,6 +22,7 @@ std::string rxt_fit_json(const RxtFit& fit) {
   doc["source"] = f.name;
   doc["model"] = "adding-doubling";
   doc["unit"] = "mm";
+  doc["eta"] = f.sample_n;  // with each row's mu_a, mu_s, g: a complete medium per row (materials import)
   auto sphere = [](const RxtSphere& s) {
     return nlohmann::json{{"diameter", s.diameter},
                           {"sample_port", s.sample_port},
@@ -52,6 +53,7 @@ std::string rxt_fit_json(const RxtFit& fit) {
                        {"wavelength", r.row.wavelength},
                        {"mu_a", estimate(r.mu_a, r.mu_a_stderr)},
                        {"mu_s_prime", estimate(r.mu_s_prime, r.mu_s_prime_stderr)},
+                       {"mu_s", estimate(r.mu_s_prime / (1 - r.g), r.mu_s_prime_stderr / (1 - r.g))},
                        {"g", estimate(r.g, r.g_stderr)},
                        {"m_r", {{"measured", r.row.m_r}, {"fitted", r.fitted_m_r}}},
                        {"m_t", {{"measured", r.row.m_t}, {"fitted", r.fitted_m_t}}},
