@@ -64,6 +64,7 @@ def main():
     p.add_argument('--max-median', type=float, default=None)
     p.add_argument('--max-p90', type=float, default=None)
     p.add_argument('--details', action='store_true', help='print every file')
+    p.add_argument('--require-all', action='store_true', help='fail when a file is not compared')
     a = p.parse_args()
     if a.quadrature and not 4 <= a.quadrature <= 256:
         print(f'--quadrature = {a.quadrature}: accepted range is 4 to 256', file=sys.stderr)
@@ -148,6 +149,7 @@ def main():
     for d, s in sorted(summary.items()):
         for why in s['refused']:
             print(f'not compared {d}/{why}')
+            failed = failed or a.require_all
         for why in s['truncated']:
             print(f'partly compared {d}/{why}')
     if timing['rows']:
