@@ -144,8 +144,12 @@ std::vector<Totals> solve_with(const Slab& slab, const std::vector<Incidence>& i
       for (int i = 0; i < n; ++i) {
         const double e = std::exp(-optical_depth / angles.mu[i]);
         const double bounce = 1 - rt_in(i) * rb(i) * e * e;
-        if (bounce > 0) out.unscattered_transmittance += incident(i) * tt(i) * tb(i) * e / bounce;
+        if (bounce > 0) {
+          out.unscattered_transmittance += incident(i) * tt(i) * tb(i) * e / bounce;
+          out.unscattered_reflectance += incident(i) * tt(i) * tt(i) * rb(i) * e * e / bounce;
+        }
       }
+    out.unscattered_reflectance += out.specular_reflectance;
     results.push_back(out);
   }
   return results;

@@ -75,8 +75,11 @@ struct Totals {
   double diffuse_reflectance = 0;        // per incident flux, specular excluded
   double total_transmittance = 0;        // per incident flux, unscattered included
   double unscattered_transmittance = 0;  // per incident flux
-  int points = 0;                        // quadrature angles per hemisphere used
-  double error_estimate = 0;             // largest change of R or T from points/2 (0 with fixed points)
+  // Specular reflection plus the unscattered light reflected back out by the bottom boundary
+  // (iad's R_u), per incident flux.
+  double unscattered_reflectance = 0;
+  int points = 0;             // quadrature angles per hemisphere used
+  double error_estimate = 0;  // largest change of R or T from points/2 (0 with fixed points)
 
   double absorbed() const { return 1 - specular_reflectance - diffuse_reflectance - total_transmittance; }
   // 1 / (1 - R_sp): multiply per-incident values by this for per-entered ones.
