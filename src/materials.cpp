@@ -173,8 +173,9 @@ void MaterialDatabase::add_text(const std::string& text, const std::string& file
     reader.fail("$.format", "expected \"bssrdf-materials\"");
   if (reader.number(reader.member(root, "version", "$"), "$.version") != 1)
     reader.fail("$.version", "only version 1 is understood");
-  reader.only_known_fields(root, "$",
-                           {"format", "version", "source", "citation", "unit", "channels", "notes", "materials"});
+  reader.only_known_fields(
+      root, "$",
+      {"format", "version", "source", "citation", "unit", "channels", "wavelength_nm", "notes", "materials"});
   const std::string source = reader.text(reader.member(root, "source", "$"), "$.source");
   const std::string citation = reader.text(reader.member(root, "citation", "$"), "$.citation");
   // Files spell units exactly (the schema's enum); the command line is more lenient.
@@ -193,6 +194,10 @@ void MaterialDatabase::add_text(const std::string& text, const std::string& file
       if (channels[j] == channels.back()) reader.fail(where, "'" + channels.back() + "' is repeated");
   }
   const auto file_notes = reader.notes(root, "$");
+  // A spectral file: the wavelength of each channel in nm (Medium::validate checks the values).
+  const std::vector<double> wavelength_nm =
+      root.contains("wavelength_nm") ? reader.numbers(root["wavelength_nm"], "$.wavelength_nm", channels.size())
+                                     : std::vector<double>{};
 
   const json& list = reader.member(root, "materials", "$");
   if (!list.is_array() || list.empty()) reader.fail("$.materials", "expected a non-empty array");
@@ -211,6 +216,7 @@ void MaterialDatabase::add_text(const std::string& text, const std::string& file
     for (auto& n : reader.notes(entry, where)) m.notes.push_back(std::move(n));
     const std::size_t n = channels.size();
     m.medium.channel_names = channels;
+    m.medium.wavelength_nm = wavelength_nm;
     m.medium.eta = reader.number(reader.member(entry, "eta", where), where + ".eta");
     m.medium.sigma_a = reader.numbers(reader.member(entry, "sigma_a", where), where + ".sigma_a", n);
     const bool has_prime = entry.contains("sigma_s_prime"), has_sigma_s = entry.contains("sigma_s");

@@ -16,6 +16,12 @@ std::vector<std::string> default_channel_names(std::size_t count) {
   return names;
 }
 
+std::vector<std::string> wavelength_channel_names(const std::vector<double>& wavelength_nm) {
+  std::vector<std::string> names;
+  for (double nm : wavelength_nm) names.push_back(format_number(nm) + "nm");
+  return names;
+}
+
 void Medium::validate() const {
   const std::size_t n = sigma_a.size();
   if (n == 0) throw InvalidInput("sigma_a", "(no values)", "at least one channel");
@@ -45,6 +51,17 @@ void Medium::validate() const {
     if (sigma_a[i] + sigma_s[i] <= 0)
       throw InvalidInput("sigma_a" + tag + " + sigma_s" + tag, "0", "> 0 (the medium must absorb or scatter)");
     if (!(g[i] > -1 && g[i] < 1)) throw InvalidInput("g" + tag, format_number(g[i]), "-1 < g < 1");
+  }
+  if (!wavelength_nm.empty()) {
+    check_count("wavelengths", wavelength_nm.size());
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!(wavelength_nm[i] >= kMinWavelength && wavelength_nm[i] <= kMaxWavelength))
+        throw InvalidInput("wavelengths[" + std::to_string(i) + "]", format_number(wavelength_nm[i]),
+                           format_number(kMinWavelength) + " to " + format_number(kMaxWavelength) + " nm");
+      if (i > 0 && !(wavelength_nm[i] > wavelength_nm[i - 1]))
+        throw InvalidInput("wavelengths[" + std::to_string(i) + "]", format_number(wavelength_nm[i]),
+                           "strictly increasing (after " + format_number(wavelength_nm[i - 1]) + " nm)");
+    }
   }
   if (!(eta >= kMinRefractiveIndex && eta <= kMaxRefractiveIndex))
     throw InvalidInput(

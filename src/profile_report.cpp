@@ -198,6 +198,11 @@ std::string to_json(const ProfileReport& report) {
   } else {
     doc["material"] = nullptr;
   }
+  if (report.colour)
+    doc["colour"] = {{"observer", report.colour->observer},
+                     {"illuminant", report.colour->illuminant},
+                     {"space", report.colour->space},
+                     {"wavelength_nm", report.colour->wavelength_nm}};
   doc["geometry"] = report.layers ? "layers" : report.thickness ? "slab" : "semi-infinite";
   doc["thickness"] = report.thickness ? nlohmann::json(*report.thickness) : nlohmann::json(nullptr);
   if (report.layers) {
@@ -213,13 +218,15 @@ std::string to_json(const ProfileReport& report) {
   for (const auto& ch : report.channels) {
     nlohmann::json c;
     c["name"] = ch.name;
-    c["sigma_a"] = ch.sigma_a;
-    c["sigma_s"] = ch.sigma_s;
-    c["g"] = ch.g;
-    c["sigma_s_prime"] = ch.sigma_s_prime;
-    c["albedo_prime"] = ch.albedo_prime;
-    c["transport_mfp"] = ch.transport_mfp;
-    c["diffuse_mfp"] = number_or_null(ch.diffuse_mfp);
+    if (!report.colour) {  // a colour channel has no coefficients of its own
+      c["sigma_a"] = ch.sigma_a;
+      c["sigma_s"] = ch.sigma_s;
+      c["g"] = ch.g;
+      c["sigma_s_prime"] = ch.sigma_s_prime;
+      c["albedo_prime"] = ch.albedo_prime;
+      c["transport_mfp"] = ch.transport_mfp;
+      c["diffuse_mfp"] = number_or_null(ch.diffuse_mfp);
+    }
     c["total_reflectance"] = ch.total_reflectance;
     c["radius_99"] = number_or_null(ch.radius_99);
     c["radius"] = ch.profile.radius;
@@ -274,6 +281,11 @@ std::string to_table(const ProfileReport& report) {
   if (!report.model_choice.empty()) out << "choice    " << report.model_choice << '\n';
   if (report.material) out << "material  " << report.material->name << " (" << report.material->source << ")\n";
   out << "eta       " << format_number(report.eta) << "\n";
+  if (report.colour)
+    out << "colour    " << report.colour->space << " under " << report.colour->illuminant << ", "
+        << report.colour->observer << " observer, from " << report.colour->wavelength_nm.size() << " wavelengths ("
+        << format_number(report.colour->wavelength_nm.front()) << "-"
+        << format_number(report.colour->wavelength_nm.back()) << " nm); coefficients are per wavelength\n";
   if (report.thickness) out << "slab      thickness " << format_number(*report.thickness) << ' ' << u << "\n";
   if (report.layers) {
     const double mm = millimetres_per(report.unit);

@@ -17,7 +17,10 @@ HOSTILE = ["-1", "0", "1e308", "-1e308", "1e-308", "4.9e-324", "nan", "inf", "-i
            "\r", "x\x1b[31m", "1e6", "64", "-0"]
 COMMANDS = {
     "profile": ["--sigma-a", "--sigma-s", "--g", "--eta", "--radii", "--samples", "--r-min", "--r-max",
-                "--thickness", "--model", "--unit"],
+                "--thickness", "--model", "--unit", "--wavelengths", "--colour", "--illuminant"],
+    "skin": ["--melanin", "--eumelanin", "--blood", "--oxygenation", "--epidermis", "--scattering", "--wavelengths",
+             "--colour", "--illuminant", "--specular"],
+    "fit skin": ["--srgb", "--melanin", "--specular", "--min-nm", "--max-nm", "--solve-step"],
     "reference": ["--sigma-a", "--sigma-s", "--g", "--eta", "-n", "--bins", "--seed", "--threads", "--r-max",
                   "--thickness", "--depth-bins", "--roulette-threshold"],
     "transmission": ["--sigma-a", "--sigma-s", "--eta", "--samples", "--d-min", "--d-max"],
@@ -30,7 +33,7 @@ COMMANDS = {
                  "--unscattered-in-mt", "--g", "--dual-beam"],
 }
 # The medium each command starts from (the mutated options are added after it).
-BASE = {"fit albedo": ["--albedo", "0.5", "--distance", "1"],
+BASE = {"fit albedo": ["--albedo", "0.5", "--distance", "1"], "skin": [], "fit skin": ["--srgb", "0.7,0.5,0.4"],
         "materials export": ["Mine", "--to", "json", "--sigma-a", "0.1", "--sigma-s-prime", "1"]}
 # fit slab reads a mutated .rxt file (iad's layouts: a count, column letters, one line).
 RXT_SEEDS = ["IAD1 1.4 1.5 1 1 5 .98 1 203.2 25.4 12.7 1 .96 203.2 25.4 12.7 1 .96\n2\n500 0.3 0.2\n0.25 0.3\n",

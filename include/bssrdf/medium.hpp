@@ -25,13 +25,18 @@ struct Medium {
   std::vector<double> sigma_s;             // 1/mm
   std::vector<double> g;                   // mean cosine, in (-1, 1)
   double eta = 1.0;                        // n_medium / n_outside
+  // A spectral medium: the wavelength of each channel in nm, strictly increasing (empty: RGB or unnamed channels).
+  // Colour comes from integrating its outputs (spectral/colour.hpp), never from its coefficients.
+  std::vector<double> wavelength_nm;
 
   std::size_t channels() const { return sigma_a.size(); }
+  bool spectral() const { return !wavelength_nm.empty(); }
 
   // Throws InvalidInput naming the first offending field, e.g. "sigma_a[G] = -1: accepted range
   // is >= 0 and finite". Checks: equal channel counts (>= 1), 0 <= sigma_a, sigma_s <= kMaxCoefficient,
   // sigma_a + sigma_s > 0, -1 < g < 1, eta within [kMinRefractiveIndex, kMaxRefractiveIndex],
-  // channel names unique and non-empty.
+  // channel names unique and non-empty; wavelengths, when given, one per channel, within
+  // [kMinWavelength, kMaxWavelength] nm and strictly increasing.
   void validate() const;
 
   // The similarity-reduced coefficients of one channel, used by every diffusion model.
@@ -48,6 +53,12 @@ struct TransportMfpRange {
   double min = 0, max = 0;
 };
 TransportMfpRange transport_mfp_range(const Medium& medium);
+
+// The wavelengths a spectral medium may carry, nm: ultraviolet to mid-infrared.
+inline constexpr double kMinWavelength = 200, kMaxWavelength = 20000;
+
+// Channel names of a spectral medium: "400nm", "402.5nm", ...
+std::vector<std::string> wavelength_channel_names(const std::vector<double>& wavelength_nm);
 
 // Channel names for n channels: R, G, B for three, c0, c1, ... otherwise.
 std::vector<std::string> default_channel_names(std::size_t count);

@@ -39,6 +39,12 @@ struct ChannelProfile {
   int dipole_pairs = 0;
 };
 
+// A profile report whose channels are colours integrated from a spectral one (spectral/colour_profile.hpp).
+struct ColourNote {
+  std::string observer, illuminant, space;  // "CIE 1931 2-degree", "D65", "linear sRGB"
+  std::vector<double> wavelength_nm;        // the spectral channels integrated
+};
+
 struct ProfileReport {
   std::string model, model_description;
   std::string model_choice;  // why this model, when it was chosen for an accuracy (--model auto)
@@ -48,6 +54,7 @@ struct ProfileReport {
   std::optional<Material> material;  // when the medium came from the database
   std::vector<ChannelProfile> channels;
   std::optional<double> thickness;   // a single slab, in unit
+  std::optional<ColourNote> colour;  // the channels are R, G, B integrated from wavelengths
   std::optional<LayerStack> layers;  // a layer stack (mm inside; reported in unit); channel
                                      // coefficients are then those of the top layer
 };

@@ -43,7 +43,7 @@ ReferenceProfiles AutoReference::profiles(const Medium& medium) const {
   out.channels.resize(medium.channels());
   out.sources.resize(medium.channels());
   // The Monte Carlo channels first, alone: their bins fix the annuli every channel shares.
-  Medium traced{{}, {}, {}, {}, medium.eta};
+  Medium traced{{}, {}, {}, {}, medium.eta, {}};
   std::vector<std::size_t> traced_index;
   for (std::size_t c = 0; c < medium.channels(); ++c) {
     out.sources[c].name = auto_reference_source(medium.reduced(c));

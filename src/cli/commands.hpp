@@ -18,5 +18,6 @@ Action register_transmission(CLI::App& app);
 Action register_lut(CLI::App& app);
 Action register_slab(CLI::App& app);
 Action register_advise(CLI::App& app);
+Action register_skin(CLI::App& app);
 
 }  // namespace bssrdf::cli

@@ -15,6 +15,7 @@
 #include "commands.hpp"
 #include "rxt_options.hpp"
 #include "rxt_output.hpp"
+#include "skin_command.hpp"
 
 namespace bssrdf::cli {
 namespace {
@@ -199,8 +200,12 @@ Action register_fit(CLI::App& app) {
   bo->first.add_to(*burley);
   bo->second.add_to(*burley);
 
+  const FitSkinCommand skin = register_fit_skin(*fit);
+
   return [=] {
-    if (profile->parsed()) {
+    if (skin.app->parsed()) {
+      skin.run();
+    } else if (profile->parsed()) {
       ProfileFitOptions options;
       options.model = po->model;
       options.eta = parse_number(po->eta, "--eta");

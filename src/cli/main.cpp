@@ -157,7 +157,8 @@ int main(int argc, char** argv) {
   for (auto* register_command :
        {&bssrdf::cli::register_profile, &bssrdf::cli::register_models, &bssrdf::cli::register_materials,
         &bssrdf::cli::register_reference, &bssrdf::cli::register_fit, &bssrdf::cli::register_transmission,
-        &bssrdf::cli::register_lut, &bssrdf::cli::register_slab, &bssrdf::cli::register_advise}) {
+        &bssrdf::cli::register_lut, &bssrdf::cli::register_slab, &bssrdf::cli::register_advise,
+        &bssrdf::cli::register_skin}) {
     const auto before = app.get_subcommands({});
     auto action = (*register_command)(app);
     for (auto* sub : app.get_subcommands({}))

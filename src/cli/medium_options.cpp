@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "bssrdf/error.hpp"
+#include "bssrdf/spectral/resample.hpp"
 #include "cli_common.hpp"
 
 namespace bssrdf::cli {
@@ -37,6 +38,9 @@ void MediumOptions::add_coefficients_to(CLI::App& app) {
   app.add_option("--g", g, "Henyey-Greenstein anisotropy per channel (or one for all), -1 < g < 1 [0]");
   app.add_option("--channels", channels, "Channel names, comma-separated [R,G,B for three]");
   app.add_option("--eta", eta, "Relative index of refraction n_medium/n_outside [1.3, or the material's]");
+  app.add_option("--wavelengths", wavelengths,
+                 "A spectral medium: the channels' wavelengths in nm, increasing (one coefficient per wavelength or "
+                 "one for all); with a spectral --material, resamples it (linear in wavelength)");
   (void)sa;
 }
 
@@ -56,18 +60,24 @@ MediumOptions::Resolved MediumOptions::resolve() const {
     const auto database = MaterialDatabase::load_with_user(db);
     out.material = database.find(material);
     out.medium = out.material->medium;
+    if (!wavelengths.empty())
+      out.medium = spectral::resample(out.medium, parse_number_list(wavelengths, "--wavelengths"));
   } else {
     if (sigma_a.empty() || (sigma_s.empty() && sigma_s_prime.empty()))
       throw InvalidInput("medium: give --material NAME, or --sigma-a with --sigma-s (or --sigma-s-prime)");
+    // A spectral medium has one channel per wavelength, each coefficient given per wavelength or once.
+    if (!wavelengths.empty()) out.medium.wavelength_nm = parse_number_list(wavelengths, "--wavelengths");
+    const std::string count_from = wavelengths.empty() ? "--sigma-a" : "--wavelengths";
     const auto a = parse_number_list(sigma_a, "--sigma-a");
-    const std::size_t n = a.size();
-    out.medium.sigma_a = a;
+    const std::size_t n = wavelengths.empty() ? a.size() : out.medium.wavelength_nm.size();
+    out.medium.sigma_a = per_channel(a, n, "--sigma-a", count_from);
     out.medium.g =
-        g.empty() ? std::vector<double>(n, 0.0) : per_channel(parse_number_list(g, "--g"), n, "--g", "--sigma-a");
+        g.empty() ? std::vector<double>(n, 0.0) : per_channel(parse_number_list(g, "--g"), n, "--g", count_from);
     // One scattering value per absorption value: "--sigma-a 0,1 --sigma-s 10" (a decimal comma) must
     // not quietly become two channels.
     const std::string scattering = sigma_s.empty() ? "--sigma-s-prime" : "--sigma-s";
-    const auto s = parse_number_list(sigma_s.empty() ? sigma_s_prime : sigma_s, scattering);
+    auto s = parse_number_list(sigma_s.empty() ? sigma_s_prime : sigma_s, scattering);
+    if (!wavelengths.empty()) s = per_channel(s, n, scattering, count_from);
     if (s.size() != n)
       throw InvalidInput(scattering + ": " + std::to_string(s.size()) +
                          (s.size() == 1 ? " value given" : " values given") + ", but --sigma-a has " +
@@ -78,7 +88,8 @@ MediumOptions::Resolved MediumOptions::resolve() const {
       for (std::size_t c = 0; c < n; ++c)
         if (out.medium.g[c] < 1) out.medium.sigma_s[c] = s[c] / (1 - out.medium.g[c]);
     if (channels.empty()) {
-      out.medium.channel_names = default_channel_names(n);
+      out.medium.channel_names =
+          wavelengths.empty() ? default_channel_names(n) : wavelength_channel_names(out.medium.wavelength_nm);
     } else {
       std::string rest = channels;
       std::vector<std::string> names;
@@ -102,7 +113,7 @@ MediumOptions::Resolved MediumOptions::resolve() const {
   } catch (const InvalidInput& e) {
     // Name the option the user typed ("--sigma-a[G] = -1: ..."), not the library's field.
     std::string message = e.what();
-    for (const std::string field : {"sigma_a", "sigma_s", "g", "eta"}) {
+    for (const std::string field : {"sigma_a", "sigma_s", "g", "eta", "wavelengths"}) {
       if (message.rfind(field, 0) != 0) continue;
       const char next = message[field.size()];
       if (next != '[' && next != ' ') continue;

@@ -17,7 +17,9 @@
 #include "bssrdf/models/layered.hpp"
 #include "bssrdf/models/multipole.hpp"
 #include "bssrdf/profile_report.hpp"
+#include "bssrdf/spectral/colour_profile.hpp"
 #include "cli_common.hpp"
+#include "colour_options.hpp"
 #include "commands.hpp"
 
 namespace bssrdf::cli {
@@ -56,6 +58,7 @@ const ValidityNote* breakdown(const ValidityReport& report) {
 Action register_profile(CLI::App& app) {
   struct Options {
     MediumOptions medium;
+    ColourOptions colour;
     OutputOptions output;
     std::string model, radii, r_min, r_max, spacing = "log", thickness, layers;
     double pair_tolerance = 1e-5;
@@ -66,6 +69,7 @@ Action register_profile(CLI::App& app) {
   auto options = std::make_shared<Options>();
   auto* sub = app.add_subcommand("profile", "Radial diffusion profile R(r) per channel (per unit entered flux)");
   options->medium.add_to(*sub);
+  options->colour.add_to(*sub);
   std::string names;  // the registry's, in its order
   for (const auto& name : model_names()) names += name + ", ";
   sub->add_option("--model", options->model,
@@ -213,6 +217,8 @@ Action register_profile(CLI::App& app) {
     report.material = resolved.material;
     report.model_choice = auto_note;
     for (const auto& ch : report.channels) warn_validity(report.model, ch.name, ch.validity);
+    if (const auto colour = options->colour.resolve(resolved.medium))
+      report = spectral::colour_profile(report, resolved.medium.wavelength_nm, *colour);
     emit(
         options->output, [&] { return to_json(report); }, [&] { return to_csv(report); }, to_table(report));
   };

@@ -317,3 +317,26 @@ LayersFile read_layers_json(const std::filesystem::path& path) {
 }
 
 }  // namespace bssrdf
+
+namespace bssrdf {
+
+std::string layers_json(const LayerStack& stack) {
+  nlohmann::json doc = {{"format", "bssrdf-layers"},
+                        {"version", 1},
+                        {"unit", "mm"},
+                        {"ambient_above", stack.ambient_above},
+                        {"ambient_below", stack.ambient_below},
+                        {"channels", stack.channel_names}};
+  doc["layers"] = nlohmann::json::array();
+  for (const auto& layer : stack.layers)
+    doc["layers"].push_back(
+        {{"name", layer.name},
+         {"thickness", layer.thickness == kSemiInfinite ? nlohmann::json(nullptr) : nlohmann::json(layer.thickness)},
+         {"n", layer.n},
+         {"sigma_a", layer.sigma_a},
+         {"sigma_s", layer.sigma_s},
+         {"g", layer.g}});
+  return doc.dump(2) + "\n";
+}
+
+}  // namespace bssrdf

@@ -17,6 +17,7 @@
 #include "bssrdf/io/mci.hpp"
 #include "bssrdf/io/profile_csv.hpp"
 #include "bssrdf/io/rxt.hpp"
+#include "bssrdf/io/spectrum_file.hpp"
 #include "bssrdf/materials.hpp"
 
 namespace bssrdf::fuzz {
@@ -33,6 +34,7 @@ inline const std::vector<Target>& targets() {
       {"mci", [](const std::string& b) { parse_mci(b, "fuzz.mci"); }},
       {"profile_csv", [](const std::string& b) { parse_profile_csv(b, "fuzz.csv"); }},
       {"rxt", [](const std::string& b) { parse_rxt(b, "fuzz.rxt"); }},
+      {"spectrum", [](const std::string& b) { parse_spectrum(b, "fuzz.tsv", ""); }},
       {"fit_import",
        [](const std::string& b) {
          MaterialDatabase().add_text(materials_file_from_fit(b, "fit.json", "X", std::nullopt, "fit"), "m.json");

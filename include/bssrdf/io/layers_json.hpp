@@ -38,3 +38,9 @@ LayersFile read_layers_json(const std::filesystem::path& path);
 LayersFile parse_layers_json(const std::string& text, const std::string& name);
 
 }  // namespace bssrdf
+
+namespace bssrdf {
+// The file's text for `stack` (lengths in mm, coefficients in 1/mm, channel names kept): what read_layers_json reads
+// back to the same stack.
+std::string layers_json(const LayerStack& stack);
+}  // namespace bssrdf

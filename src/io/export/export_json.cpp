@@ -20,6 +20,7 @@ std::string export_json(const std::vector<ExportEntry>& entries, LengthUnit unit
   doc["citation"] = citation;
   doc["unit"] = std::string(symbol(unit));
   doc["channels"] = entries.front().material.medium.channel_names;
+  if (entries.front().material.medium.spectral()) doc["wavelength_nm"] = entries.front().material.medium.wavelength_nm;
   doc["notes"] = {"Exported by bssrdf " BSSRDF_VERSION ": coefficients in 1/" + std::string(symbol(unit)) +
                   "; per-entry notes carry the original file's notes."};
   doc["materials"] = json::array();

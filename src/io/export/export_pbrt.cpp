@@ -1,5 +1,6 @@
 // pbrt-v4 `subsurface` materials (sigma_a, sigma_s, g, eta, scale) as MakeNamedMaterial blocks,
-// coefficients in 1/scene unit with scale 1. pbrt-v4 takes one g per material: see single_g().
+// coefficients in 1/scene unit with scale 1: "rgb" for RGB media, "spectrum" (wavelength-value pairs) for
+// spectral ones, which pbrt-v4 renders spectrally. pbrt-v4 takes one g per material: see single_g().
 #include <algorithm>
 
 #include "export_common.hpp"
@@ -62,8 +63,23 @@ bool pbrt_names(const std::string& name) {
 }
 }  // namespace
 
+// A spectral medium's coefficients as pbrt-v4's interleaved "spectrum" parameter: [ nm value nm value ... ]
+// (pbrt-v4 file format, "Spectra"; it interpolates linearly between the given wavelengths).
+std::string pbrt_spectrum(const std::vector<double>& nm, const std::vector<double>& values) {
+  std::string out;
+  for (std::size_t i = 0; i < nm.size(); ++i) {
+    if (i) out += ' ';
+    out += num(nm[i]);
+    out += ' ';
+    out += num(values[i]);
+  }
+  return out;
+}
+
 std::string export_pbrt_v4(const std::vector<ExportEntry>& entries, LengthUnit unit) {
-  require_rgb(entries, "pbrt-v4");
+  const bool spectral =
+      std::all_of(entries.begin(), entries.end(), [](const ExportEntry& e) { return e.material.medium.spectral(); });
+  if (!spectral) require_rgb(entries, "pbrt-v4");
   const std::string u(symbol(unit));
   std::string out =
       "# pbrt-v4 subsurface materials exported by bssrdf " BSSRDF_VERSION
@@ -82,7 +98,7 @@ std::string export_pbrt_v4(const std::vector<ExportEntry>& entries, LengthUnit u
     const auto& m = e.material.medium;
     const auto one = single_g(m);
     std::vector<double> a, s, mfp, ell;
-    for (std::size_t c = 0; c < 3; ++c) {
+    for (std::size_t c = 0; c < m.channels(); ++c) {
       a.push_back(coefficient_from_per_mm(m.sigma_a[c], unit));
       s.push_back(coefficient_from_per_mm(one.sigma_s[c], unit));
       mfp.push_back(from_mm(e.derived.channels[c].mfp, unit));
@@ -101,8 +117,13 @@ std::string export_pbrt_v4(const std::vector<ExportEntry>& entries, LengthUnit u
              num(millimetres_per(unit)) + " ] for 1/" + u + ")\n";
     out += "MakeNamedMaterial \"" + e.material.name + "\"\n";
     out += "    \"string type\" [ \"subsurface\" ]\n";
-    out += "    \"rgb sigma_a\" [ " + join(a, " ") + " ]\n";
-    out += "    \"rgb sigma_s\" [ " + join(s, " ") + " ]\n";
+    if (spectral) {
+      out += "    \"spectrum sigma_a\" [ " + pbrt_spectrum(m.wavelength_nm, a) + " ]\n";
+      out += "    \"spectrum sigma_s\" [ " + pbrt_spectrum(m.wavelength_nm, s) + " ]\n";
+    } else {
+      out += "    \"rgb sigma_a\" [ " + join(a, " ") + " ]\n";
+      out += "    \"rgb sigma_s\" [ " + join(s, " ") + " ]\n";
+    }
     out += "    \"float g\" [ " + num(one.g) + " ]\n";
     out += "    \"float eta\" [ " + num(m.eta) + " ]\n";
     out += "    \"float scale\" [ 1 ]\n";

@@ -60,7 +60,8 @@ std::string export_materials(RendererTarget target, const std::vector<ExportEntr
   using namespace export_detail;
   if (entries.empty()) throw InvalidInput("export: no materials given");
   for (const auto& e : entries) {
-    if (e.material.medium.channel_names != entries.front().material.medium.channel_names)
+    if (e.material.medium.channel_names != entries.front().material.medium.channel_names ||
+        e.material.medium.wavelength_nm != entries.front().material.medium.wavelength_nm)
       throw InvalidInput("export: material " + e.material.name + " has other channels than " +
                          entries.front().material.name + "; export them separately");
     if (target != RendererTarget::json && e.derived.channels.size() != e.material.medium.channels())
