@@ -10,6 +10,7 @@ packages=(
   libstb-dev
   clang libclang-rt-14-dev
   python3-numpy  # tools/validation/advise_check.py
+  libopenmpi-dev openmpi-bin  # MPI runs and their ctest checks (docs/mpi.md); optional for the build
 )
 # Blender (Cycles) for the export checks that run in the real renderer (tests/test_blender_export.cpp;
 # skipped when absent). About 3 minutes and 170 MB; BSSRDF_SKIP_BLENDER=1 leaves it out.

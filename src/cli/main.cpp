@@ -11,6 +11,7 @@
 
 #include "bssrdf/error.hpp"
 #include "commands.hpp"
+#include "launched_process_group.hpp"
 
 namespace {
 
@@ -33,6 +34,7 @@ std::string printable(const std::string& message) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  bssrdf::silence_other_ranks();  // under mpirun or srun, rank 0 alone speaks (docs/mpi.md)
   // Ceres logs through glog; the tool reports solver outcomes itself, so keep glog quiet.
   google::InitGoogleLogging(argv[0]);
   FLAGS_minloglevel = google::GLOG_FATAL;
