@@ -34,7 +34,7 @@ std::string printable(const std::string& message) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  bssrdf::silence_other_ranks();  // under mpirun or srun, rank 0 alone speaks (docs/mpi.md)
+  bssrdf::prepare_launched_process();  // under mpirun or srun, rank 0 alone speaks (docs/mpi.md)
   // Ceres logs through glog; the tool reports solver outcomes itself, so keep glog quiet.
   google::InitGoogleLogging(argv[0]);
   FLAGS_minloglevel = google::GLOG_FATAL;

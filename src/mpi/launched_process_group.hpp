@@ -13,8 +13,9 @@ namespace bssrdf {
 // exit status 3 (no output is written: rank 0 writes only after every rank delivered).
 ProcessGroup* launched_process_group();
 
-// Silences standard output and error of every rank but 0 of a launch, before MPI is initialised
-// (the programs call it first, so that even errors in the command line are printed once).
-void silence_other_ranks();
+// Called first by the programs, before MPI is initialised: silences standard output and error of
+// every rank but 0 of a launch (so that even errors in the command line are printed once), and lets
+// rank 0 turn the launcher's SIGTERM into its one line from the start (a rank may die before MPI_Init).
+void prepare_launched_process();
 
 }  // namespace bssrdf

@@ -24,6 +24,12 @@ int announced_rank() {
   return -1;
 }
 
+int announced_size() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "SLURM_NTASKS"})
+    if (const char* value = std::getenv(name)) return std::atoi(value);
+  return 0;  // unknown (PMIx announces no size): assume several
+}
+
 void silence() {
   const int null = ::open("/dev/null", O_WRONLY);
   if (null < 0) return;
@@ -49,11 +55,10 @@ class MpiProcessGroup final : public ProcessGroup {
     MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
     MPI_Comm_size(MPI_COMM_WORLD, &size_);
-    if (rank_ != 0) {
+    if (rank_ != 0)
       silence();
-    } else if (size_ > 1) {
-      std::signal(SIGTERM, on_terminate);
-    }
+    else if (size_ > 1)
+      std::signal(SIGTERM, on_terminate);  // again, in case MPI_Init replaced it
   }
   ~MpiProcessGroup() override { MPI_Finalize(); }
 
@@ -115,8 +120,11 @@ class MpiProcessGroup final : public ProcessGroup {
 
 }  // namespace
 
-void silence_other_ranks() {
-  if (announced_rank() > 0) silence();
+void prepare_launched_process() {
+  const int rank = announced_rank();
+  if (rank > 0) silence();
+  // From the start: a rank that dies before or during MPI_Init stops rank 0 there too.
+  if (rank == 0 && announced_size() != 1) std::signal(SIGTERM, on_terminate);
 }
 
 ProcessGroup* launched_process_group() {

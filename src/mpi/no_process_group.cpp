@@ -3,7 +3,7 @@
 
 namespace bssrdf {
 
-void silence_other_ranks() {}
+void prepare_launched_process() {}
 
 ProcessGroup* launched_process_group() { return nullptr; }
 

@@ -832,7 +832,7 @@ double number(const std::string& flag, const std::string& text, double lo, doubl
 }
 
 int main(int argc, char** argv) {
-  silence_other_ranks();  // under mpirun or srun, rank 0 alone speaks (docs/mpi.md)
+  prepare_launched_process();  // under mpirun or srun, rank 0 alone speaks (docs/mpi.md)
   try {
     std::vector<std::string> args(argv + 1, argv + argc);
     if (args.empty() || (args[0] != "run" && args[0] != "build")) {
