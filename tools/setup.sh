@@ -19,6 +19,7 @@ if [ "${1:-}" = "--tests" ]; then
     clang libclang-rt-14-dev  # tools/sanitize.sh: libFuzzer
     python3-numpy             # tools/validation/advise_check.py, the Python module
     python3-pytest python3-matplotlib  # the Python module's tests and examples/
+    libopenmpi-dev openmpi-bin  # MPI runs and their ctest checks (docs/mpi.md); only the CLI's link changes
   )
   # Blender (Cycles) for the export checks that run in the real renderer (tests/test_blender_export.cpp;
   # skipped when absent). About 3 minutes and 170 MB.

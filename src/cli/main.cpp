@@ -15,6 +15,7 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/units.hpp"
 #include "commands.hpp"
+#include "launched_process_group.hpp"
 
 namespace {
 
@@ -142,6 +143,7 @@ std::string explain(CLI::App& app, int argc, char** argv, const std::string& mes
 }  // namespace
 
 int main(int argc, char** argv) {
+  bssrdf::prepare_launched_process();  // under mpirun or srun, rank 0 alone speaks (docs/mpi.md)
   // Ceres logs through glog; the tool reports solver outcomes itself, so keep glog quiet.
   google::InitGoogleLogging(argv[0]);
   FLAGS_minloglevel = google::GLOG_FATAL;

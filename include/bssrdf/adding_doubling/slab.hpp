@@ -91,6 +91,12 @@ Totals solve(const Slab& slab, Incidence incidence, const Options& options = {})
 // corrections): the same results as separate calls, for little more than the cost of one.
 std::vector<Totals> solve(const Slab& slab, const std::vector<Incidence>& incidences, const Options& options = {});
 
+// One-layer slabs that differ only in the layer's thickness (a table against thickness): the results
+// of solve() at each thickness, bitwise, with the angles, boundaries and phase function computed once
+// per number of angles instead of once per thickness.
+std::vector<Totals> solve_thicknesses(const Slab& slab, const std::vector<double>& thicknesses, Incidence incidence,
+                                      const Options& options = {});
+
 // Channel `c` of a layer stack: leading and trailing layers that do not scatter become clear
 // layers (slides); the scattering layers between them must share one index and may not contain a
 // non-scattering layer (InvalidInput otherwise).
