@@ -67,6 +67,10 @@ void settle_rounding_tail(ProfileReport& report) {
 }  // namespace
 
 std::vector<double> default_radii_mm(const Medium& medium, const Model& model, std::size_t samples) {
+  // Without scattering R(r) is zero: there is no profile, hence no radius range, to sample.
+  if (std::all_of(medium.sigma_s.begin(), medium.sigma_s.end(), [](double s) { return s == 0; }))
+    throw InvalidInput("sigma_s", "0 in every channel",
+                       "> 0 in some channel (without scattering there is no diffuse profile)");
   double r_min = std::numeric_limits<double>::infinity(), r_max = 0;
   for (std::size_t c = 0; c < medium.channels(); ++c) {
     const auto m = medium.reduced(c);

@@ -14,7 +14,7 @@ using namespace bssrdf::test_cli;
 using json = nlohmann::json;
 
 TEST(CliSlab, JsonPerChannelBothNormalisationsAndSlides) {
-  const auto r = run("slab --sigma-a 0.1,0.2 --sigma-s 10 --g 0.9 --eta 1.4 --thickness 2 --slides 1.5,1 -f json");
+  const auto r = run("slab --sigma-a 0.1,0.2 --sigma-s 10,10 --g 0.9 --eta 1.4 --thickness 2 --slides 1.5,1 -f json");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto doc = json::parse(r.out);
   EXPECT_EQ(doc["solver"], "adding-doubling");

@@ -302,9 +302,11 @@ TEST(CliMaterials, ImportTurnsAFitIntoAMaterialFile) {
   const auto db = MaterialDatabase::load(material);
   const auto& m = db.find("my fit");
   EXPECT_EQ(m.source, "fit");
-  EXPECT_TRUE(m.reduced_scattering_only);
+  EXPECT_FALSE(m.reduced_scattering_only);  // the fit records g (held at 0 here), so sigma_s is known
   EXPECT_EQ(m.medium.eta, 1.4);
   EXPECT_NEAR(m.medium.sigma_a[1], fitted["channels"][1]["sigma_a"]["value"].get<double>(), 1e-15);
+  EXPECT_EQ(m.medium.g[1], 0.0);
+  EXPECT_NEAR(m.medium.sigma_s[1], fitted["channels"][1]["sigma_s_prime"]["value"].get<double>(), 1e-15);
   // The bridge: --db adds it to the bundled database, and every command can use it.
   r = run("materials show \"my fit\" --db " + material.string() + " -f json");
   ASSERT_EQ(r.status, 0) << r.err;
@@ -334,7 +336,7 @@ INSTANTIATE_TEST_SUITE_P(
     Materials, CliMaterialsBadInput,
     ::testing::Values(BadMaterialsInput{"materials export skin1 --to povray",
                                         "--to = 'povray': accepted range is one of json, pbrt-v4"},
-                      BadMaterialsInput{"materials export --to json", "give a material NAME or --all"},
+                      BadMaterialsInput{"materials export --to json", "give a material NAME, --all, or a medium"},
                       BadMaterialsInput{"materials export skinn1 --to json", "did you mean: Skin1"},
                       BadMaterialsInput{"materials export skin1 --all --to json", "excludes"},
                       BadMaterialsInput{"materials export skin1 --to json --unit furlong", "--unit = 'furlong'"},

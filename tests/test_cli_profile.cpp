@@ -103,7 +103,7 @@ TEST(CliProfile, ModelSpecificForms) {
 TEST(CliProfile, CsvAndGrids) {
   // A linear grid from r = 0 needs a model finite there (exact's single scattering is 1/r).
   const auto r =
-      run("profile --sigma-a 0.01,0.02 --sigma-s 1 --channels a,b --model better-dipole --spacing linear --r-max 5 "
+      run("profile --sigma-a 0.01,0.02 --sigma-s 1,1 --channels a,b --model better-dipole --spacing linear --r-max 5 "
           "--samples 11 -f csv");
   ASSERT_EQ(r.status, 0) << r.err;
   const std::string body = r.out.substr(r.out.find('\n') + 1);  // after "# model: better-dipole"
@@ -218,7 +218,7 @@ TEST_P(CliBadInput, ExitsTwoWithOneLineAndNoFile) {
 INSTANTIATE_TEST_SUITE_P(
     Profile, CliBadInput,
     ::testing::Values(
-        BadInput{"profile --sigma-a 0.1,-1,0.1 --sigma-s 1", "--sigma-a[G] = -1: accepted range is >= 0"},
+        BadInput{"profile --sigma-a 0.1,-1,0.1 --sigma-s 1,1,1", "--sigma-a[G] = -1: accepted range is >= 0"},
         BadInput{"profile --sigma-a 0.1 --sigma-s 1 --g 1.2", "--g[c0] = 1.2: accepted range is -1 < g < 1"},
         BadInput{"profile --sigma-a 0.1 --sigma-s 1 --eta 0", "--eta = 0"},
         BadInput{"profile --sigma-a 0.1 --sigma-s 1 --eta -1.3", "--eta = -1.3"},
@@ -240,7 +240,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"profile --sigma-a 0.1 --sigma-s 1 --model burley --surface-albedo 1.5", "--surface-albedo = 1.5"},
         BadInput{"profile --sigma-a 0.1 --sigma-s 1 --surface-albedo 0.5", "only the burley models"},
         BadInput{"profile --sigma-a 0.1 --sigma-s 1 --model pbd --single-scattering", "pbd already includes it"},
-        BadInput{"profile --sigma-s 1", "give --material NAME, or both --sigma-a and --sigma-s"},
+        BadInput{"profile --sigma-s 1", "give --material NAME, or --sigma-a with --sigma-s (or --sigma-s-prime)"},
         BadInput{"profile --material skin1 --db /nonexistent/db.json", "cannot open"},
         BadInput{"frobnicate", "unknown command 'frobnicate'"},
         BadInput{"profile --sigma-a 0.1 --sigma-s 1 --thickness 0", "--thickness = 0: accepted range is > 0"},

@@ -47,9 +47,9 @@ std::array<double, 3> measure(const RxtFile& f, double mu_a, double mu_s_prime, 
   slab.above = slab.below = {{f.slide_n, f.slide_thickness, 0.0}};
   const auto c = adding_doubling::solve(slab, adding_doubling::Incidence::collimated);
   const auto d = adding_doubling::solve(slab, adding_doubling::Incidence::diffuse);
-  const auto [m_r, m_t] =
-      sphere_measurements(f, {c.specular_reflectance + c.diffuse_reflectance, c.total_transmittance,
-                              d.specular_reflectance + d.diffuse_reflectance, d.total_transmittance});
+  const auto [m_r, m_t] = sphere_measurements(f, {c.specular_reflectance + c.diffuse_reflectance, c.total_transmittance,
+                                                  d.specular_reflectance + d.diffuse_reflectance, d.total_transmittance,
+                                                  c.unscattered_reflectance, c.unscattered_transmittance});
   return {m_r, m_t, c.unscattered_transmittance};
 }
 
@@ -125,30 +125,103 @@ TEST(Rxt, SpheresChangeWhatIsMeasured) {
   const auto two = sphere_measurements(parse_rxt(header(2, "2") + "0.1 0.1\n", "2"), t);
   EXPECT_EQ(none.first, 0.4);
   EXPECT_EQ(none.second, 0.3);
-  EXPECT_GT(one.second, 0.3);
+  EXPECT_NE(one.second, 0.3);
   EXPECT_NE(two.first, one.first);
   EXPECT_NE(two.second, one.second);
-  // A black-walled sphere measures the totals (up to the standard's normalisation).
-  auto black = parse_rxt(header(1, "2") + "0.1 0.1\n", "black");
-  black.reflection.wall_reflectance = black.transmission.wall_reflectance = 0;
-  const auto m = sphere_measurements(black, t);
-  EXPECT_DOUBLE_EQ(m.first, 0.4);
-  EXPECT_DOUBLE_EQ(m.second, 0.3);
+  // iad 4's options: without baffles a sample equal to the standard reads r_std; the dual-beam
+  // method and no sphere read the totals; c = 0 drops the specular reflection; with f > 0 and no
+  // baffle an empty sample port reads 0 (the wall-first light is subtracted); baffles change the reading.
+  const auto sphere = parse_rxt(header(1, "2") + "0.1 0.1\n", "1");
+  SphereModel open;
+  open.baffle_r = open.baffle_t = false;
+  const double r_std = sphere.standard_reflectance;
+  EXPECT_NEAR(sphere_measurements(sphere, open, {r_std, 0, r_std, 0}).first, r_std, 1e-15);
+  SphereModel dual;
+  dual.dual_beam = true;
+  const SampleTotals with_specular{0.4, 0.3, 0.45, 0.25, 0.05, 0.1};
+  EXPECT_EQ(sphere_measurements(sphere, dual, with_specular),
+            sphere_measurements(parse_rxt(header(0, "2") + "0.1 0.1\n", "0"), with_specular));
+  SphereModel no_specular;
+  no_specular.unscattered_in_m_r = 0;
+  no_specular.unscattered_in_m_t = 0;
+  const auto none_c0 = sphere_measurements(parse_rxt(header(0, "2") + "0.1 0.1\n", "0"), no_specular, with_specular);
+  EXPECT_DOUBLE_EQ(none_c0.first, 0.4 - 0.05);
+  EXPECT_DOUBLE_EQ(none_c0.second, 0.3 - 0.1);
+  SphereModel wall_first = open;  // (behind a baffle iad lets the wall-first light bounce once more)
+  wall_first.wall_first = 0.3;
+  EXPECT_NEAR(sphere_measurements(sphere, wall_first, {}).first, 0, 1e-15);
+  EXPECT_NE(sphere_measurements(sphere, open, t).first, one.first);
+  EXPECT_NE(sphere_measurements(sphere, open, t).second, one.second);
 }
 
 TEST(Rxt, BadFilesNameTheLine) {
   expect_file_error("IAD2\n1.4\n", "x.rxt:1", "IAD1");
-  expect_file_error(header(0, "2") + "0.3\n", "x.rxt:12", "row has 1 values");
-  expect_file_error(header(0, "2") + "0.6 0.5\n", "x.rxt:12", "M_R + M_T = 1.1");
-  expect_file_error(header(0, "2") + "-0.1 0.5\n", "x.rxt:12", "M_R = -0.1");
+  expect_file_error(header(0, "2") + "0.3\n", "x.rxt:12", "row 1 ends after 1 of 2 values (missing M_T)");
   expect_file_error(header(0, "2") + "0.1 nan\n", "x.rxt:12", "M_T = 'nan'");
   expect_file_error(header(0, "2") + "0.1 0.2x\n", "x.rxt:12", "M_T = '0.2x'");
   expect_file_error(header(0, "2"), "x.rxt:11", "no measurement rows");
   expect_file_error("IAD1\n1.4 # sample\n1.5\nabc\n", "x.rxt:4", "sample thickness = 'abc'");
   expect_file_error("IAD1\n1.4\n1.5\n1.0\n", "x.rxt:4", "missing slide thickness");
   expect_file_error(header(3, "2") + "0.1 0.1\n", "x.rxt:8", "number of spheres = 3");
-  expect_file_error(header(0, "1") + "0.1\n", "x.rxt:11", "number of measurements = 1");
-  expect_file_error(header(0, "3") + "0.1 0.2 0.3\n", "x.rxt:12", "M_U = 0.3");
+  expect_file_error(header(0, "8") + "0.1\n", "x.rxt:11", "number of measurements = 8: accepted range is 1 to 7");
+  expect_file_error(header(0, "r t x") + "0.1 0.2 0.3\n", "x.rxt:11", "column 'x' in 'rtx'");
+  expect_file_error(header(0, "L n") + "500 1.4\n", "x.rxt:11", "at least one of r, t, u");
+  expect_file_error(header(0, "r t n") + "0.1 0.2 7\n", "x.rxt:12", "sample index of refraction (n) = 7");
+  expect_file_error(header(0, "r t i") + "0.1 0.2 95\n", "x.rxt:12", "angle of incidence (i) = 95");
+}
+
+TEST(Rxt, ReadsEveryLayoutIadReads) {
+  // A count with wavelengths in some rows only (iad: a first value above 1 is a wavelength), rows
+  // split across lines, comments anywhere.
+  auto f = parse_rxt(header(1, "2") + "500 0.3 # c\n0.4\n0.2 0.1\n", "legacy");
+  ASSERT_EQ(f.rows.size(), 2u);
+  EXPECT_TRUE(f.rows[0].has_wavelength);
+  EXPECT_EQ(f.rows[0].wavelength, 500);
+  EXPECT_EQ(f.rows[0].m_t, 0.4);
+  EXPECT_EQ(f.rows[0].line, 12);
+  EXPECT_FALSE(f.rows[1].has_wavelength);
+  EXPECT_EQ(f.rows[1].wavelength, 2);
+  // Counts 1 to 7: M_R alone; M_R M_T M_U r_w t_w r_std t_std, the last four overriding the header.
+  f = parse_rxt(header(1, "1") + "0.3\n0.25\n", "one");
+  EXPECT_EQ(f.measurements, 1);
+  EXPECT_EQ(f.rows[1].m_r, 0.25);
+  EXPECT_EQ(f.rows[1].m_t, 0);
+  f = parse_rxt(header(1, "7") + "0.3 0.2 0.01 0.9 0.8 0.97 0.95\n", "seven");
+  EXPECT_EQ(f.measurements, 3);
+  EXPECT_EQ(f.rows[0].setup.reflection.wall_reflectance, 0.9);
+  EXPECT_EQ(f.rows[0].setup.transmission.wall_reflectance, 0.8);
+  EXPECT_EQ(f.rows[0].setup.standard_reflectance, 0.97);
+  EXPECT_EQ(f.rows[0].setup.standard_transmittance, 0.95);
+  EXPECT_EQ(f.reflection.wall_reflectance, 0.96);  // the header keeps its own
+  // Column letters: per-row values override the header from that row on; g holds for its row.
+  f = parse_rxt(header(1, "L  r  t  n  d  g  -  w") + "600 0.3 0.2 1.33 2.0 0.8 0.9\n700 0.3 0.2 1.35 2.5 0.7 0.9\n",
+                "columns");
+  EXPECT_EQ(f.columns, "Lrtndgw");
+  EXPECT_EQ(f.measurements, 2);
+  EXPECT_EQ(f.rows[1].wavelength, 700);
+  EXPECT_EQ(f.rows[1].setup.sample_n, 1.35);
+  EXPECT_EQ(f.rows[1].setup.sample_thickness, 2.5);
+  EXPECT_EQ(f.rows[1].constraints.g, 0.7);
+  EXPECT_EQ(f.rows[1].setup.transmission.wall_reflectance, 0.9);  // w sets both walls
+  EXPECT_EQ(f.sample_n, 1.40);
+  // The terse layout: everything on one line (iad 4 itself ignores values after the count).
+  f = parse_rxt("IAD1 1.34 1.5 1 1 5 .96 1 203.2 25.4 12.7 1 .96 203.2 25.4 12.7 1 .96 2 0.168 0.249 0.162 0.264#",
+                "terse");
+  ASSERT_EQ(f.rows.size(), 2u);
+  EXPECT_EQ(f.rows[1].m_t, 0.264);
+  // A slide of index 0 or thickness 0 is no slide (iad).
+  f = parse_rxt("IAD1 1.4 0 1 1 5 .96 0 0 0 0 0 0 0 0 0 0 0 2 0.1 0.2", "no slide");
+  EXPECT_FALSE(f.has_slides());
+}
+
+TEST(Rxt, RowsIadCannotSolveAreFlaggedNotFitted) {
+  const auto fit = fit_rxt(parse_rxt(header(0, "3") + "0.6 0.5 0.01\n-0.1 0.5 0.01\n0.1 0.2 0.3\n0.3 0.3 0.01\n", "x"));
+  ASSERT_EQ(fit.rows.size(), 4u);
+  EXPECT_NE(fit.rows[0].status.find("M_R + M_T = 1.1"), std::string::npos) << fit.rows[0].status;
+  EXPECT_NE(fit.rows[1].status.find("M_R = -0.1"), std::string::npos) << fit.rows[1].status;
+  EXPECT_NE(fit.rows[2].status.find("M_U = 0.3"), std::string::npos) << fit.rows[2].status;
+  for (int k = 0; k < 3; ++k) EXPECT_FALSE(fit.rows[k].converged);
+  EXPECT_TRUE(fit.rows[3].converged) << fit.rows[3].status;
 }
 
 TEST(Rxt, CommandLineWritesRowsOrFailsWithOneLine) {
@@ -170,12 +243,12 @@ TEST(Rxt, CommandLineWritesRowsOrFailsWithOneLine) {
   EXPECT_EQ(r.status, 0);
   EXPECT_EQ(count_lines(r.out), 3);
   const auto bad = temp("bad.rxt");
-  { std::ofstream(bad) << header(1, "2") << "0.35 0.25\n0.70 0.40\n"; }
+  { std::ofstream(bad) << header(1, "2") << "0.35 0.25\n0.70 0.4x\n"; }
   const auto out = temp("never.json");
   r = run("fit slab --rxt " + bad.string() + " -o " + out.string());
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(count_lines(r.err), 1) << r.err;
-  EXPECT_NE(r.err.find("bad.rxt:13: M_R + M_T = 1.1"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("bad.rxt:13: M_T = '0.4x'"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
@@ -207,9 +280,9 @@ TEST(Rxt, LostLightCorrectionRecoversWhatTheSmallPortMissed) {
   const auto both =
       adding_doubling::solve(slab, {adding_doubling::Incidence::collimated, adding_doubling::Incidence::diffuse});
   const auto [m_r, m_t] = sphere_measurements(
-      setup,
-      {both[0].specular_reflectance + both[0].diffuse_reflectance - ur1_lost, both[0].total_transmittance - ut1_lost,
-       both[1].specular_reflectance + both[1].diffuse_reflectance, both[1].total_transmittance});
+      setup, {both[0].specular_reflectance + both[0].diffuse_reflectance - ur1_lost,
+              both[0].total_transmittance - ut1_lost, both[1].specular_reflectance + both[1].diffuse_reflectance,
+              both[1].total_transmittance, both[0].unscattered_reflectance, both[0].unscattered_transmittance});
   std::ostringstream rows;
   rows.precision(12);
   rows << m_r << ' ' << m_t << '\n';

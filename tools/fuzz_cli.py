@@ -28,7 +28,33 @@ COMMANDS = {
             "--size", "--energy", "--band"],
     "fit gaussians": ["--sigma-a", "--sigma-s", "-n", "--samples"],
     "fit albedo": ["--albedo", "--distance", "--eta", "--g"],
+    "materials export": ["--sigma-a", "--sigma-s-prime", "--g", "--eta", "--unit", "--channels", "--to"],
+    "fit slab": ["--quadrature", "--baffles", "--wall-first", "--detector-reflectance", "--unscattered-in-mr",
+                 "--unscattered-in-mt", "--g", "--dual-beam"],
 }
+# The medium each command starts from (the mutated options are added after it).
+BASE = {"fit albedo": ["--albedo", "0.5", "--distance", "1"], "skin": [], "fit skin": ["--srgb", "0.7,0.5,0.4"],
+        "materials export": ["Mine", "--to", "json", "--sigma-a", "0.1", "--sigma-s-prime", "1"]}
+# fit slab reads a mutated .rxt file (iad's layouts: a count, column letters, one line).
+RXT_SEEDS = ["IAD1 1.4 1.5 1 1 5 .98 1 203.2 25.4 12.7 1 .96 203.2 25.4 12.7 1 .96\n2\n500 0.3 0.2\n0.25 0.3\n",
+             "IAD1 1.4 1.5 1 1 5 .98 2 203.2 25.4 12.7 1 .96 203.2 25.4 12.7 1 .96\nL r t n g\n500 0.3 0.2 1.33 0.8\n",
+             "IAD1 1.4 1 1 0 5 .98 0 0 0 0 0 0 0 0 0 0 0 1 0.3 0.2"]
+
+
+def mutated_rxt(rng):
+    tokens = rng.choice(RXT_SEEDS).split(" ")
+    for _ in range(rng.randint(0, 3)):
+        k = rng.randrange(len(tokens))
+        action = rng.random()
+        if action < 0.6:
+            tokens[k] = rng.choice(HOSTILE + ["#", "r", "x", "IAD1", "7", "u", "i"])
+        elif action < 0.8:
+            del tokens[k]
+        else:
+            tokens.insert(k, tokens[k])
+    return " ".join(tokens)
+
+
 # Small photon counts keep Monte Carlo runs short; the rest are random.
 SAFE = {"-n": "2000", "--photons": "2000"}
 
@@ -50,9 +76,17 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         for i in range(count):
             command = rng.choice(list(COMMANDS))
-            base = {"fit albedo": ["--albedo", "0.5", "--distance", "1"], "skin": [], "fit skin": ["--srgb", "0.7,0.5,0.4"]}
-            args = command.split() + base.get(command, ["--sigma-a", "0.1", "--sigma-s", "1"])
+            if command == "fit slab":
+                rxt = os.path.join(tmp, f"in{i}.rxt")
+                with open(rxt, "w", errors="replace") as f:
+                    f.write(mutated_rxt(rng))
+                args = command.split() + ["--rxt", rxt]
+            else:
+                args = command.split() + BASE.get(command, ["--sigma-a", "0.1", "--sigma-s", "1"])
             for option in rng.sample(COMMANDS[command], k=rng.randint(1, 3)):
+                if option == "--dual-beam":
+                    args.append(option)
+                    continue
                 value = rng.choice(HOSTILE) if rng.random() < 0.8 or option not in SAFE else SAFE[option]
                 if option in SAFE and is_number(value) and abs(float(value)) > 1e5:
                     value = "-1"  # never start a huge Monte Carlo run: still a count the tool must refuse or bound
@@ -61,7 +95,7 @@ def main():
             if command == "lut":
                 args += ["-o", output.replace(".json", ".exr")]
             else:
-                args += ["-o", output, "-q"] if command != "fit albedo" else []
+                args += ["-o", output] + (["-q"] if command != "materials export" else []) if command != "fit albedo" else []
             start = time.time()
             try:
                 run = subprocess.run([binary] + args, capture_output=True, timeout=60)

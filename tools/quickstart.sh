@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# README command 1: install what is missing, build, and run the main job on a bundled material.
+# README command 1: install what the tool needs, build the tool, and write Skin1's tables into out/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/setup.sh

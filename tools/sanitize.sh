@@ -16,10 +16,12 @@ if command -v clang++ >/dev/null && echo 'int main(){}' | clang++ -x c++ -fsanit
   compiler=(-DCMAKE_CXX_COMPILER=clang++)
   fuzz=ON
 fi
+# No Python module here: loading it would need the sanitizer runtimes preloaded into python3.
 launcher=()
 if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
 cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1" "${compiler[@]}" "${launcher[@]}" \
-  -DBSSRDF_SANITIZE=ON -DBSSRDF_FUZZ="$fuzz" -DBSSRDF_BUILD_BENCHMARKS=OFF >/dev/null
+  -DBSSRDF_SANITIZE=ON -DBSSRDF_FUZZ="$fuzz" -DBSSRDF_BUILD_BENCHMARKS=OFF \
+  -DBSSRDF_PYTHON=OFF >/dev/null
 
 # Only what the stage runs: the tool, the test binaries and the fuzz driver (no benchmarks, no
 # validation drivers).

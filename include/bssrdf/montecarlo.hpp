@@ -38,7 +38,9 @@
 // O(2^-64) error, no bias at any measurable level; the MCML generator's -0.17 % bias came from its
 // lagged-subtractive generator, as measured against exact half-space totals). Threads take batches from an atomic
 // counter and the batch tallies are summed in batch order, so the result depends only on (stack, options, seed,
-// batch_size), never on the thread count: bitwise identical for 1 or 64 threads.
+// batch_size), never on the thread count: bitwise identical for 1 or 64 threads. Batches are grouped in chunks of
+// 64 (folded in batch order, then the chunks in chunk order), the unit MPI ranks share: bitwise identical for
+// any number of ranks too.
 //
 // Normalisations: every tally is stored per unit INCIDENT flux (specular included in the incident
 // flux, as MCML reports). per_entered_flux() divides by (1 - R_sp), the BSSRDF convention.
@@ -60,6 +62,8 @@ enum class AbsorptionEstimator { implicit_capture, analog };
 
 std::string_view to_string(BinSpacing spacing);
 std::string_view to_string(AbsorptionEstimator estimator);
+
+class ProcessGroup;
 
 struct MonteCarloOptions {
   std::uint64_t photons = 1'000'000;  // per channel
@@ -102,6 +106,11 @@ struct MonteCarloOptions {
 
   // Called from worker threads (never concurrently) with photons finished and total (all channels).
   std::function<void(std::uint64_t done, std::uint64_t total)> progress;
+
+  // Distributed run (process_group.hpp): every rank calls run_monte_carlo with the same options and
+  // traces its share of the chunks of batches; rank 0 gets the result, bitwise identical to one
+  // process's, and the other ranks a result with gathered = false. Null: this process alone.
+  ProcessGroup* group = nullptr;
 
   void validate() const;  // throws InvalidInput
 };
@@ -152,7 +161,11 @@ struct MonteCarloResult {
   std::vector<double> bin_inner, bin_outer, bin_radius;  // mm; radius: linear midpoint / geometric
   std::vector<double> depth_inner, depth_outer;          // mm
   std::vector<ChannelResult> channels;
-  unsigned threads = 1;
+  unsigned threads = 1;                   // per rank
+  int ranks = 1;                          // processes that shared the run (MPI)
+  bool gathered = true;                   // false on ranks other than 0 of a distributed run: channels are empty
+  std::uint64_t communication_bytes = 0;  // distributed: bytes this rank sent or received
+  double communication_seconds = 0;       // and the seconds it spent doing so (waits included)
   double seconds = 0;
   double photons_per_second = 0;  // photon histories per wall-clock second, all channels
 

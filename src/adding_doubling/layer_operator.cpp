@@ -19,7 +19,7 @@ constexpr double kStartThicknessPerMu = 4.0;
 // Azimuthally averaged HG phase function after delta-M truncation to 2N Legendre terms (Wiscombe
 // 1977): chi*_k = (g^k - f)/(1 - f), f = g^2N. p(mu, mu') = sum (2k+1)/2 chi*_k P_k(mu) P_k(mu'),
 // normalised so that int_{-1}^{1} p dmu' = 1. Returns the same- and opposite-hemisphere blocks.
-std::pair<MatrixXd, MatrixXd> phase_blocks(const Angles& angles, double g, double f) {
+PhaseBlocks truncated_phase_blocks(const Angles& angles, double g, double f) {
   const int n = static_cast<int>(angles.size()), terms = 2 * n;
   MatrixXd P(terms, n);  // P_k(mu_i)
   for (int i = 0; i < n; ++i) {
@@ -122,7 +122,12 @@ void double_in_symmetric_basis(MatrixXd& R, MatrixXd& T) {
 
 }  // namespace
 
-LayerOperator homogeneous_layer(const Angles& angles, double albedo, double g, double optical_thickness) {
+PhaseBlocks phase_blocks(const Angles& angles, double g) {
+  return truncated_phase_blocks(angles, g, std::pow(g, 2 * static_cast<int>(angles.size())));
+}
+
+LayerOperator homogeneous_layer(const Angles& angles, double albedo, double g, double optical_thickness,
+                                const PhaseBlocks* phase) {
   const int n = static_cast<int>(angles.size());
   // Delta-M: the forward peak f becomes unscattered light.
   const double f = std::pow(g, 2 * n);
@@ -134,7 +139,8 @@ LayerOperator homogeneous_layer(const Angles& angles, double albedo, double g, d
     const MatrixXd T = e.asDiagonal(), Z = MatrixXd::Zero(n, n);
     return {Z, Z, T, T};
   }
-  const auto [same, opposite] = phase_blocks(angles, g, f);
+  const PhaseBlocks computed = phase ? PhaseBlocks{} : truncated_phase_blocks(angles, g, f);
+  const auto& [same, opposite] = phase ? *phase : computed;
   const double start_max = kStartThicknessPerMu * angles.mu.front();
   const bool infinite = std::isinf(tau);
   const int doublings = infinite ? 0 : std::max(0, static_cast<int>(std::ceil(std::log2(tau / start_max))));

@@ -20,9 +20,19 @@ struct LayerOperator {
   Eigen::MatrixXd T_up;      // from below, transmitted up
 };
 
+// The Henyey-Greenstein phase function of asymmetry g on the angles, azimuthally averaged, after delta-M
+// truncation to 2N Legendre terms: the same- and opposite-hemisphere blocks. It depends on g and the
+// angles only, so slabs of one medium at several thicknesses share it.
+struct PhaseBlocks {
+  Eigen::MatrixXd same, opposite;
+};
+PhaseBlocks phase_blocks(const Angles& angles, double g);
+
 // A homogeneous Henyey-Greenstein layer of single-scattering albedo `albedo` and optical thickness
-// `optical_thickness` (may be infinite: the semi-infinite medium). Delta-M with 2N Legendre terms.
-LayerOperator homogeneous_layer(const Angles& angles, double albedo, double g, double optical_thickness);
+// `optical_thickness` (may be infinite: the semi-infinite medium). Delta-M with 2N Legendre terms;
+// `phase`, when given, is phase_blocks(angles, g) computed once for several layers.
+LayerOperator homogeneous_layer(const Angles& angles, double albedo, double g, double optical_thickness,
+                                const PhaseBlocks* phase = nullptr);
 
 // `upper` on top of `lower`.
 LayerOperator add(const LayerOperator& upper, const LayerOperator& lower);

@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <map>
 
 #include "angles.hpp"
 #include "boundary.hpp"
@@ -71,18 +72,35 @@ double min_index(double ambient, const std::vector<ClearLayer>& clear) {
   return m;
 }
 
-std::vector<Totals> solve_with(const Slab& slab, const std::vector<Incidence>& incidences, int points) {
-  const Angles angles = make_angles(points, {critical_cosine(slab.n, min_index(slab.ambient_above, slab.above)),
-                                             critical_cosine(slab.n, min_index(slab.ambient_below, slab.below))});
-  const int n = static_cast<int>(angles.size());
+// What a slab's solution at `points` angles needs besides the layers' thicknesses: the angles, the
+// boundaries and each scattering layer's phase function. Slabs that differ only in thickness share it.
+struct Geometry {
+  Angles angles;
+  Boundary top, bottom;
+  std::vector<PhaseBlocks> phase;  // per scattering layer
+};
+
+Geometry make_geometry(const Slab& slab, int points) {
+  Geometry geo;
+  geo.angles = make_angles(points, {critical_cosine(slab.n, min_index(slab.ambient_above, slab.above)),
+                                    critical_cosine(slab.n, min_index(slab.ambient_below, slab.below))});
   // The boundaries, as media from top to bottom with the half-spaces at the ends.
   std::vector<ClearLayer> top{{slab.ambient_above, 0, 0}}, bottom{{slab.n, 0, 0}};
   top.insert(top.end(), slab.above.begin(), slab.above.end());
   top.push_back({slab.n, 0, 0});
   bottom.insert(bottom.end(), slab.below.begin(), slab.below.end());
   bottom.push_back({slab.ambient_below, 0, 0});
-  const Boundary B_top = make_boundary(angles, slab.n, top);
-  const Boundary B_bottom = make_boundary(angles, slab.n, bottom);
+  geo.top = make_boundary(geo.angles, slab.n, top);
+  geo.bottom = make_boundary(geo.angles, slab.n, bottom);
+  for (const auto& l : slab.layers) geo.phase.push_back(phase_blocks(geo.angles, l.g));
+  return geo;
+}
+
+std::vector<Totals> solve_with(const Slab& slab, const std::vector<Incidence>& incidences, const Geometry& geo) {
+  const Angles& angles = geo.angles;
+  const int n = static_cast<int>(angles.size());
+  const Boundary& B_top = geo.top;
+  const Boundary& B_bottom = geo.bottom;
 
   // The scattering layers, added top to bottom.
   LayerOperator S;
@@ -91,7 +109,7 @@ std::vector<Totals> solve_with(const Slab& slab, const std::vector<Incidence>& i
     const auto& l = slab.layers[k];
     const double sigma_t = l.sigma_a + l.sigma_s;
     const double tau = std::isinf(l.thickness) ? INFINITY : sigma_t * l.thickness;
-    const auto layer = homogeneous_layer(angles, sigma_t > 0 ? l.sigma_s / sigma_t : 0.0, l.g, tau);
+    const auto layer = homogeneous_layer(angles, sigma_t > 0 ? l.sigma_s / sigma_t : 0.0, l.g, tau, &geo.phase[k]);
     S = k == 0 ? layer : add(S, layer);
     optical_depth += tau;
   }
@@ -144,28 +162,32 @@ std::vector<Totals> solve_with(const Slab& slab, const std::vector<Incidence>& i
       for (int i = 0; i < n; ++i) {
         const double e = std::exp(-optical_depth / angles.mu[i]);
         const double bounce = 1 - rt_in(i) * rb(i) * e * e;
-        if (bounce > 0) out.unscattered_transmittance += incident(i) * tt(i) * tb(i) * e / bounce;
+        if (bounce > 0) {
+          out.unscattered_transmittance += incident(i) * tt(i) * tb(i) * e / bounce;
+          out.unscattered_reflectance += incident(i) * tt(i) * tt(i) * rb(i) * e * e / bounce;
+        }
       }
+    out.unscattered_reflectance += out.specular_reflectance;
     results.push_back(out);
   }
   return results;
 }
 
-}  // namespace
-
-std::vector<Totals> solve(const Slab& slab, const std::vector<Incidence>& incidences, const Options& options) {
-  slab.validate();
-  if (options.points > 0) return solve_with(slab, incidences, options.points);
+// The tolerance loop over the number of angles; geometry(points) gives the slab's Geometry.
+template <class GeometryOf>
+std::vector<Totals> solve_converged(const Slab& slab, const std::vector<Incidence>& incidences, const Options& options,
+                                    GeometryOf&& geometry) {
+  if (options.points > 0) return solve_with(slab, incidences, geometry(options.points));
   if (!(options.tolerance > 0)) throw InvalidInput("tolerance", format_number(options.tolerance), "> 0");
   // Angles 8, 16, 32, ...: the error of the finest result is estimated from the last two changes
   // (geometric convergence with ratio rho leaves rho/(1 - rho) of the last change), never less
   // than a quarter of the last change, and the last change itself when the changes do not shrink
   // by half. At least three results (32 angles), since one change alone can be small by chance.
   // With several incidences the largest estimate decides for all.
-  auto coarse = solve_with(slab, incidences, 8);
+  auto coarse = solve_with(slab, incidences, geometry(8));
   std::vector<double> last_change(2 * incidences.size(), -1);
   for (int points = 16;; points *= 2) {
-    auto fine = solve_with(slab, incidences, points);
+    auto fine = solve_with(slab, incidences, geometry(points));
     double estimate_all = 0;
     for (std::size_t i = 0; i < incidences.size(); ++i) {
       const double change[2] = {std::abs(fine[i].diffuse_reflectance - coarse[i].diffuse_reflectance),
@@ -186,6 +208,34 @@ std::vector<Totals> solve(const Slab& slab, const std::vector<Incidence>& incide
     coarse = fine;
     if ((points >= 32 && estimate_all <= options.tolerance) || points >= 128) return fine;
   }
+}
+
+}  // namespace
+
+std::vector<Totals> solve(const Slab& slab, const std::vector<Incidence>& incidences, const Options& options) {
+  slab.validate();
+  return solve_converged(slab, incidences, options, [&](int points) { return make_geometry(slab, points); });
+}
+
+std::vector<Totals> solve_thicknesses(const Slab& slab, const std::vector<double>& thicknesses, Incidence incidence,
+                                      const Options& options) {
+  slab.validate();
+  if (slab.layers.size() != 1)
+    throw InvalidInput("layers", std::to_string(slab.layers.size()), "1 (one layer whose thickness varies)");
+  std::map<int, Geometry> geometries;  // by number of angles, shared by every thickness
+  const auto geometry = [&](int points) -> const Geometry& {
+    auto it = geometries.find(points);
+    if (it == geometries.end()) it = geometries.emplace(points, make_geometry(slab, points)).first;
+    return it->second;
+  };
+  std::vector<Totals> out;
+  Slab one = slab;
+  for (double d : thicknesses) {
+    one.layers[0].thickness = d;
+    one.validate();
+    out.push_back(solve_converged(one, {incidence}, options, geometry)[0]);
+  }
+  return out;
 }
 
 Totals solve(const Slab& slab, Incidence incidence, const Options& options) {

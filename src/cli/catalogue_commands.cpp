@@ -14,6 +14,7 @@
 #include "bssrdf/model.hpp"
 #include "bssrdf/model_choice.hpp"
 #include "bssrdf/model_registry.hpp"
+#include "bssrdf/model_selection.hpp"
 #include "bssrdf/models/diffusion_validity.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -134,7 +135,9 @@ Action register_models(CLI::App& app) {
   auto* sub = app.add_subcommand("models",
                                  "List the profile models: what each includes and where it holds; with a medium, "
                                  "each one's measured error there and the cheapest within --accuracy");
-  sub->add_flag("--json", *json, "Print JSON");
+  auto format = std::make_shared<std::string>("table");
+  sub->add_option("--format,-f", *format, "table or json [table]")->check(CLI::IsMember({"table", "json"}));
+  sub->add_flag("--json", *json, "Same as -f json (kept for scripts)")->group("");
   medium->add_to(*sub);
   sub->add_option("--accuracy", *accuracy, "With a medium: relative error allowed (total and R(r) L2) [0.1]");
   auto chart = std::make_shared<std::string>();
@@ -161,7 +164,8 @@ Action register_models(CLI::App& app) {
   auto photons = std::make_shared<std::uint64_t>(20'000);
   add_count_option(*sub, "--photons,-n", *photons, 1000, kMaxPhotons,
                    "--map --metric image: Monte Carlo photons per cell [20000]");
-  return [json, medium, accuracy, chart, map, map_file, tolerance, photons, map_reference] {
+  return [json, format, medium, accuracy, chart, map, map_file, tolerance, photons, map_reference] {
+    *json = *json || *format == "json";
     if (!map_file->empty()) {  // validity maps (advise/validity_map.hpp)
       map->extension = std::filesystem::path(*map_file).extension().string();
       if (map->extension != ".svg" && map->extension != ".png")
@@ -194,33 +198,7 @@ Action register_models(CLI::App& app) {
       if (!entry.listed) continue;
       const auto& name = entry.name;
       const auto model = entry.make();
-      // The validity domain as measured: the lowest alpha' where the total is within 5 %.
-      const auto within = [&](const std::vector<AccuracyBand>& bands, double tolerance) {
-        double lowest = 1;
-        for (const auto& band : bands)
-          if (band.worst_error <= tolerance)
-            lowest = band.min_albedo_prime;
-          else
-            break;
-        return lowest;
-      };
-      std::string domain = "total not measured against adding-doubling";
-      if (const auto& limits = entry.limits) {
-        const double iso = within(limits->isotropic_bands, 0.05), fwd = within(limits->forward_bands, 0.05);
-        domain = "total within 5 % of adding-doubling for alpha' >= " + format_number(iso) +
-                 " (g = 0), >= " + format_number(fwd) + " (g = 0.9); eta 1-1.4";
-        if (iso == 1 && fwd == 1) domain = "total not within 5 % of adding-doubling anywhere measured";
-      }
-      if (const auto& accuracy = entry.reference_accuracy) {  // the reference itself: its measured band
-        const auto pc = [](double v) { return format_number(std::round(1000 * v) / 10) + " %"; };
-        domain = "against fresh Monte Carlo: total within " + pc(accuracy->total) + ", r R(r) within " +
-                 pc(accuracy->profile) + " (relative L2 beyond the runs' noise) in its domain";
-        for (const auto& r : accuracy->regions)
-          domain += "; " + pc(r.total) + " and " + pc(r.profile) + " in " + r.name + " (" +
-                    format_number(r.albedo_prime_min) + " <= alpha' <= " + format_number(r.albedo_prime_max) + ", " +
-                    format_number(r.g_min) + " <= g <= " + format_number(r.g_max) + ", " + format_number(r.eta_min) +
-                    " <= eta <= " + format_number(r.eta_max) + ")";
-      }
+      const std::string domain = measured_domain(entry);
       if (*json) {
         list.push_back({{"name", name},
                         {"description", model->description()},

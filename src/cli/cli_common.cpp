@@ -1,7 +1,5 @@
 #include "cli_common.hpp"
 
-#include "bssrdf/spectral/resample.hpp"
-
 #include <unistd.h>
 #include <algorithm>
 #include <charconv>
@@ -15,6 +13,7 @@
 #include "bssrdf/io/atomic_file.hpp"
 #include "bssrdf/lut/transmission_table.hpp"
 #include "bssrdf/model_choice.hpp"
+#include "bssrdf/model_selection.hpp"
 #include "bssrdf/profile.hpp"
 
 namespace bssrdf::cli {
@@ -24,16 +23,6 @@ std::string trim(const std::string& s) {
   const auto b = s.find_first_not_of(" \t");
   if (b == std::string::npos) return "";
   return s.substr(b, s.find_last_not_of(" \t") - b + 1);
-}
-
-// One value per channel: a single value applies to every channel.
-std::vector<double> per_channel(std::vector<double> values, std::size_t channels, const std::string& field,
-                                const std::string& reference_field) {
-  if (values.size() == 1 && channels > 1) return std::vector<double>(channels, values[0]);
-  if (values.size() != channels)
-    throw InvalidInput(field + ": " + std::to_string(values.size()) + " values given, but " + reference_field +
-                       " has " + std::to_string(channels) + " channels (give one value per channel, or one for all)");
-  return values;
 }
 
 }  // namespace
@@ -105,91 +94,6 @@ std::vector<double> parse_number_list(const std::string& text, const std::string
   return values;
 }
 
-void MediumOptions::add_to(CLI::App& app) {
-  auto* mat = app.add_option("--material,-m", material, "Material from the database (case-insensitive), e.g. Skin1");
-  auto* sa = app.add_option("--sigma-a", sigma_a, "Absorption coefficient per channel, 1/unit (e.g. 0.032,0.17,0.48)");
-  auto* ss = app.add_option("--sigma-s", sigma_s, "Scattering coefficient per channel, 1/unit");
-  auto* gg = app.add_option("--g", g, "Henyey-Greenstein anisotropy per channel (or one for all), -1 < g < 1 [0]");
-  auto* ch = app.add_option("--channels", channels, "Channel names, comma-separated [R,G,B for three]");
-  app.add_option("--eta", eta, "Relative index of refraction n_medium/n_outside [1.3, or the material's]");
-  app.add_option("--unit", unit, "Length unit of coefficients, radii and outputs: um, mm, cm, m [mm]");
-  app.add_option("--db", db, "Your own materials directory or file, added to the bundled database");
-  app.add_option("--wavelengths", wavelengths,
-                 "A spectral medium: the channels' wavelengths in nm, increasing (one coefficient per wavelength or "
-                 "one for all); with a spectral --material, resamples it (linear in wavelength)");
-  mat->excludes(sa)->excludes(ss)->excludes(gg)->excludes(ch);
-}
-
-MediumOptions::Resolved MediumOptions::resolve() const {
-  Resolved out;
-  out.unit = parse_length_unit(unit, "--unit");
-  if (!material.empty()) {
-    const auto database = MaterialDatabase::load_with_user(db);
-    out.material = database.find(material);
-    out.medium = out.material->medium;
-    if (!wavelengths.empty())
-      out.medium = spectral::resample(out.medium, parse_number_list(wavelengths, "--wavelengths"));
-  } else {
-    if (sigma_a.empty() || sigma_s.empty())
-      throw InvalidInput("medium: give --material NAME, or both --sigma-a and --sigma-s");
-    if (!wavelengths.empty()) out.medium.wavelength_nm = parse_number_list(wavelengths, "--wavelengths");
-    const char* count_from = wavelengths.empty() ? "--sigma-a" : "--wavelengths";
-    const auto a = parse_number_list(sigma_a, "--sigma-a");
-    const std::size_t n = wavelengths.empty() ? a.size() : out.medium.wavelength_nm.size();
-    out.medium.sigma_a = per_channel(a, n, "--sigma-a", count_from);
-    out.medium.sigma_s = per_channel(parse_number_list(sigma_s, "--sigma-s"), n, "--sigma-s", count_from);
-    out.medium.g =
-        g.empty() ? std::vector<double>(n, 0.0) : per_channel(parse_number_list(g, "--g"), n, "--g", count_from);
-    if (channels.empty()) {
-      out.medium.channel_names =
-          wavelengths.empty() ? default_channel_names(n) : wavelength_channel_names(out.medium.wavelength_nm);
-    } else {
-      std::string rest = channels;
-      std::vector<std::string> names;
-      std::size_t start = 0;
-      while (true) {
-        const auto comma = rest.find(',', start);
-        names.push_back(trim(rest.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
-        if (comma == std::string::npos) break;
-        start = comma + 1;
-      }
-      if (names.size() != n)
-        throw InvalidInput("--channels: " + std::to_string(names.size()) + " names given, but --sigma-a has " +
-                           std::to_string(n) + " channels");
-      out.medium.channel_names = names;
-    }
-    out.medium.eta = 1.3;
-  }
-  if (!eta.empty()) out.medium.eta = parse_number(eta, "--eta");
-  try {
-    out.medium.validate();  // still in the user's unit, so messages quote the numbers typed
-  } catch (const InvalidInput& e) {
-    // Name the option the user typed ("--sigma-a[G] = -1: ..."), not the library's field.
-    std::string message = e.what();
-    for (const std::string field : {"sigma_a", "sigma_s", "g", "eta", "wavelengths"}) {
-      if (message.rfind(field, 0) != 0) continue;
-      const char next = message[field.size()];
-      if (next != '[' && next != ' ') continue;
-      std::string option = "--" + field;
-      std::replace(option.begin(), option.end(), '_', '-');
-      message =
-          (out.material ? "material " + out.material->name + ": " + field : option) + message.substr(field.size());
-      if (!out.material) {
-        const auto plus = message.find(" + sigma_s[");
-        if (plus != std::string::npos) message.replace(plus, 11, " + --sigma-s[");
-      }
-      break;
-    }
-    throw InvalidInput(message);
-  }
-  if (!out.material) {
-    // Coefficients arrive in 1/unit; the library works in 1/mm.
-    for (auto& v : out.medium.sigma_a) v = coefficient_to_per_mm(v, out.unit);
-    for (auto& v : out.medium.sigma_s) v = coefficient_to_per_mm(v, out.unit);
-  }
-  return out;
-}
-
 std::vector<double> slab_thicknesses(const std::string& list, const std::string& d_min, const std::string& d_max,
                                      int samples, LengthUnit unit, const SlabThicknessRange& defaults) {
   if (!list.empty()) {
@@ -220,11 +124,14 @@ CLI::Validator file_name(const std::string& field) {
 }
 
 void OutputOptions::add_to(CLI::App& app) {
-  app.add_option("--format,-f", format, "Output format: table, json, csv [table on screen; by extension for -o]")
+  app.add_option("--format,-f", format,
+                 "Output format: table, json, csv [table on screen; for -o by its extension .txt, .json, .csv]")
       ->check(CLI::IsMember({"table", "json", "csv"}));
   app.add_option("-o,--output", output, "Write the result to FILE (atomically); the table still goes to stdout")
       ->check(file_name("-o"));
   app.add_flag("-q,--quiet", quiet, "With -o: print nothing on stdout");
+  // An -o name whose format is unknown is refused when the line is read, before any work is done.
+  app.parse_complete_callback([this] { file_format(); });
 }
 
 Format OutputOptions::file_format() const {
@@ -235,7 +142,11 @@ Format OutputOptions::file_format() const {
     const auto ext = std::filesystem::path(output).extension().string();
     if (ext == ".csv") return Format::csv;
     if (ext == ".txt") return Format::table;
-    return Format::json;
+    if (ext == ".json") return Format::json;
+    std::error_code ec;
+    if (std::filesystem::is_directory(output, ec))
+      throw InvalidInput("-o", "'" + output + "'", "a file, not a directory");
+    throw InvalidInput("-o", "'" + output + "'", "a file ending in .json, .csv or .txt (or give -f json|csv|table)");
   }
   return Format::table;
 }
@@ -290,34 +201,16 @@ std::function<void(std::uint64_t, std::uint64_t)> progress_bar(const std::string
 }
 
 double parse_accuracy(const std::string& text) {
-  const double a = text.empty() ? 0.1 : parse_number(text, "--accuracy");
-  if (!(a > 0 && a < 10))
-    throw InvalidInput("--accuracy", format_number(a), "0 < accuracy < 10 (relative error, e.g. 0.05)");
+  const double a = text.empty() ? kDefaultModelAccuracy : parse_number(text, "--accuracy");
+  check_model_accuracy(a, "--accuracy");
   return a;
 }
 
 ChosenModel resolve_model(const std::string& name, const std::string& accuracy, const Medium& medium) {
-  if (name != "auto") {
-    if (!accuracy.empty()) throw InvalidInput("--accuracy: only with --model auto (it chooses the model to meet it)");
-    if (!name.empty()) return {name, ""};
-    const auto chosen = default_model(medium);
-    return {chosen.name, chosen.reason.empty() ? "" : "default: " + chosen.reason};
-  }
-  const double a = parse_accuracy(accuracy);
-  const auto choice = choose_model(medium, a);
-  std::string rejected;
-  for (const auto& e : choice.estimates) {
-    if (e.model == choice.model) break;
-    rejected += (rejected.empty() ? "" : ", ") + e.model + " " +
-                (e.invalid.empty() ? format_number(std::round(e.error() * 1000) / 10) + " %" : "invalid here");
-  }
-  const auto& chosen = *std::find_if(choice.estimates.begin(), choice.estimates.end(),
-                                     [&](const auto& e) { return e.model == choice.model; });
-  return {choice.model, "auto: " + choice.model + ", the cheapest measured within " + short_number(a * 100) +
-                            " % of Monte Carlo for this medium (worst channel: total " +
-                            format_number(std::round(chosen.total_error * 1000) / 10) + " %, profile L2 " +
-                            format_number(std::round(chosen.profile_error * 1000) / 10) + " %)" +
-                            (rejected.empty() ? "" : "; cheaper but worse: " + rejected)};
+  std::optional<double> a;  // without auto any --accuracy is refused as such, whatever its text
+  if (!accuracy.empty()) a = name == "auto" ? parse_accuracy(accuracy) : kDefaultModelAccuracy;
+  const auto chosen = select_model(name, a, medium, "--accuracy", "--model");
+  return {chosen.name, chosen.note};
 }
 
 }  // namespace bssrdf::cli

@@ -60,11 +60,15 @@ CLI::Option* add_count_option(CLI::App& app, const std::string& names, Integer& 
       help + " (" + count_range(min, max) + ")");
 }
 
-// --material NAME | --sigma-a/--sigma-s [--g] [--channels], with --eta, --unit and --db.
+// --material NAME | --sigma-a with --sigma-s or --sigma-s-prime [--g] [--channels], with --eta, --unit
+// and --db: the one parser of a medium on the command line.
 struct MediumOptions {
-  std::string material, sigma_a, sigma_s, g, eta, unit = "mm", channels, db, wavelengths;
+  std::string material, sigma_a, sigma_s, sigma_s_prime, g, eta, unit = "mm", channels, db, wavelengths;
 
   void add_to(CLI::App& app);
+  // Only the inline coefficients (--sigma-a, --sigma-s, --sigma-s-prime, --g, --channels, --eta), for
+  // a command that has its own --unit, --db and material name (materials export).
+  void add_coefficients_to(CLI::App& app);
 
   struct Resolved {
     Medium medium;  // 1/mm

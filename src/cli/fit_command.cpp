@@ -13,6 +13,7 @@
 #include "bssrdf/profile_report.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "rxt_options.hpp"
 #include "rxt_output.hpp"
 #include "skin_command.hpp"
 
@@ -152,6 +153,7 @@ Action register_fit(CLI::App& app) {
     std::string unscattered, u_stderr = "0.002", slides, model = "adding-doubling", rxt;
     bool lost_light = false;
     std::uint64_t lost_light_photons = 100000;
+    RxtSphereOptions sphere;
     OutputOptions output;
   };
   auto so = std::make_shared<SlabOptions>();
@@ -169,6 +171,7 @@ Action register_fit(CLI::App& app) {
   slab->add_option(
       "--rxt", so->rxt,
       "Integrating-sphere file of Prahl's iad (.rxt): fit every row (g held at --g or 0 unless M_U is given)");
+  add_rxt_sphere_options(*slab, so->sphere);
   slab->add_option("--reflectance-stderr", so->r_stderr, "Standard error of the reflectance [0.002]");
   slab->add_option("--transmittance-stderr", so->t_stderr, "Standard error of the transmittance [0.002]");
   slab->add_option("--thickness", so->thickness, "Slab thickness in --unit (not with --rxt)");
@@ -247,13 +250,15 @@ Action register_fit(CLI::App& app) {
       options.unscattered_stderr = parse_number(so->u_stderr, "--unscattered-stderr");
       options.lost_light = so->lost_light;
       options.lost_light_photons = so->lost_light_photons;
+      apply_rxt_sphere_options(so->sphere, options);
       const auto file = read_rxt(so->rxt);
       const auto fit = fit_rxt(file, options);
       const auto table = rxt_fit_table(fit);
       emit(
           so->output, [&] { return rxt_fit_json(fit); }, [&] { return rxt_fit_csv(fit); }, table);
     } else if (slab->parsed()) {
-      if (so->lost_light) throw InvalidInput("--lost-light: only with --rxt (the file gives the sphere's ports)");
+      if (so->lost_light || any_rxt_sphere_option(so->sphere))
+        throw InvalidInput("--lost-light, --quadrature and the sphere options: only with --rxt");
       if (so->reflectance.empty()) throw InvalidInput("--reflectance is required (or --rxt FILE)");
       if (so->transmittance.empty()) throw InvalidInput("--transmittance is required (or --rxt FILE)");
       if (so->thickness.empty()) throw InvalidInput("--thickness is required (or --rxt FILE)");

@@ -60,9 +60,15 @@ void tabulate_all(const LutOptions& o, const TableKind& kind) {
   if (!o.medium.material.empty() || !o.medium.sigma_a.empty())
     throw InvalidInput("--all: give no --material or coefficients with --all");
   const std::string format = o.format.empty() ? "exr" : o.format;
-  const std::filesystem::path dir = o.output_dir.empty() ? "." : o.output_dir;
+  // With --all, -o names the directory (one file per material in it), never one file.
+  if (!o.output.empty() && !o.output_dir.empty())
+    throw InvalidInput("-o: with --all, -o is the directory (the same as --output-dir); give one of them");
+  if (!o.output.empty() && std::filesystem::path(o.output).has_extension())
+    throw InvalidInput("-o", "'" + o.output + "'",
+                       "a directory with --all (one file per material is written in it; choose their format with -f)");
+  const std::filesystem::path dir = !o.output.empty() ? o.output : o.output_dir.empty() ? "." : o.output_dir;
   if (!std::filesystem::is_directory(dir))
-    throw InvalidInput("--output-dir", "'" + dir.string() + "'", "an existing directory");
+    throw InvalidInput(o.output.empty() ? "--output-dir" : "-o", "'" + dir.string() + "'", "an existing directory");
   // With --preview NAME.png each material also gets <material>-NAME.png beside its table.
   if (!o.preview.empty() && std::filesystem::path(o.preview).extension() != ".png")
     throw InvalidInput("--preview", "'" + o.preview + "'",
@@ -161,7 +167,9 @@ Action register_lut(CLI::App& app) {
   sub->add_option("--interpolation", o->interpolation,
                   "How the consumer interpolates: catmull-rom or linear [" +
                       std::string(to_string(RadialTableOptions{}.interpolation)) + "]");
-  sub->add_option("-o,--output", o->output, "Output file: .exr, .json or .csv")->check(file_name("-o"));
+  sub->add_option("-o,--output", o->output,
+                  "Output file: .exr, .json, .csv (.glsl, .hlsl for separable); with --all: the directory")
+      ->check(file_name("-o"));
   sub->add_option("--format,-f", o->format, "exr, json, csv; glsl or hlsl for separable [from the file's extension]");
   sub->add_flag("--half", o->half, "OpenEXR: half-float channels instead of float32");
   sub->add_flag("--all", o->all, "Every material of the database, one file per material in --output-dir");

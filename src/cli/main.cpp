@@ -3,14 +3,19 @@
 #include <glog/logging.h>
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "bssrdf/error.hpp"
+#include "bssrdf/units.hpp"
 #include "commands.hpp"
+#include "launched_process_group.hpp"
 
 namespace {
 
@@ -30,9 +35,115 @@ std::string printable(const std::string& message) {
   return out;
 }
 
+// Enum-like values (models, formats, units, kinds, targets) are case-insensitive on every command:
+// lower-cased here, once, before any command sees them. File names and material names are left alone.
+void lower_enum_values(int argc, char** argv) {
+  static const char* const kEnumOptions[] = {"--model",
+                                             "--format",
+                                             "-f",
+                                             "--unit",
+                                             "--kind",
+                                             "-k",
+                                             "--to",
+                                             "--convention",
+                                             "--loss",
+                                             "--layout",
+                                             "--interpolation",
+                                             "--blender-method",
+                                             "--blender-version",
+                                             "--reference",
+                                             "--target",
+                                             "--spacing",
+                                             "--bin-spacing",
+                                             "--absorption",
+                                             "--incidence"};
+  const auto lower = [](char* text) {
+    for (; *text; ++text) *text = static_cast<char>(std::tolower(static_cast<unsigned char>(*text)));
+  };
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    for (const char* name : kEnumOptions) {
+      const std::string option = name;
+      if (arg == option && i + 1 < argc) {
+        lower(argv[i + 1]);
+      } else if (arg.rfind(option + "=", 0) == 0) {
+        lower(argv[i] + option.size() + 1);
+      }
+    }
+  }
+}
+
+// The command the user reached: the deepest parsed subcommand.
+CLI::App* parsed_command(CLI::App& app) {
+  for (auto* sub : app.get_subcommands({}))
+    if (sub->parsed()) return parsed_command(*sub);
+  return &app;
+}
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// CLI11's parse errors made helpful: an unknown option gets the nearest option of that command (also
+// when it hides behind another error, e.g. "--too json" behind "--to is required"); with `extras`
+// ("arguments were not expected"), a unit typed as a separate word ("--pixel 1 mm") gets the
+// spelling meant.
+std::string explain(CLI::App& app, int argc, char** argv, const std::string& message, bool extras) {
+  CLI::App* command = parsed_command(app);
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const std::string name = arg.substr(0, arg.find('='));
+    if (arg.size() > 1 && arg[0] == '-' && !std::isdigit(static_cast<unsigned char>(arg[1])) && arg[1] != '.' &&
+        !command->get_option_no_throw(name)) {
+      std::string best;
+      std::size_t best_distance = 4;  // further than 3 edits is not a typo
+      for (const auto* option : command->get_options())
+        for (const auto& long_name : option->get_lnames())
+          if (const auto d = edit_distance(name, "--" + long_name); d < best_distance)
+            best_distance = d, best = "--" + long_name;
+      return "unknown option '" + printable(name) + "' for '" + command->get_name() + "'" +
+             (best.empty() ? "; see 'bssrdf " + command->get_name() + " --help'" : "; did you mean '" + best + "'?");
+    }
+    if (!extras) continue;
+    try {
+      bssrdf::parse_length_unit(arg);
+    } catch (const bssrdf::InvalidInput&) {
+      continue;
+    }
+    const auto is_number = [](const char* text) {
+      char* end = nullptr;
+      std::strtod(text, &end);
+      return end != text && *end == '\0';
+    };
+    if (i >= 3 && argv[i - 2][0] == '-' &&
+        std::isalpha(static_cast<unsigned char>(argv[i - 2][1] == '-' ? argv[i - 2][2] : argv[i - 2][1])) &&
+        is_number(argv[i - 1])) {  // "--pixel 1 mm": OPTION NUMBER UNIT
+      const std::string option = argv[i - 2];
+      const auto* known = command->get_option_no_throw(option);
+      const bool takes_unit = known && known->get_description().find("optional unit") != std::string::npos;
+      return "'" + printable(arg) + "' was not expected: " +
+             (takes_unit ? "write the unit joined to the number, '" + option + " " + argv[i - 1] + arg + "'"
+                         : option + " is in --unit; give '--unit " + arg + "'");
+    }
+  }
+  return message;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  bssrdf::prepare_launched_process();  // under mpirun or srun, rank 0 alone speaks (docs/mpi.md)
   // Ceres logs through glog; the tool reports solver outcomes itself, so keep glog quiet.
   google::InitGoogleLogging(argv[0]);
   FLAGS_minloglevel = google::GLOG_FATAL;
@@ -68,12 +179,16 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  lower_enum_values(argc, argv);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
     return app.exit(e);  // --help, --version
+  } catch (const CLI::ExtrasError& e) {
+    std::cerr << "bssrdf: error: " << explain(app, argc, argv, printable(e.what()), true) << "\n";
+    return 2;
   } catch (const CLI::ParseError& e) {
-    std::cerr << "bssrdf: error: " << printable(e.what()) << "\n";
+    std::cerr << "bssrdf: error: " << explain(app, argc, argv, printable(e.what()), false) << "\n";
     return 2;
   } catch (const bssrdf::InvalidInput& e) {  // a count option's range check (add_count_option)
     std::cerr << "bssrdf: error: " << printable(e.what()) << "\n";

@@ -3,8 +3,10 @@
 // in the database's own format.
 #include <unistd.h>
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -19,123 +21,40 @@
 #include "bssrdf/io/renderer_export.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "materials_show.hpp"
 
 namespace bssrdf::cli {
 namespace {
 
 using json = nlohmann::ordered_json;
 
-// A length in the output unit; infinite and NaN become null in JSON.
-json length(double mm, LengthUnit unit) {
-  const double v = from_mm(mm, unit);
-  return std::isfinite(v) ? json(v) : json(nullptr);
-}
-json value(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
-json validity_json(const ValidityReport& report) {  // as `bssrdf profile -f json` writes it
-  json out = json::array();
-  for (const auto& note : report)
-    out.push_back(
-        {{"severity", std::string(to_string(note.severity))}, {"code", note.code}, {"message", note.message}});
-  return out;
-}
-
-json show_json(const Material& m, const DerivedQuantities& q, LengthUnit unit) {
-  const std::string u(symbol(unit)), per = "1/" + u;
-  json doc = {
-      {"name", m.name},
-      {"source", m.source},
-      {"citation", m.citation},
-      {"file", m.file},
-      {"eta", m.medium.eta},
-      {"unit", u},
-      {"reduced_scattering_only", m.reduced_scattering_only},
-      {"physical_model", q.physical_model},
-      {"object_size", from_mm(q.object_size_mm, unit)},
-      {"conventions",
-       {{"mfp", "1/sigma_t (unreduced), " + u},
-        {"transport_mfp", "ell = 1/sigma_t', " + u},
-        {"diffuse_mfp", "ell_d = 1/sigma_tr, sigma_tr = sqrt(3 sigma_a sigma_t'), " + u + "; null without absorption"},
-        {"burley_d",
-         "d of R(r) = A (e^{-r/d} + e^{-r/3d})/(8 pi d r), A = surface_albedo, least-squares fitted to the " +
-             q.physical_model + " profile (each channel's physical_model), " + u +
-             "; burley_fit_error = sqrt(int r (fit - R)^2 dr / int r R^2 dr)"},
-        {"surface_albedo",
-         "total diffuse reflectance per entered flux: the exact model's inside its domain; outside it the "
-         "channel's physical model's, or where that exceeds 1 (the model creates energy) the exact total by "
-         "adding-doubling, and the channel's validity says so (code surface_albedo)"},
-        {"coefficients", per}}},
-      {"notes", m.notes}};
-  doc["channels"] = json::array();
-  for (const auto& c : q.channels) {
-    doc["channels"].push_back({{"name", c.name},
-                               {"sigma_a", coefficient_from_per_mm(c.sigma_a, unit)},
-                               {"sigma_s", coefficient_from_per_mm(c.sigma_s, unit)},
-                               {"g", c.g},
-                               {"sigma_t", coefficient_from_per_mm(c.sigma_t, unit)},
-                               {"sigma_s_prime", coefficient_from_per_mm(c.sigma_s_prime, unit)},
-                               {"sigma_t_prime", coefficient_from_per_mm(c.sigma_t_prime, unit)},
-                               {"albedo", c.albedo},
-                               {"albedo_prime", c.albedo_prime},
-                               {"mfp", length(c.mfp, unit)},
-                               {"transport_mfp", length(c.transport_mfp, unit)},
-                               {"diffuse_mfp", length(c.diffuse_mfp, unit)},
-                               {"burley_d", length(c.burley_d, unit)},
-                               {"burley_albedo", value(c.burley_albedo)},
-                               {"burley_fit_error", value(c.burley_error)},
-                               {"physical_model", c.physical_model},
-                               {"model_choice", c.model_choice},
-                               {"surface_albedo", c.surface_albedo},
-                               {"valid", c.valid()},
-                               {"validity", validity_json(c.validity)}});
+// 'materials import': the new file is -o FILE, or NAME.json in the --db directory (created if absent,
+// never written over); either way it is validated against the database it joins before it is written.
+void import_fit(const std::string& fit_file, const std::string& name, const std::string& eta_text,
+                const std::string& source, const std::string& output, const std::string& db) {
+  namespace fs = std::filesystem;
+  const std::optional<double> eta = eta_text.empty() ? std::nullopt : std::optional(parse_number(eta_text, "--eta"));
+  const std::string text =
+      materials_file_from_fit(read_data_file(fit_file, "the fit result"), fit_file, name, eta, source);
+  std::string target = output;
+  if (target.empty()) {
+    if (db.empty()) throw InvalidInput("materials import: give --db DIR (your materials directory) or -o FILE");
+    std::error_code ec;
+    if (fs::exists(db, ec) && !fs::is_directory(db, ec))
+      throw InvalidInput("--db", "'" + db + "'", "a directory (or choose the file with -o FILE)");
+    std::string stem;
+    for (const char c : name)
+      stem += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::tolower(c)) : '-';
+    target = (fs::path(db) / (stem + ".json")).string();
+    if (fs::exists(target, ec))
+      throw InvalidInput("--name", "'" + name + "'", "a name whose file " + target + " does not exist yet");
   }
-  return doc;
-}
-
-std::string show_table(const Material& m, const DerivedQuantities& q, LengthUnit unit) {
-  const std::string u(symbol(unit));
-  std::ostringstream out;
-  out << m.name << " (" << m.source << ")  eta " << m.medium.eta << "\n" << m.citation << "\n";
-  for (const auto& n : m.notes) out << "  note: " << n << "\n";
-  char line[256];
-  std::snprintf(line, sizeof line, "%-24s", "");
-  out << line;
-  for (const auto& c : q.channels) {
-    std::snprintf(line, sizeof line, "%14s", c.name.c_str());
-    out << line;
-  }
-  out << "\n";
-  auto row = [&](const std::string& label, auto get) {
-    std::snprintf(line, sizeof line, "%-24s", label.c_str());
-    out << line;
-    for (const auto& c : q.channels) {
-      std::snprintf(line, sizeof line, "%14.6g", get(c));
-      out << line;
-    }
-    out << "\n";
-  };
-  const double mm = millimetres_per(unit);
-  row("sigma_a [1/" + u + "]", [&](const DerivedChannel& c) { return c.sigma_a * mm; });
-  row("sigma_s [1/" + u + "]", [&](const DerivedChannel& c) { return c.sigma_s * mm; });
-  row("g", [](const DerivedChannel& c) { return c.g; });
-  row("sigma_s' [1/" + u + "]", [&](const DerivedChannel& c) { return c.sigma_s_prime * mm; });
-  row("albedo", [](const DerivedChannel& c) { return c.albedo; });
-  row("albedo'", [](const DerivedChannel& c) { return c.albedo_prime; });
-  row("mfp 1/sigma_t [" + u + "]", [&](const DerivedChannel& c) { return c.mfp / mm; });
-  row("ell 1/sigma_t' [" + u + "]", [&](const DerivedChannel& c) { return c.transport_mfp / mm; });
-  row("ell_d 1/sigma_tr [" + u + "]", [&](const DerivedChannel& c) { return c.diffuse_mfp / mm; });
-  row("Burley d [" + u + "]", [&](const DerivedChannel& c) { return c.burley_d / mm; });
-  row("Burley fit error", [](const DerivedChannel& c) { return c.burley_error; });
-  row("surface albedo", [](const DerivedChannel& c) { return c.surface_albedo; });
-  out << "physical profile: " << q.physical_model << "; object size " << from_mm(q.object_size_mm, unit) << " " << u
-      << "\n";
-  for (const auto& c : q.channels) {
-    if (!c.model_choice.empty()) out << "  " << c.name << ": " << c.model_choice << "\n";
-    bool any = false;
-    for (const auto& note : c.validity)
-      if (note.severity != Severity::note) out << "  " << c.name << ": " << describe(note) << "\n", any = true;
-    if (!any) out << "  " << c.name << ": " << c.physical_model << " valid\n";
-  }
-  return out.str();
+  std::error_code ec;
+  auto database = MaterialDatabase::load_with_user(fs::is_directory(db, ec) ? db : "");
+  database.add_text(text, target);  // a valid file whose name clashes with no loaded material
+  if (output.empty()) fs::create_directories(db);
+  write_file_atomically(target, text);
+  std::cout << "written: " << target << " (use it with --db " << (output.empty() ? db : target) << ")\n";
 }
 
 double object_size_mm(const std::string& text) {
@@ -153,6 +72,7 @@ Action register_materials(CLI::App& app) {
                             import_source = "fit";
     std::string blender_method = "fixed-radius", blender_version = "auto";
     bool all = false;
+    MediumOptions inline_medium;  // materials export with --sigma-a ...: a medium not in the database
   };
   auto o = std::make_shared<Options>();
   auto* sub =
@@ -180,9 +100,12 @@ Action register_materials(CLI::App& app) {
 
   auto* exp =
       sub->add_subcommand("export", "Write materials in a renderer's form (units and conventions stated in the file)");
-  auto* exp_name = exp->add_option("name", o->name, "Material name (case-insensitive)");
+  auto* exp_name =
+      exp->add_option("name", o->name, "Material name (case-insensitive); with --sigma-a: the new material's name");
   auto* exp_all = exp->add_flag("--all", o->all, "Every material (with --source: every one from that source)");
   exp_name->excludes(exp_all);
+  o->inline_medium.add_coefficients_to(*exp);  // as 'bssrdf profile' takes them; their unit is --unit [mm]
+  exp_all->excludes(exp->get_option("--sigma-a"));
   exp->add_option("--to", o->to,
                   "json, pbrt-v4, mitsuba3, blender, unity-hdrp, unity-hdrp-editor, unreal, unreal-python")
       ->required();
@@ -197,12 +120,13 @@ Action register_materials(CLI::App& app) {
   add_db(exp);
   add_object_size(exp);
 
-  auto* imp = sub->add_subcommand("import", "Turn a 'bssrdf fit ... -f json' result into a materials file for --db");
-  imp->add_option("fit", o->fit_file, "The fit result (JSON)")->required();
+  auto* imp = sub->add_subcommand("import", "Turn a 'bssrdf fit ... -f json' result into a material in your --db");
+  imp->add_option("fit", o->fit_file, "The fit result (JSON of fit profile, albedo, slab or slab --rxt)")->required();
   imp->add_option("--name", o->name, "Name of the new material")->required();
-  imp->add_option("--eta", o->eta, "Relative index [the fit's, if it fitted or recorded one]");
+  imp->add_option("--eta", o->eta, "Relative index [the fit's]");
   imp->add_option("--source", o->import_source, "Source key of the new file [fit]");
-  imp->add_option("-o,--output", o->output, "The materials file to write")->required()->check(file_name("-o"));
+  imp->add_option("--db", o->db, "Your materials directory: the material is written there as NAME.json");
+  imp->add_option("-o,--output", o->output, "The materials file to write instead")->check(file_name("-o"));
 
   return [o, list, show, exp, imp] {
     if (list->parsed()) {
@@ -233,10 +157,14 @@ Action register_materials(CLI::App& app) {
       const auto& m = db.find(o->name);
       const auto q = derive_quantities(m.medium, options);
       for (const auto& c : q.channels) warn_validity(c.physical_model, c.name, c.validity);
-      std::cout << (o->format == "json" ? show_json(m, q, unit).dump(2) + "\n" : show_table(m, q, unit));
+      std::cout << (o->format == "json" ? show_json(m, q, unit) : show_table(m, q, unit));
     } else if (exp->parsed()) {
       const auto target = with_flag_names({{"to", "--to"}}, [&] { return parse_renderer_target(o->to); });
-      if (o->name.empty() && !o->all) throw InvalidInput("materials export: give a material NAME or --all");
+      const auto& inline_medium = o->inline_medium;
+      const bool own = !inline_medium.sigma_a.empty() || !inline_medium.sigma_s.empty() ||
+                       !inline_medium.sigma_s_prime.empty() || !inline_medium.g.empty() || !inline_medium.eta.empty();
+      if (o->name.empty() && !o->all && !own)
+        throw InvalidInput("materials export: give a material NAME, --all, or a medium (--sigma-a ...)");
       const auto unit =
           parse_length_unit(o->unit.empty() ? (target == RendererTarget::json ? "mm" : "m") : o->unit, "--unit");
       DerivationOptions options;
@@ -253,6 +181,18 @@ Action register_materials(CLI::App& app) {
         for (const auto& m : db.all())
           if (o->source.empty() || m.source == o->source) add(m);
         if (entries.empty()) throw InvalidInput("--source", "'" + o->source + "'", "a source of a loaded file");
+      } else if (own) {  // coefficients in --unit (mm when not given), as 'bssrdf profile' reads them
+        auto medium = inline_medium;
+        medium.unit = o->unit.empty() ? "mm" : o->unit;
+        const auto resolved = medium.resolve();
+        add(Material{o->name.empty() ? "custom" : o->name,
+                     "command-line",
+                     "given on the bssrdf command line",
+                     "",
+                     resolved.unit,
+                     false,
+                     resolved.medium,
+                     {}});
       } else {
         add(db.find(o->name));
       }
@@ -269,13 +209,7 @@ Action register_materials(CLI::App& app) {
       else
         write_file_atomically(o->output, text);
     } else if (imp->parsed()) {
-      const std::optional<double> eta =
-          o->eta.empty() ? std::nullopt : std::optional<double>(parse_number(o->eta, "--eta"));
-      const std::string text = materials_file_from_fit(read_data_file(o->fit_file, "the fit result"), o->fit_file,
-                                                       o->name, eta, o->import_source);
-      MaterialDatabase().add_text(text, o->output);  // validate it as the file it becomes, before anything is written
-      write_file_atomically(o->output, text);
-      std::cout << "written: " << o->output << " (load it with --db " << o->output << ")\n";
+      import_fit(o->fit_file, o->name, o->eta, o->import_source, o->output, o->db);
     }
   };
 }

@@ -201,7 +201,13 @@ Action register_profile(CLI::App& app) {
       if (options->spacing == "linear" && options->r_min.empty()) lo = 0;
       if (options->spacing == "log" && !(lo > 0))
         throw InvalidInput("--r-min", format_number(lo / mm), "> 0 with log spacing");
-      if (!(hi > lo)) throw InvalidInput("--r-max", format_number(hi / mm), "> --r-min = " + format_number(lo / mm));
+      if (!(hi > lo))  // errors name only options the user gave
+        throw InvalidInput(
+            options->r_max.empty() ? "--r-min" : "--r-max", format_number((options->r_max.empty() ? lo : hi) / mm),
+            options->r_max.empty()
+                ? "< the default largest radius " + format_number(hi / mm)
+                : "> " + std::string(options->r_min.empty() ? "the default smallest radius " : "--r-min = ") +
+                      format_number(lo / mm));
       radii_mm = options->spacing == "log" ? log_spaced(lo, hi, n) : linear_spaced(lo, hi, n);
     }
     auto report = with_flag_names({{"radii", "--radii"}}, [&] {

@@ -13,6 +13,7 @@
 #include "bssrdf/montecarlo.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "launched_process_group.hpp"
 
 namespace bssrdf::cli {
 
@@ -163,11 +164,15 @@ Action register_reference(CLI::App& app) {
     }
     for (auto& c : cases) c.options.validate();  // every case checked before any photon is traced
 
+    // Under mpirun or srun every rank runs the same cases and traces its share; rank 0 writes.
+    ProcessGroup* group = launched_process_group();
     std::vector<MonteCarloResult> results;
     for (auto& c : cases) {
       c.options.progress = progress_bar(c.label);
+      c.options.group = group;
       results.push_back(run_monte_carlo(c.stack, c.options));
     }
+    if (!results[0].gathered) return;
 
     std::string content, table;
     for (std::size_t k = 0; k < results.size(); ++k) {

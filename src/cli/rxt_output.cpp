@@ -1,6 +1,7 @@
 // Output of 'bssrdf fit slab --rxt FILE'; see rxt_output.hpp.
 #include "rxt_output.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -22,6 +23,7 @@ std::string rxt_fit_json(const RxtFit& fit) {
   doc["source"] = f.name;
   doc["model"] = "adding-doubling";
   doc["unit"] = "mm";
+  doc["eta"] = f.sample_n;  // with each row's mu_a, mu_s, g: a complete medium per row (materials import)
   auto sphere = [](const RxtSphere& s) {
     return nlohmann::json{{"diameter", s.diameter},
                           {"sample_port", s.sample_port},
@@ -38,11 +40,26 @@ std::string rxt_fit_json(const RxtFit& fit) {
                    {"spheres", f.spheres},
                    {"reflection_sphere", sphere(f.reflection)},
                    {"transmission_sphere", sphere(f.transmission)},
-                   {"measurements", f.measurements}};
+                   {"measurements", f.measurements},
+                   {"columns", f.columns},
+                   {"unscattered_in_m_r", f.unscattered_in_m_r},
+                   {"unscattered_in_m_t", f.unscattered_in_m_t},
+                   {"standard_transmittance", f.standard_transmittance}};
+  const auto& m = fit.options.sphere;
+  auto or_file = [](double v) { return std::isnan(v) ? nlohmann::json("file") : nlohmann::json(v); };
+  doc["sphere_model"] = {{"baffle_reflection", m.baffle_r},
+                         {"baffle_transmission", m.baffle_t},
+                         {"detector_reflectance", m.detector_reflectance},
+                         {"wall_first", m.wall_first},
+                         {"dual_beam", m.dual_beam},
+                         {"unscattered_in_m_r", or_file(m.unscattered_in_m_r)},
+                         {"unscattered_in_m_t", or_file(m.unscattered_in_m_t)}};
+  doc["quadrature"] =
+      fit.options.quadrature == 0 ? nlohmann::json("automatic (32)") : nlohmann::json(fit.options.quadrature);
   doc["measurement_stderr"] = {{"m_r", fit.options.reflectance_stderr},
                                {"m_t", fit.options.transmittance_stderr},
                                {"m_u", fit.options.unscattered_stderr}};
-  doc["g_held"] = f.measurements == 3 ? nlohmann::json(nullptr) : nlohmann::json(fit.options.g);
+  doc["g_held"] = nlohmann::json(fit.options.g);  // rows with M_U fit g, rows with a g column hold theirs
   doc["lost_light_correction"] = fit.options.lost_light;
   if (fit.options.lost_light) doc["lost_light_photons"] = fit.options.lost_light_photons;
   doc["seconds"] = fit.seconds;
@@ -52,9 +69,11 @@ std::string rxt_fit_json(const RxtFit& fit) {
                        {"wavelength", r.row.wavelength},
                        {"mu_a", estimate(r.mu_a, r.mu_a_stderr)},
                        {"mu_s_prime", estimate(r.mu_s_prime, r.mu_s_prime_stderr)},
+                       {"mu_s", estimate(r.mu_s_prime / (1 - r.g), r.mu_s_prime_stderr / (1 - r.g))},
                        {"g", estimate(r.g, r.g_stderr)},
                        {"m_r", {{"measured", r.row.m_r}, {"fitted", r.fitted_m_r}}},
                        {"m_t", {{"measured", r.row.m_t}, {"fitted", r.fitted_m_t}}},
+                       {"spheres", r.row.setup.spheres},
                        {"chi2", r.chi2},
                        {"converged", r.converged},
                        {"status", r.status}};
@@ -98,6 +117,16 @@ std::string rxt_fit_table(const RxtFit& fit) {
                                           std::to_string(fit.options.lost_light_photons) + " photons, pencil beam)")
                                              .c_str()
                                        : "lost light not corrected");
+  out << line;
+  const auto& m = fit.options.sphere;
+  auto share = [](double v) { return std::isnan(v) ? std::string("file's") : format_number(v); };
+  std::snprintf(line, sizeof line,
+                "sphere model (iad 4): baffles %s/%s, detector reflectance %g, wall first %g, %s, unscattered in "
+                "M_R %s, in M_T %s; quadrature %s\n",
+                m.baffle_r ? "R" : "-", m.baffle_t ? "T" : "-", m.detector_reflectance, m.wall_first,
+                m.dual_beam ? "dual beam" : "single beam", share(m.unscattered_in_m_r).c_str(),
+                share(m.unscattered_in_m_t).c_str(),
+                fit.options.quadrature == 0 ? "automatic (32)" : std::to_string(fit.options.quadrature).c_str());
   out << line;
   out << (f.has_wavelength ? "  lambda" : "     row")
       << "   mu_a (1/mm)          mu_s' (1/mm)         g               M_R meas/fit     M_T meas/fit     status\n";

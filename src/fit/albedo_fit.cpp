@@ -77,6 +77,9 @@ FitReport fit_albedo(const std::vector<ChannelInput>& channels, DistanceConventi
   report.data_source = "surface albedo and " + std::string(to_string(convention)) + " per channel";
   report.termination = "exact";
   report.converged = true;
+  report.eta = eta;
+  for (const auto& c : channels) report.g.push_back(c.g);
+  report.length_unit = symbol(unit);
   const std::string per_unit = "1/" + std::string(symbol(unit));
   for (const auto& c : channels) {
     AlbedoInversion x;

@@ -49,6 +49,27 @@ std::string FitReport::to_json() const {
     channels[p.channel][p.name] = estimate(p);
   }
   doc["shared"] = shared;
+  if (std::isfinite(eta)) {  // a complete medium: unit, eta, and g and sigma_s per channel
+    doc["unit"] = length_unit;
+    const FitParameter* fitted_eta = find("eta");
+    doc["eta"] = fitted_eta ? estimate(*fitted_eta) : nlohmann::json{{"value", eta}, {"stderr", nullptr}};
+    doc["eta"]["fitted"] = fitted_eta != nullptr;
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      auto& c = channels[order[i]];
+      const FitParameter* sa = find("sigma_a", order[i]);
+      const FitParameter* ssp = find("sigma_s_prime", order[i]);
+      if (!sa || !ssp) continue;
+      const FitParameter* fitted_g = find("g", order[i]);
+      const double g_value = fitted_g ? fitted_g->value : i < g.size() ? g[i] : 0.0;
+      const double g_se = fitted_g && std::isfinite(fitted_g->standard_error) ? fitted_g->standard_error : 0.0;
+      if (!fitted_g) c["g"] = {{"value", g_value}, {"stderr", nullptr}};
+      c["g"]["fitted"] = fitted_g != nullptr && g_se > 0;
+      // sigma_s = sigma_s' / (1 - g); its 1-sigma from those of sigma_s' and g, correlation neglected.
+      const double s = ssp->value / (1 - g_value);
+      const double se = std::hypot(ssp->standard_error / (1 - g_value), s * g_se / (1 - g_value));
+      c["sigma_s"] = estimate({"sigma_s", order[i], s, se, ssp->unit});
+    }
+  }
   doc["channels"] = nlohmann::json::array();
   for (const auto& name : order) doc["channels"].push_back(channels[name]);
   doc["residual_rms"] = residual_rms;

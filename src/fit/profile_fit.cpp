@@ -213,6 +213,9 @@ FitReport fit_profile(const MeasuredProfile& data, const ProfileFitOptions& give
   report.termination = ceres::TerminationTypeToString(summary.termination_type);
   report.converged = summary.termination_type == ceres::CONVERGENCE;
   report.solver_report = summary.FullReport();
+  report.eta = eta;
+  for (const auto& ch : channels) report.g.push_back(ch.g);
+  report.length_unit = symbol(data.unit);
 
   // Covariance of the free parameters; scaled by the reduced chi-square without standard errors.
   std::vector<const double*> blocks;

@@ -68,6 +68,8 @@ FitReport fit_slab(const std::vector<SlabMeasurement>& channels, double thicknes
                                  format_number(options.slide_thickness) + " " + std::string(symbol(unit))
                            : std::string());
   report.converged = true;
+  report.eta = eta;  // g is a parameter of every channel, fitted or held
+  report.length_unit = symbol(unit);
   const std::string per_unit = "1/" + std::string(symbol(unit));
   const char* const measurement_names[] = {"R", "T", "U"};
   for (const auto& c : channels) {

@@ -36,22 +36,26 @@ PenumbraTable build_penumbra_table(const Medium& medium, const Model& model, con
   for (std::size_t j = 0; j < H; ++j)
     t.penumbra_width.push_back(t.options.width_max * (static_cast<double>(j) + 0.5) / static_cast<double>(H));
   t.value.assign(channels, std::vector<double>(W * H));
+  // D = 1 - [A(s w) - A(-(1 - s) w)] / (w total), A(x) = int_0^x half_plane (odd part: A(-y) =
+  // half_plane_integral(y) - total y). The columns s_i and 1 - s_i = s_{W-1-i} share their
+  // integrals, so a row needs W of them, at ln(s_i w) = ln s_i + ln w (no logarithm per texel).
+  std::vector<double> ln_shadow(W);
+  for (std::size_t i = 0; i < W; ++i) ln_shadow[i] = std::log(t.shadow[i]);
   parallel_for(H, options.threads, [&](std::size_t j) {
-    const double w = t.penumbra_width[j];
+    const double w = t.penumbra_width[j], ln_w = std::log(w);
+    std::vector<double> integral(W);
     for (std::size_t c = 0; c < channels; ++c) {
       const auto& p = profiles[c];
-      // A(x) = int_0^x half_plane, odd part handled through half_plane(-x) = total - half_plane(x).
-      const auto A = [&](double x) {
-        return x >= 0 ? p->half_plane_integral(x) : p->half_plane_integral(-x) + p->total() * x;
-      };
+      if (!p) {
+        for (std::size_t i = 0; i < W; ++i) t.value[c][j * W + i] = t.shadow[i];
+        continue;
+      }
+      for (std::size_t i = 0; i < W; ++i) integral[i] = p->half_plane_integral(t.shadow[i] * w, ln_shadow[i] + ln_w);
+      const double total = p->total();
       for (std::size_t i = 0; i < W; ++i) {
-        const double s = t.shadow[i];
-        if (!p) {
-          t.value[c][j * W + i] = s;
-          continue;
-        }
-        const double x = (s - 0.5) * w;
-        t.value[c][j * W + i] = std::clamp(1 - (A(x + 0.5 * w) - A(x - 0.5 * w)) / (w * p->total()), 0.0, 1.0);
+        const std::size_t m = W - 1 - i;
+        const double lit = integral[i] - integral[m] + total * t.shadow[m] * w;
+        t.value[c][j * W + i] = std::clamp(1 - lit / (w * total), 0.0, 1.0);
       }
     }
   });

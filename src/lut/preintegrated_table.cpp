@@ -67,7 +67,7 @@ PreintegratedTable build_preintegrated_table(const Medium& medium,
     for (std::size_t k = 0; k <= n_uniform; ++k)
       x.push_back(0.1 + (std::numbers::pi - 0.1) * static_cast<double>(k) / static_cast<double>(n_uniform));
     const std::size_t K = x.size();
-    std::vector<double> quad(K), cos_x(K), sin_x(K), chord(K);
+    std::vector<double> quad(K), cos_x(K), sin_x(K), chord(K), ln_chord(K);
     for (std::size_t k = 0; k < K; ++k) {
       // Trapezoid weight; the first node also covers (0, x_0] (the integrand taken constant there).
       quad[k] = k == 0       ? x[0] + 0.5 * (x[1] - x[0])
@@ -76,6 +76,7 @@ PreintegratedTable build_preintegrated_table(const Medium& medium,
       cos_x[k] = std::cos(x[k]);
       sin_x[k] = std::sin(x[k]);
       chord[k] = 2 * radius * std::sin(0.5 * x[k]);
+      ln_chord[k] = std::log(chord[k]);  // once for every channel's profile
     }
     // sum_k w_k [max(0, cos(theta + x_k)) + max(0, cos(theta - x_k))], theta = acos(N.L) in [0, pi],
     // x_k in (0, pi]: each clamp keeps a contiguous range of nodes (cos(theta + x) > 0 for
@@ -100,7 +101,7 @@ PreintegratedTable build_preintegrated_table(const Medium& medium,
       }
       double norm = 0;
       for (std::size_t k = 0; k < K; ++k) {
-        const double w = quad[k] * profiles[c]->line(chord[k]);
+        const double w = quad[k] * profiles[c]->line(chord[k], ln_chord[k]);
         norm += w;
         prefix_cos[k + 1] = prefix_cos[k] + w * cos_x[k];
         prefix_sin[k + 1] = prefix_sin[k] + w * sin_x[k];

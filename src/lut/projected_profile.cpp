@@ -41,6 +41,8 @@ ProjectedProfile::ProjectedProfile(const Model& model, const Reduced<double>& m)
   if (!(cum > 0)) throw InvalidInput("profile", "total " + format_number(cum), "> 0");
   total_ = cum;
   const std::size_t n = R.size();
+  r_min_ = std::exp(u0_);
+  r_max_ = std::exp(u0_ + h_ * static_cast<double>(n - 1));
   log_R_.resize(n);
   for (std::size_t j = 0; j < n; ++j) log_R_[j] = safe_log(R[j]);
   // line(x_j) = 2 int_0^inf R(x cosh s) x cosh s ds, trapezoid in s with step hs from s = 0 (half
@@ -126,9 +128,6 @@ double ProjectedProfile::cubic(const std::vector<double>& f, double u) const {
   return (2 * x3 - 3 * x2 + 1) * p1 + (x3 - 2 * x2 + x) * m1 + (-2 * x3 + 3 * x2) * p2 + (x3 - x2) * m2;
 }
 
-double ProjectedProfile::r_min() const { return std::exp(u0_); }
-double ProjectedProfile::r_max() const { return std::exp(u0_ + h_ * static_cast<double>(log_R_.size() - 1)); }
-
 double ProjectedProfile::reflectance(double r) const {
   if (r <= r_min()) return std::exp(log_R_.front());
   if (r >= r_max()) return 0;
@@ -138,9 +137,14 @@ double ProjectedProfile::reflectance(double r) const {
 
 double ProjectedProfile::line(double x) const {
   x = std::abs(x);
+  return line(x, x > r_min() && x < r_max() ? std::log(x) : 0.0);
+}
+
+double ProjectedProfile::line(double x, double ln_abs_x) const {
+  x = std::abs(x);
   if (x <= r_min()) return std::exp(log_line_.front());
   if (x >= r_max()) return 0;
-  const double v = cubic(log_line_, std::log(x));
+  const double v = cubic(log_line_, ln_abs_x);
   return v <= kNegligible ? 0 : std::exp(v);
 }
 
@@ -152,10 +156,14 @@ double ProjectedProfile::half_plane(double x) const {
 }
 
 double ProjectedProfile::half_plane_integral(double x) const {
+  return half_plane_integral(x, x > r_min() && x < r_max() ? std::log(x) : 0.0);
+}
+
+double ProjectedProfile::half_plane_integral(double x, double ln_x) const {
   if (x <= 0) return 0;
   if (x <= r_min()) return x * 0.5 * (half_plane_0_ + half_plane(x));
   if (x >= r_max()) return half_plane_integral_.back();  // half_plane is 0 beyond
-  return cubic(half_plane_integral_, std::log(x));
+  return cubic(half_plane_integral_, ln_x);
 }
 
 double ProjectedProfile::radius_for_fraction(double fraction) const {

@@ -58,12 +58,20 @@ TransmissionTable build_transmission_table(const Medium& medium, std::vector<dou
   t.standard_error.resize(channels);
   const bool everywhere = options.reference_everywhere;
   const bool reference = options.reference || everywhere;
-  for (double d : thickness) {
+  const bool exact_everywhere = options.model == "adding-doubling" && !everywhere;
+  // Adding-doubling: every thickness of a channel at once, sharing its angles, boundaries and phase function.
+  std::vector<std::vector<adding_doubling::Totals>> exact(exact_everywhere ? channels : 0);
+  for (std::size_t c = 0; c < exact.size(); ++c)
+    exact[c] = adding_doubling::solve_thicknesses(adding_doubling::slab_of(LayerStack::slab(medium, thickness[0]), c),
+                                                  thickness, adding_doubling::Incidence::collimated);
+  for (std::size_t k = 0; k < thickness.size(); ++k) {
+    const double d = thickness[k];
     const multipole::Model model(d);
     std::vector<double> T(channels), se(channels, 0.0);
     std::string invalid;  // "code (channels)"
     std::string code;
-    for (std::size_t c = 0; c < channels; ++c) {
+    // The multipole and its validity only where they may be used (adding-doubling replaces both).
+    for (std::size_t c = 0; c < channels && !exact_everywhere; ++c) {
       const auto m = medium.reduced(c);
       const auto why = multipole_invalid_code(model, m);
       if (!why.empty()) {
@@ -73,12 +81,10 @@ TransmissionTable build_transmission_table(const Medium& medium, std::vector<dou
       T[c] = model.total_transmittance(m);
     }
     TransmissionSource source = TransmissionSource::multipole;
-    if (options.model == "adding-doubling" && !everywhere) {
+    if (exact_everywhere) {
       // Exact: per entered flux, the unscattered beam removed, as the multipole reports it.
-      const auto stack = LayerStack::slab(medium, d);
       for (std::size_t c = 0; c < channels; ++c) {
-        const auto a =
-            adding_doubling::solve(adding_doubling::slab_of(stack, c), adding_doubling::Incidence::collimated);
+        const auto& a = exact[c][k];
         T[c] = (a.total_transmittance - a.unscattered_transmittance) * a.entered_scale();
       }
       invalid.clear();

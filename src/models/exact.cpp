@@ -245,9 +245,11 @@ struct AboveLastNode {
     return 1 - root * root;
   }
   void continue_profile(const ExactTable& table, std::vector<double>& ln_y) const {
+    const auto sm = classical_dipole::sources(medium), sn = classical_dipole::sources(node);  // once, not per radius
     for (std::size_t k = 0; k < ln_y.size(); ++k) {
       const double r = table.radius(k);
-      ln_y[k] += std::log(classical_dipole::reflectance(medium, r) / classical_dipole::reflectance(node, r));
+      ln_y[k] += std::log(classical_dipole::reflectance(sm, medium.albedo_prime, r) /
+                          classical_dipole::reflectance(sn, node.albedo_prime, r));
     }
   }
 };

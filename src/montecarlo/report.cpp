@@ -86,6 +86,11 @@ std::string to_json(const MonteCarloResult& result, LengthUnit unit) {
   doc["batch_size"] = o.batch_size;
   doc["seconds"] = result.seconds;
   doc["photons_per_second"] = result.photons_per_second;
+  if (result.ranks > 1) {  // MPI: the ranks and rank 0's communication
+    doc["ranks"] = result.ranks;
+    doc["communication_bytes"] = result.communication_bytes;
+    doc["communication_seconds"] = result.communication_seconds;
+  }
   doc["absorption_estimator"] = std::string(to_string(o.absorption));
   doc["roulette_threshold"] = o.roulette_threshold;
   doc["roulette_survival"] = o.roulette_survival;
@@ -182,7 +187,11 @@ std::string MonteCarloResult::report(LengthUnit unit) const {
   out << "\nRun:\n";
   out << "  photons            " << options.photons << " per channel, seed " << options.seed << ", batch size "
       << options.batch_size << "\n";
-  out << "  threads            " << threads << "\n";
+  out << "  threads            " << threads << (ranks > 1 ? " per rank, " + std::to_string(ranks) + " MPI ranks" : "")
+      << "\n";
+  if (ranks > 1)
+    out << "  communication      " << communication_bytes << " bytes in " << fixed(communication_seconds, 0, 3)
+        << " s (rank 0, waiting for the other ranks included)\n";
   out << "  time               " << fixed(seconds, 0, 3) << " s, " << general(photons_per_second, 0) << " photons/s\n";
   out << "  absorption         " << to_string(options.absorption);
   if (options.absorption == AbsorptionEstimator::implicit_capture)

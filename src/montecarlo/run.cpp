@@ -1,5 +1,6 @@
-// Runs the tracer over batches on worker threads and folds the batch tallies, in batch order,
-// into per-channel estimates with standard errors.
+// Runs the tracer over batches on worker threads (and MPI ranks) and folds the batch tallies, in
+// batch order within chunks and chunk order across them (channel_sums.hpp), into per-channel
+// estimates with standard errors.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -8,9 +9,12 @@
 #include <mutex>
 #include <numbers>
 
+#include "bssrdf/check.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/montecarlo.hpp"
 #include "bssrdf/parallel.hpp"
+#include "bssrdf/process_group.hpp"
+#include "channel_sums.hpp"
 #include "tracer.hpp"
 
 namespace bssrdf {
@@ -70,41 +74,6 @@ double largest_transport_mfp(const LayerStack& stack) {
   return ell > 0 ? ell : 1.0;
 }
 
-// Running sums of one channel over the folded batches.
-struct ChannelSums {
-  std::uint64_t photons = 0, interactions = 0, batches = 0;
-  double sum[mc::kTotals] = {}, sum_sq[mc::kTotals] = {};
-  double lost = 0, r_beyond = 0, t_beyond = 0;
-  std::vector<double> r_sum, r_sq, t_sum, t_sq, a_sum, a_batch_sq;
-  std::vector<ReflectedPhoton> reflected;
-
-  void add(const mc::BatchTally& t) {
-    reflected.insert(reflected.end(), t.reflected.begin(), t.reflected.end());
-    photons += t.photons;
-    interactions += t.interactions;
-    ++batches;
-    for (int i = 0; i < mc::kTotals; ++i) {
-      sum[i] += t.sum[i];
-      sum_sq[i] += t.sum_sq[i];
-    }
-    lost += t.lost;
-    r_beyond += t.r_beyond;
-    t_beyond += t.t_beyond;
-    const auto accumulate = [](std::vector<double>& into, const std::vector<double>& from) {
-      if (into.empty()) into.assign(from.size(), 0.0);
-      for (std::size_t i = 0; i < from.size(); ++i) into[i] += from[i];
-    };
-    accumulate(r_sum, t.r_sum);
-    accumulate(r_sq, t.r_sq);
-    accumulate(t_sum, t.t_sum);
-    accumulate(t_sq, t.t_sq);
-    accumulate(a_sum, t.a_sum);
-    if (a_batch_sq.empty()) a_batch_sq.assign(t.a_sum.size(), 0.0);
-    const double n = static_cast<double>(t.photons);
-    for (std::size_t i = 0; i < t.a_sum.size(); ++i) a_batch_sq[i] += t.a_sum[i] * t.a_sum[i] / n;
-  }
-};
-
 // Mean of N per-photon contributions and its standard error.
 Estimate estimate(double sum, double sum_sq, double n) {
   Estimate e;
@@ -124,6 +93,7 @@ MonteCarloResult run_monte_carlo(const LayerStack& stack, const MonteCarloOption
   MonteCarloOptions& options = result.options;
   options = options_in;
   options.progress = nullptr;
+  options.group = nullptr;
   if (options.r_max <= 0) options.r_max = 10 * largest_transport_mfp(stack);
   if (options.r_min <= 0) options.r_min = options.r_max / 1000;
   if (options.spacing == BinSpacing::log && !(options.r_min < options.r_max))
@@ -157,39 +127,90 @@ MonteCarloResult run_monte_carlo(const LayerStack& stack, const MonteCarloOption
   for (std::size_t c = 0; c < channels; ++c) geometry.push_back(mc::make_geometry(stack, c));
 
   const std::uint64_t batches_per_channel = (options.photons + options.batch_size - 1) / options.batch_size;
-  const std::uint64_t total_batches = batches_per_channel * channels;
+  const std::uint64_t chunks_per_channel = (batches_per_channel + mc::kBatchesPerChunk - 1) / mc::kBatchesPerChunk;
+  const std::uint64_t total_chunks = chunks_per_channel * channels;
   const std::uint64_t total_photons = options.photons * channels;
-  result.threads = worker_count(total_batches, options.threads);
+  ProcessGroup* group = options_in.group && options_in.group->size() > 1 ? options_in.group : nullptr;
+  const std::uint64_t ranks = group ? static_cast<std::uint64_t>(group->size()) : 1;
+  const std::uint64_t rank = group ? static_cast<std::uint64_t>(group->rank()) : 0;
+  result.ranks = static_cast<int>(ranks);
 
-  std::vector<ChannelSums> sums(channels);
+  // This rank's batches (global index channel * batches_per_channel + batch), chunk by chunk.
+  struct Work {
+    std::uint64_t chunk, channel, batch;
+  };
+  std::vector<Work> work;
+  for (std::uint64_t chunk = rank; chunk < total_chunks; chunk += ranks) {
+    const std::uint64_t channel = chunk / chunks_per_channel,
+                        first = (chunk % chunks_per_channel) * mc::kBatchesPerChunk;
+    for (std::uint64_t b = first; b < std::min(batches_per_channel, first + mc::kBatchesPerChunk); ++b)
+      work.push_back({chunk, channel, b});
+  }
+  result.threads = worker_count(work.size(), options.threads);
+
+  std::vector<mc::ChannelSums> sums(channels);
+  std::vector<mc::ChunkSums> finished;  // this rank's chunks, kept for rank 0 when distributed
+  mc::ChunkSums current{work.empty() ? 0 : work[0].chunk, {}};
+  const auto finish_chunk = [&] {
+    if (group)
+      finished.push_back(std::move(current));
+    else
+      sums[current.chunk / chunks_per_channel].add(current.sums);
+  };
   std::mutex fold_mutex;
-  std::map<std::uint64_t, mc::BatchTally> pending;  // finished, waiting for earlier batches
-  std::uint64_t next_fold = 0, photons_done = 0;
+  std::map<std::size_t, mc::BatchTally> pending;  // finished, waiting for earlier batches
+  std::size_t next_fold = 0;
+  std::uint64_t photons_done = 0;
 
   const auto start = std::chrono::steady_clock::now();
-  parallel_for(total_batches, options.threads, [&](std::size_t index) {
-    const std::uint64_t channel = index / batches_per_channel, batch = index % batches_per_channel;
-    const std::uint64_t count = std::min(options.batch_size, options.photons - batch * options.batch_size);
+  parallel_for(work.size(), options.threads, [&](std::size_t index) {
+    const Work& w = work[index];
+    const std::uint64_t count = std::min(options.batch_size, options.photons - w.batch * options.batch_size);
     mc::BatchTally tally;
     tally.reset(binning.bins, settings.transmission_bins, settings.depth_bins);
-    mc::Rng rng(options.seed, channel, batch);
-    mc::trace_batch(geometry[channel], settings, rng, count, tally);
+    mc::Rng rng(options.seed, w.channel, w.batch);
+    mc::trace_batch(geometry[w.channel], settings, rng, count, tally);
     std::lock_guard<std::mutex> lock(fold_mutex);
     pending.emplace(index, std::move(tally));
     // Fold in batch order only: floating-point sums then never depend on the thread count.
     while (!pending.empty() && pending.begin()->first == next_fold) {
-      sums[next_fold / batches_per_channel].add(pending.begin()->second);
+      if (work[next_fold].chunk != current.chunk) {
+        finish_chunk();
+        current = {work[next_fold].chunk, {}};
+      }
+      current.sums.add(pending.begin()->second);
       pending.erase(pending.begin());
       ++next_fold;
     }
     photons_done += count;
-    if (options_in.progress) options_in.progress(photons_done, total_photons);
+    // Rank 0 speaks for all: the ranks progress at about the same pace.
+    if (options_in.progress && rank == 0)
+      options_in.progress(std::min(total_photons, photons_done * ranks), total_photons);
   });
+  if (!work.empty()) finish_chunk();
+  if (group) {
+    // Rank 0 folds every rank's chunks in chunk order: the one-process fold, whatever the ranks.
+    const std::vector<std::string> parts = group->gather(mc::serialize(finished));
+    finished.clear();
+    if (rank != 0) {
+      result.gathered = false;
+    } else {
+      std::vector<mc::ChunkSums> all;
+      for (const std::string& part : parts)
+        for (auto& c : mc::deserialize(part)) all.push_back(std::move(c));
+      std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.chunk < b.chunk; });
+      BSSRDF_CHECK(all.size() == total_chunks);
+      for (const auto& c : all) sums[c.chunk / chunks_per_channel].add(c.sums);
+    }
+    result.communication_bytes = group->bytes_moved();
+    result.communication_seconds = group->seconds_communicating();
+  }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.photons_per_second = result.seconds > 0 ? static_cast<double>(total_photons) / result.seconds : 0;
+  if (!result.gathered) return result;
 
   for (std::size_t c = 0; c < channels; ++c) {
-    const ChannelSums& s = sums[c];
+    const mc::ChannelSums& s = sums[c];
     const double n = static_cast<double>(s.photons);
     ChannelResult ch;
     ch.name = stack.channel_names[c];

@@ -181,22 +181,23 @@ def render_edge(mat, width, samples, pixels=64):
     return {"width": width, "pixels": pixels, "samples": samples, "seconds": seconds, "columns": columns}
 
 
-argv = sys.argv[sys.argv.index("--") + 1:]
-EXPORT, NAME, OUT = argv[0], argv[1], argv[2]
-exec(compile(open(EXPORT).read(), EXPORT, "exec"))
-mat = bpy.data.materials[NAME]
-bsdf = next(n for n in mat.node_tree.nodes if n.type == "BSDF_PRINCIPLED")
-result = {"blender_version": bpy.app.version_string, "material": NAME,
-          "inputs": {s.name: (list(s.default_value) if hasattr(s.default_value, "__len__") else s.default_value)
-                     for s in bsdf.inputs if hasattr(s, "default_value")},
-          "medium": simulated_medium(bsdf)}
-if "--render" in argv:
-    k = argv.index("--render")
-    if bpy.app.version[0] >= 4:
-        bsdf.inputs["Specular IOR Level"].default_value = 0.0
-    else:
-        bsdf.inputs["Specular"].default_value = 0.0
-    result["render"] = render_edge(mat, float(argv[k + 1]), int(argv[k + 2]))
-with open(OUT, "w") as f:
-    json.dump(result, f, indent=1)
-print("check_export: wrote", OUT)
+if __name__ == "__main__":  # imported by blender/tests/check_addon.py for its functions
+    argv = sys.argv[sys.argv.index("--") + 1:]
+    EXPORT, NAME, OUT = argv[0], argv[1], argv[2]
+    exec(compile(open(EXPORT).read(), EXPORT, "exec"))
+    mat = bpy.data.materials[NAME]
+    bsdf = next(n for n in mat.node_tree.nodes if n.type == "BSDF_PRINCIPLED")
+    result = {"blender_version": bpy.app.version_string, "material": NAME,
+              "inputs": {s.name: (list(s.default_value) if hasattr(s.default_value, "__len__") else s.default_value)
+                         for s in bsdf.inputs if hasattr(s, "default_value")},
+              "medium": simulated_medium(bsdf)}
+    if "--render" in argv:
+        k = argv.index("--render")
+        if bpy.app.version[0] >= 4:
+            bsdf.inputs["Specular IOR Level"].default_value = 0.0
+        else:
+            bsdf.inputs["Specular"].default_value = 0.0
+        result["render"] = render_edge(mat, float(argv[k + 1]), int(argv[k + 2]))
+    with open(OUT, "w") as f:
+        json.dump(result, f, indent=1)
+    print("check_export: wrote", OUT)

@@ -32,6 +32,8 @@
 // in passes of one chunk per node, so an interrupted run still leaves a complete, evenly sampled
 // grid (--runs, --g-min and --g-max top up only some runs: RunFocus). Chunk c of node (g, eta) uses seed splitmix(seed,
 // g, eta, c): results do not depend on how often the run was interrupted nor on the thread count.
+// Under `mpirun -np N` (or srun) the nodes of each pass are dealt to the ranks (docs/mpi.md): the same
+// state files, bitwise, for any N; a rank that dies stops the run, and `run` again resumes it.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -60,6 +62,7 @@
 #include "bssrdf/parallel.hpp"
 #include "bssrdf/reduced.hpp"
 #include "bssrdf/single_scattering.hpp"
+#include "launched_process_group.hpp"
 
 namespace {
 
@@ -298,12 +301,21 @@ int run(const std::filesystem::path& dir, std::uint64_t target, std::uint64_t ch
   const auto elapsed_hours = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / 3600;
   };
+  // Under mpirun or srun the nodes of a pass are dealt to the ranks in turn (node k to rank
+  // k % ranks); each node's file is written by one rank only, and its chunks and seeds are the ones a
+  // single process would run, so the state and the table are bitwise identical whatever the ranks.
+  ProcessGroup* group = launched_process_group();
+  const std::size_t ranks = group ? static_cast<std::size_t>(group->size()) : 1;
+  const std::size_t rank = group ? static_cast<std::size_t>(group->rank()) : 0;
+  const auto any_rank = [&](bool value) { return group ? group->any(value) : value; };
   for (;;) {
-    bool any = false;
-    for (std::size_t ei = 0; ei < grid.eta.size(); ++ei) {
-      for (std::size_t gi = 0; gi < grid.g.size(); ++gi) {
-        for (std::size_t b = 0; b < grid.runs(); ++b) {
+    bool any = false, time_up = false;
+    std::size_t item = 0;
+    for (std::size_t ei = 0; ei < grid.eta.size() && !time_up; ++ei) {
+      for (std::size_t gi = 0; gi < grid.g.size() && !time_up; ++gi) {
+        for (std::size_t b = 0; b < grid.runs() && !time_up; ++b) {
           if (!focus.includes(grid, gi, ei, b)) continue;
+          if (item++ % ranks != rank) continue;
           NodeSums sums;
           const auto path = node_path(dir, grid, gi, ei, b);
           load(sums, path, grid);
@@ -311,8 +323,8 @@ int run(const std::filesystem::path& dir, std::uint64_t target, std::uint64_t ch
           if (sums.photons >= run_target) continue;
           any = true;
           if (elapsed_hours() > hours) {
-            std::cerr << "stopped after " << hours << " h (run again to continue)\n";
-            return 0;
+            time_up = true;
+            break;
           }
           const std::uint64_t n = std::min(chunk * grid.run_factor(b), run_target - sums.photons);
           const auto t0 = std::chrono::steady_clock::now();
@@ -326,7 +338,12 @@ int run(const std::filesystem::path& dir, std::uint64_t target, std::uint64_t ch
         }
       }
     }
-    if (!any) break;
+    // Every rank ends the pass here: all stop when any ran out of time, all go on while any has work.
+    if (any_rank(time_up)) {
+      std::cerr << "stopped after " << hours << " h (run again to continue)\n";
+      return 0;
+    }
+    if (!any_rank(any)) break;
   }
   std::cerr << "every node in focus has " << target << " photons\n";
   return 0;
@@ -485,6 +502,10 @@ std::size_t add_fine_totals(const Grid& grid, ExactTable& table, const std::vect
 int build(const std::filesystem::path& dir, const std::string& out_path, std::uint64_t seed,
           const std::string& base_path) {
   const Grid grid;
+  // A build takes minutes: refuse an output folder that is not there before, not after.
+  const auto out_dir = std::filesystem::absolute(out_path).parent_path();
+  if (!std::filesystem::is_directory(out_dir))
+    throw std::runtime_error("--out " + out_path + ": the folder " + out_dir.string() + " does not exist");
   // --base: a table whose eta nodes are copied (its axes must be this grid's but for fewer eta nodes).
   std::optional<ExactTable> base;
   std::vector<std::optional<std::size_t>> base_eta(grid.eta.size());
@@ -783,7 +804,8 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   table.provenance = p.dump();
   write_exact_table(table, out_path);
   std::cout << p.dump(2) << "\n";
-  // The per-node check, for the record (data/exact/total_check.tsv; a build with --base writes only its own nodes: append them).
+  // The per-node check, for the record (data/exact/total_check.tsv; a build with --base writes only its own nodes:
+  // append them).
   std::ofstream check(std::filesystem::path(out_path).parent_path() / "total_check.tsv");
   check << "# alpha'\tg\teta\tms_monte_carlo\tms_stderr\tms_adding_doubling(total - exact single scattering; null: "
            "not converged)\tadding_doubling_error_estimate\tms_total_used\n";
@@ -814,6 +836,7 @@ double number(const std::string& flag, const std::string& text, double lo, doubl
 }
 
 int main(int argc, char** argv) {
+  prepare_launched_process();  // under mpirun or srun, rank 0 alone speaks (docs/mpi.md)
   try {
     std::vector<std::string> args(argv + 1, argv + argc);
     if (args.empty() || (args[0] != "run" && args[0] != "build")) {
@@ -872,6 +895,7 @@ int main(int argc, char** argv) {
     if (state.empty()) throw std::invalid_argument("--state DIR is required");
     if (args[0] == "run") return run(state, photons, chunk, hours, seed, focus);
     if (out.empty()) throw std::invalid_argument("--out FILE is required");
+    if (ProcessGroup* group = launched_process_group(); group && group->rank() != 0) return 0;  // rank 0 builds
     return build(state, out, seed, base);
   } catch (const std::exception& e) {
     std::cerr << "generate_exact_table: " << e.what() << "\n";

@@ -75,8 +75,11 @@ struct Totals {
   double diffuse_reflectance = 0;        // per incident flux, specular excluded
   double total_transmittance = 0;        // per incident flux, unscattered included
   double unscattered_transmittance = 0;  // per incident flux
-  int points = 0;                        // quadrature angles per hemisphere used
-  double error_estimate = 0;             // largest change of R or T from points/2 (0 with fixed points)
+  // Specular reflection plus the unscattered light reflected back out by the bottom boundary
+  // (iad's R_u), per incident flux.
+  double unscattered_reflectance = 0;
+  int points = 0;             // quadrature angles per hemisphere used
+  double error_estimate = 0;  // largest change of R or T from points/2 (0 with fixed points)
 
   double absorbed() const { return 1 - specular_reflectance - diffuse_reflectance - total_transmittance; }
   // 1 / (1 - R_sp): multiply per-incident values by this for per-entered ones.
@@ -87,6 +90,12 @@ Totals solve(const Slab& slab, Incidence incidence, const Options& options = {})
 // Several incidences from one set of layer operators (e.g. collimated and diffuse for sphere
 // corrections): the same results as separate calls, for little more than the cost of one.
 std::vector<Totals> solve(const Slab& slab, const std::vector<Incidence>& incidences, const Options& options = {});
+
+// One-layer slabs that differ only in the layer's thickness (a table against thickness): the results
+// of solve() at each thickness, bitwise, with the angles, boundaries and phase function computed once
+// per number of angles instead of once per thickness.
+std::vector<Totals> solve_thicknesses(const Slab& slab, const std::vector<double>& thicknesses, Incidence incidence,
+                                      const Options& options = {});
 
 // Channel `c` of a layer stack: leading and trailing layers that do not scatter become clear
 // layers (slides); the scattering layers between them must share one index and may not contain a

@@ -1,5 +1,6 @@
-// A fit result ('bssrdf fit profile|albedo|slab ... -f json') as a bssrdf materials file with one
-// entry: sigma_a and sigma_s' per channel (g was not fitted, so the entry gives sigma_s').
+// A fit result ('bssrdf fit profile|albedo|slab ... -f json', or 'fit slab --rxt' with one channel
+// per row) as a bssrdf materials file with one entry: sigma_a, sigma_s and g per channel, as fitted
+// or held (a result without g, from an older version, gives g = 0 and sigma_s = sigma_s').
 //
 //   const std::string text = bssrdf::materials_file_from_fit(json_text, "fit.json", "My wax", std::nullopt, "fit");
 #pragma once

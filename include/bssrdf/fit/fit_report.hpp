@@ -3,6 +3,7 @@
 // what the data cannot determine, and the residual of every data point.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -41,11 +42,19 @@ struct FitReport {
   double seconds = 0;
   std::vector<std::string> warnings;
   std::string solver_report;  // Ceres' FullReport, when Ceres was used
+  // A fit of sigma_a and sigma_s' (profile, albedo, slab) describes a complete medium: what it held
+  // fixed beside the fitted parameters, so that its JSON can become a material without retyping.
+  // NaN eta: not a medium fit (gaussians, burley).
+  double eta = NAN;         // the fitted (a parameter "eta") or the assumed relative index
+  std::vector<double> g;    // per channel in parameter order, where no parameter "g" was fitted
+  std::string length_unit;  // of the coefficients, e.g. "mm"
 
   const FitParameter* find(const std::string& name, const std::string& channel = "") const;
 
   std::string full_report() const;  // for people
-  std::string to_json() const;  // {"kind", "model", ..., "channels": [{"name", "sigma_a": {"value","stderr"}, ...}]}
+  // {"kind", "model", ..., "channels": [{"name", "sigma_a": {"value","stderr"}, ...}]}; a medium fit also
+  // gives "unit", "eta" and per channel "g" and "sigma_s" (sigma_s' / (1 - g)).
+  std::string to_json() const;
 };
 
 }  // namespace bssrdf

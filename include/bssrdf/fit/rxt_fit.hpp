@@ -1,8 +1,12 @@
-// Inverse adding-doubling of an integrating-sphere file (.rxt): per row, mu_a and mu_s' (and g
+// Inverse adding-doubling of an integrating-sphere file (.rxt), each row with its own setup (the
+// header with the row's columns applied) and the row's g when it has one: per row, mu_a and mu_s' (and g
 // with M_U) with 1-sigma errors propagated from the measurement errors (the file carries none:
 // they are options), the fitted M_R, M_T, chi^2 and a status. Forward model: adding-doubling
 // (32 angles) with the file's slides and the sphere equations of integrating_sphere.hpp. g is
-// held (at options.g, 0 by default as in iad) with two measurements and fitted with M_U.
+// held (at options.g, 0 by default as in iad) with two measurements and fitted with M_U (> 0).
+// A row with M_R alone is a semi-infinite sample (iad's convention: mu_s = 1/mm, the albedo fitted).
+// Rows iad would flag (M_R or M_T outside [0, 1], M_R + M_T > 1 without spheres, M_U < 0 or above
+// M_T, M_R below a non-scattering sample's) get a status saying so and no fit.
 // Lost light (options.lost_light, off by default): light leaving the sample beyond the sphere's
 // sample port is not collected. The project's Monte Carlo reference (pencil beam: the beam
 // diameter is not modelled) at the current estimate gives the diffuse reflectance and
@@ -15,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "bssrdf/fit/integrating_sphere.hpp"
 #include "bssrdf/io/rxt.hpp"
 
 namespace bssrdf {
@@ -24,6 +29,8 @@ struct RxtFitOptions {
   double reflectance_stderr = 0.002, transmittance_stderr = 0.002, unscattered_stderr = 0.002;
   bool lost_light = false;  // Monte Carlo lost-light correction (needs a sphere)
   std::uint64_t lost_light_photons = 100'000;
+  SphereModel sphere;  // iad's instrument options (baffles, f, r_d, dual beam, c, C)
+  int quadrature = 0;  // angles per hemisphere as iad's -q; 0: 32 for the result (iad's default is 8)
 };
 
 struct RxtRowFit {

@@ -33,25 +33,29 @@ class ProjectedProfile {
   ProjectedProfile(const Model& model, const Reduced<double>& m);
 
   double total() const { return total_; }
-  double reflectance(double r) const;  // R(r); R(r_min) below the grid, 0 beyond it
-  double line(double x) const;         // even in x
-  double half_plane(double x) const;   // signed x: total - half_plane(-x) for x < 0
+  double reflectance(double r) const;            // R(r); R(r_min) below the grid, 0 beyond it
+  double line(double x) const;                   // even in x
+  double line(double x, double ln_abs_x) const;  // the same given ln |x| (shared by several profiles)
+  double half_plane(double x) const;             // signed x: total - half_plane(-x) for x < 0
   double strip(double a, double b) const { return half_plane(a) - half_plane(b); }
   double half_plane_integral(double x) const;  // int_0^x half_plane, x >= 0
+  // The same given ln x too (tables whose arguments are products s w add logarithms instead).
+  double half_plane_integral(double x, double ln_x) const;
   // The radius holding `fraction` of total() (0 < fraction < 1).
   double radius_for_fraction(double fraction) const;
   // The distance x >= 0 at which 2 half_plane(x) / total falls to 1 - fraction: the half-width of
   // the band |X| < x holding `fraction` of the light of a point (the 1D kernel's support).
   double line_width_for_fraction(double fraction) const;
   double conservation_error() const { return 2 * half_plane(0) / total_ - 1; }
-  double r_min() const;
-  double r_max() const;
+  double r_min() const { return r_min_; }
+  double r_max() const { return r_max_; }
 
  private:
   double u0_ = 0, h_ = 0;                                           // nodes u_j = u0 + j h, u = ln r
   std::vector<double> log_R_, log_line_, half_plane_, cumulative_;  // cumulative: int_0^{r_j} 2 pi r R dr
   std::vector<double> half_plane_integral_;                         // int_0^{x_j} half_plane
   double total_ = 0, half_plane_0_ = 0;
+  double r_min_ = 0, r_max_ = 0;  // e^{u_0} and e^{u_last}, kept: every evaluation compares with both
   double cubic(const std::vector<double>& f, double u) const;
 };
 

@@ -26,10 +26,15 @@ Sources<T> sources(const Reduced<T>& m) {
   return {m.ell, image_depth(m.ell, extrapolation_distance(A, m.D)), m.sigma_tr};
 }
 
+// R(r) from sources found once (a caller evaluating many radii of one medium).
+template <class T>
+T reflectance(const Sources<T>& s, T albedo_prime, T r) {
+  return albedo_prime * (point_source::flux(s.z_r, s.sigma_tr, r) - point_source::flux(s.z_v, s.sigma_tr, r));
+}
+
 template <class T>
 T reflectance(const Reduced<T>& m, T r) {
-  const auto s = sources(m);
-  return m.albedo_prime * (point_source::flux(s.z_r, s.sigma_tr, r) - point_source::flux(s.z_v, s.sigma_tr, r));
+  return reflectance(sources(m), m.albedo_prime, r);
 }
 
 template <class T>

@@ -1,0 +1,23 @@
+// The options of 'bssrdf fit slab --rxt' that describe iad's instrument beyond the file (iad's
+// -H, -f, -X, -c, -C, -q and the detector reflectance), each with iad 4's default.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "bssrdf/fit/rxt_fit.hpp"
+
+namespace bssrdf::cli {
+
+struct RxtSphereOptions {
+  std::string baffles = "both", wall_first, detector_reflectance, unscattered_in_m_r, unscattered_in_m_t;
+  bool dual_beam = false;
+  int quadrature = 0;
+};
+
+void add_rxt_sphere_options(CLI::App& command, RxtSphereOptions& o);
+// Whether any was given (they need --rxt).
+bool any_rxt_sphere_option(const RxtSphereOptions& o);
+void apply_rxt_sphere_options(const RxtSphereOptions& o, RxtFitOptions& options);
+
+}  // namespace bssrdf::cli
