@@ -28,11 +28,21 @@ int main(int argc, char** argv) {
   for (int k = 0; k < n; ++k) {
     const double u = (k + 1) / (n + 1.0);
     switch (which) {
-      case 0: sink = ExactProfile(table, 0.2 + 0.7 * u, 0.5, 1.35).total(); break;
-      case 1: sink = ExactProfile(table, 1 - 9e-5 * u, 0.3, 1.35).total(); break;
-      case 2: sink = ExactProfile(table, 0.7, 0.99 + 9e-3 * u, 1.35).total(); break;
-      case 3: sink = ExactProfile(table, 0.7, 0.5, 2.0 - 0.02 * u).total(); break;
-      case 4: sink = ExactProfile(table, 0.0009 * u, 0.5, 1.35).total(); break;
+      case 0:
+        sink = ExactProfile(table, 0.2 + 0.7 * u, 0.5, 1.35).total();
+        break;
+      case 1:
+        sink = ExactProfile(table, 1 - 9e-5 * u, 0.3, 1.35).total();
+        break;
+      case 2:
+        sink = ExactProfile(table, 0.7, 0.99 + 9e-3 * u, 1.35).total();
+        break;
+      case 3:
+        sink = ExactProfile(table, 0.7, 0.5, 2.0 - 0.02 * u).total();
+        break;
+      case 4:
+        sink = ExactProfile(table, 0.0009 * u, 0.5, 1.35).total();
+        break;
     }
   }
   std::printf("%d builds\n", n);
