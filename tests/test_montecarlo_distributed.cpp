@@ -100,7 +100,7 @@ void expect_identical(const MonteCarloResult& a, const MonteCarloResult& b) {
 
 TEST(MonteCarloDistributed, AnyNumberOfRanksGivesTheOneProcessResultBitwise) {
   // Two channels and a slab: 300 batches of 256 photons = 5 chunks per channel, 10 in all.
-  const Medium medium{{"a", "b"}, {0.05, 0.3}, {4.0, 6.0}, {0.8, 0.5}, 1.4};
+  const Medium medium{{"a", "b"}, {0.05, 0.3}, {4.0, 6.0}, {0.8, 0.5}, 1.4, {}};
   const LayerStack stack = LayerStack::slab(medium, 2.0);
   MonteCarloOptions options;
   options.photons = 300 * 256;
