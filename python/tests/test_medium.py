@@ -51,8 +51,8 @@ def test_bad_media_raise_value_error_naming_the_field(kwargs, message):
 
 def test_the_cli_refuses_the_same_medium_with_the_same_message(cli):
     with pytest.raises(ValueError) as error:
-        bssrdf.Medium(sigma_a=[0.1, -1, 0.1], sigma_s=1)
-    done = cli("profile", "--sigma-a", "0.1,-1,0.1", "--sigma-s", "1", check=False)
+        bssrdf.Medium(sigma_a=[0.1, -1, 0.1], sigma_s=[1, 1, 1])
+    done = cli("profile", "--sigma-a", "0.1,-1,0.1", "--sigma-s", "1,1,1", check=False)
     assert done.returncode == 2
     # The CLI names its option (--sigma-a), the module its argument (sigma_a); the rest is the library's.
     assert done.stderr.strip() == "bssrdf: error: " + str(error.value).replace("sigma_a", "--sigma-a", 1)
