@@ -71,16 +71,7 @@ std::pair<std::vector<NamedProfile>, std::string> profile_source(const py::objec
     const std::string file = source.cast<std::string>();
     const auto measured = read_profile_csv(file);
     unit = measured.unit;
-    const double mm = millimetres_per(unit);
-    for (const auto& c : measured.channels) {
-      NamedProfile p{c.name, {}};
-      for (std::size_t i = 0; i < measured.radius.size(); ++i) {
-        p.profile.radius.push_back(measured.radius[i] / mm);
-        p.profile.value.push_back(c.value[i] * mm * mm);
-      }
-      out.push_back(std::move(p));
-    }
-    return {out, file};
+    return {named_profiles_in_own_unit(measured), file};
   }
   const auto h = to_medium(source);
   unit = h.unit;

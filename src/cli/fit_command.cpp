@@ -68,16 +68,7 @@ struct ProfileSource {
     if (!data.empty()) {
       const auto measured = read_profile_csv(data);
       unit = measured.unit;
-      const double mm = millimetres_per(unit);
-      for (const auto& c : measured.channels) {
-        NamedProfile p{c.name, {}};
-        for (std::size_t i = 0; i < measured.radius.size(); ++i) {
-          p.profile.radius.push_back(measured.radius[i] / mm);
-          p.profile.value.push_back(c.value[i] * mm * mm);
-        }
-        out.push_back(std::move(p));
-      }
-      return {out, data};
+      return {named_profiles_in_own_unit(measured), data};
     }
     const auto resolved = medium.resolve();
     unit = resolved.unit;

@@ -324,4 +324,18 @@ FitReport fit_burley(const std::vector<NamedProfile>& channels, LengthUnit unit,
   return report;
 }
 
+std::vector<NamedProfile> named_profiles_in_own_unit(const MeasuredProfile& measured) {
+  const double mm = millimetres_per(measured.unit);
+  std::vector<NamedProfile> out;
+  for (const auto& c : measured.channels) {
+    NamedProfile p{c.name, {}};
+    for (std::size_t i = 0; i < measured.radius.size(); ++i) {
+      p.profile.radius.push_back(measured.radius[i] / mm);
+      p.profile.value.push_back(c.value[i] * mm * mm);
+    }
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
 }  // namespace bssrdf

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "bssrdf/fit/fit_report.hpp"
+#include "bssrdf/io/profile_csv.hpp"
 #include "bssrdf/profile.hpp"
 #include "bssrdf/units.hpp"
 
@@ -74,6 +75,10 @@ struct NamedProfile {
   std::string name;
   SampledProfile profile;  // radius in unit, R in 1/unit^2
 };
+
+// A measured profile's channels in the file's own unit (radius in it, R per its square): what
+// fit_gaussians and fit_burley take with `measured.unit`.
+std::vector<NamedProfile> named_profiles_in_own_unit(const MeasuredProfile& measured);
 
 // `totals`: when given (one per channel), the weights of each channel are also held to sum to it
 // (a stiff penalty residual): a mixture that conserves the profile's energy even where the
