@@ -4,13 +4,12 @@
 #include <cctype>
 
 #include "bssrdf/error.hpp"
+#include "bssrdf/text.hpp"
 
 namespace bssrdf {
 
 LengthUnit parse_length_unit(std::string_view text, const std::string& field) {
-  std::string lower(text);
-  std::transform(lower.begin(), lower.end(), lower.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string lower = bssrdf::lower(text);
   if (lower == "um" || lower == "\xc2\xb5m" || lower == "\xce\xbcm" || lower == "micrometre" || lower == "micrometer")
     return LengthUnit::micrometre;
   if (lower == "mm" || lower == "millimetre" || lower == "millimeter") return LengthUnit::millimetre;

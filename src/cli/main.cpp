@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "bssrdf/error.hpp"
+#include "bssrdf/text.hpp"
 #include "bssrdf/units.hpp"
 #include "commands.hpp"
 #include "launched_process_group.hpp"
@@ -80,21 +81,6 @@ CLI::App* parsed_command(CLI::App& app) {
   return &app;
 }
 
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
-
 // CLI11's parse errors made helpful: an unknown option gets the nearest option of that command (also
 // when it hides behind another error, e.g. "--too json" behind "--to is required"); with `extras`
 // ("arguments were not expected"), a unit typed as a separate word ("--pixel 1 mm") gets the
@@ -110,7 +96,7 @@ std::string explain(CLI::App& app, int argc, char** argv, const std::string& mes
       std::size_t best_distance = 4;  // further than 3 edits is not a typo
       for (const auto* option : command->get_options())
         for (const auto& long_name : option->get_lnames())
-          if (const auto d = edit_distance(name, "--" + long_name); d < best_distance)
+          if (const auto d = bssrdf::edit_distance(name, "--" + long_name); d < best_distance)
             best_distance = d, best = "--" + long_name;
       return "unknown option '" + printable(name) + "' for '" + command->get_name() + "'" +
              (best.empty() ? "; see 'bssrdf " + command->get_name() + " --help'" : "; did you mean '" + best + "'?");

@@ -6,6 +6,7 @@
 
 #include "bssrdf/check.hpp"
 #include "bssrdf/error.hpp"
+#include "bssrdf/text.hpp"
 #include "cie_tables.hpp"
 
 namespace bssrdf::spectral {
@@ -54,8 +55,7 @@ std::string_view to_string(Illuminant illuminant) {
 }
 
 Illuminant parse_illuminant(const std::string& text, const std::string& field) {
-  std::string lower = text;
-  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string lower = bssrdf::lower(text);
   if (lower == "d65") return Illuminant::d65;
   if (lower == "d50") return Illuminant::d50;
   if (lower == "a") return Illuminant::a;

@@ -6,6 +6,7 @@
 
 #include "bssrdf/check.hpp"
 #include "bssrdf/error.hpp"
+#include "bssrdf/text.hpp"
 
 namespace bssrdf::spectral {
 namespace {
@@ -106,8 +107,7 @@ std::string_view key(ColourSpace space) {
 }
 
 ColourSpace parse_colour_space(const std::string& text, const std::string& field) {
-  std::string lower = text;
-  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string lower = bssrdf::lower(text);
   for (auto space : {ColourSpace::srgb, ColourSpace::acescg, ColourSpace::rec2020})
     if (lower == key(space)) return space;
   throw InvalidInput(field, "'" + text + "'", "srgb, acescg or rec2020");
