@@ -21,6 +21,7 @@ class Writer {
   template <class T>
   void put(const std::vector<T>& values) {
     put(static_cast<std::uint64_t>(values.size()));
+    if (values.empty()) return;
     bytes_.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
   }
   std::string take() { return std::move(bytes_); }
@@ -44,6 +45,7 @@ class Reader {
     get(n);
     if (n > (bytes_.size() - at_) / sizeof(T)) throw std::runtime_error("Monte Carlo chunk sums: truncated");
     values.resize(n);
+    if (n == 0) return;  // an empty vector's data() may be null, which memcpy must not be given
     std::memcpy(values.data(), bytes_.data() + at_, n * sizeof(T));
     at_ += n * sizeof(T);
   }
