@@ -168,7 +168,7 @@ namespace {
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-std::string fixed(double v, int width, int precision = 5) {
+std::string in_column(double v, int width, int precision = 5) {
   char buffer[64];
   if (!std::isfinite(v)) {
     std::snprintf(buffer, sizeof buffer, "%*s", width, v > 0 ? "inf" : "nan");
@@ -302,10 +302,11 @@ std::string to_table(const ProfileReport& report) {
       << (report.includes_single_scattering ? "" : " (multiple scattering only)") << "\n\n";
   out << "channel  sigma_a     sigma_s'    g        alpha'    ell (" << u << ")   R_total   r_99 (" << u << ")\n";
   for (const auto& ch : report.channels)
-    out << std::string(ch.name).append(std::max<std::size_t>(1, 8 - ch.name.size()), ' ') << fixed(ch.sigma_a, 10, 4)
-        << fixed(ch.sigma_s_prime, 10, 4) << fixed(ch.g, 7, 3) << fixed(ch.albedo_prime, 10, 5)
-        << fixed(ch.transport_mfp, 11, 4) << fixed(ch.total_reflectance, 10, 5) << fixed(ch.radius_99, 11, 4)
-        << (ch.total_transmittance ? "   T_total " + fixed(*ch.total_transmittance, 9, 5) : std::string())
+    out << std::string(ch.name).append(std::max<std::size_t>(1, 8 - ch.name.size()), ' ')
+        << in_column(ch.sigma_a, 10, 4) << in_column(ch.sigma_s_prime, 10, 4) << in_column(ch.g, 7, 3)
+        << in_column(ch.albedo_prime, 10, 5) << in_column(ch.transport_mfp, 11, 4)
+        << in_column(ch.total_reflectance, 10, 5) << in_column(ch.radius_99, 11, 4)
+        << (ch.total_transmittance ? "   T_total " + in_column(*ch.total_transmittance, 9, 5) : std::string())
         << (ch.dipole_pairs > 0 ? "   pairs " + std::to_string(ch.dipole_pairs) : std::string()) << '\n';
   const std::string radius_header = "radius (" + u + ")";
   out << '\n' << std::string(13 - std::min<std::size_t>(12, radius_header.size()), ' ') << radius_header;
@@ -318,10 +319,10 @@ std::string to_table(const ProfileReport& report) {
   if (!report.channels.empty()) {
     const auto& radii = report.channels.front().profile.radius;
     for (std::size_t i = 0; i < radii.size(); ++i) {
-      out << fixed(radii[i], 13, 5);
-      for (const auto& ch : report.channels) out << fixed(ch.profile.value[i], 14, 5);
+      out << in_column(radii[i], 13, 5);
+      for (const auto& ch : report.channels) out << in_column(ch.profile.value[i], 14, 5);
       for (const auto& ch : report.channels)
-        if (ch.total_transmittance) out << fixed(ch.transmittance[i], 14, 5);
+        if (ch.total_transmittance) out << in_column(ch.transmittance[i], 14, 5);
       out << '\n';
     }
   }

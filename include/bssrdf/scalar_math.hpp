@@ -7,6 +7,9 @@
 
 namespace bssrdf {
 
+// The full angle: profiles are integrated over the plane as 2 pi r R(r) dr.
+inline constexpr double kTwoPi = 2 * std::numbers::pi;
+
 template <class T>
 T inverse_sinh(T x) {
   using std::log;

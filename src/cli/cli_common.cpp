@@ -15,18 +15,9 @@
 #include "bssrdf/model_choice.hpp"
 #include "bssrdf/model_selection.hpp"
 #include "bssrdf/profile.hpp"
+#include "bssrdf/text.hpp"
 
 namespace bssrdf::cli {
-namespace {
-
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
-}
-
-}  // namespace
-
 double parse_number(const std::string& text, const std::string& field) {
   const std::string t = trim(text);
   double value = 0;

@@ -6,16 +6,11 @@
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/spectral/resample.hpp"
+#include "bssrdf/text.hpp"
 #include "cli_common.hpp"
 
 namespace bssrdf::cli {
 namespace {
-
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
-}
 
 // One value per channel: a single value applies to every channel.
 std::vector<double> per_channel(std::vector<double> values, std::size_t channels, const std::string& field,

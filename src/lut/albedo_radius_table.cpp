@@ -15,13 +15,12 @@
 #include "bssrdf/models/exact.hpp"
 #include "bssrdf/models/photon_beam_diffusion.hpp"
 #include "bssrdf/parallel.hpp"
+#include "bssrdf/scalar_math.hpp"
 #include "bssrdf/single_scattering.hpp"
 #include "bssrdf/transport_total.hpp"
 
 namespace bssrdf {
 namespace {
-
-constexpr double kTwoPi = 2 * std::numbers::pi;
 
 // Integral of the Catmull-Rom spline through (x_j, f_j): per interval h (f0 + f1)/2 + h^2 (d0 - d1)/12
 // with the spline's slopes d (centred differences, one-sided at the ends). cumulative[j] at x_j.

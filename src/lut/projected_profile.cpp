@@ -7,11 +7,11 @@
 #include <numbers>
 
 #include "bssrdf/error.hpp"
+#include "bssrdf/scalar_math.hpp"
 
 namespace bssrdf {
 namespace {
 
-constexpr double kTwoPi = 2 * std::numbers::pi;
 constexpr double kNegligible = -745.0;  // ln of the smallest double: R treated as 0 below
 
 double safe_log(double v) { return v > 0 ? std::log(v) : kNegligible; }

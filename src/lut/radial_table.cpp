@@ -7,11 +7,10 @@
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/parallel.hpp"
+#include "bssrdf/scalar_math.hpp"
 
 namespace bssrdf {
 namespace {
-
-constexpr double kTwoPi = 2 * std::numbers::pi;
 
 struct Probe {
   double total = 0, r_lo = 0, r_hi = 0;

@@ -48,7 +48,6 @@ using namespace bssrdf;
 
 namespace {
 
-constexpr double kTwoPi = 2 * std::numbers::pi;
 
 struct Errors {
   double l2 = 0, l2_log = 0, worst = 0, rho_eff = 0;
