@@ -10,6 +10,7 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/fit/integrating_sphere.hpp"
 #include "bssrdf/montecarlo.hpp"
+#include "constrained_search.hpp"
 #include "slab_inversion.hpp"
 
 namespace bssrdf {
@@ -136,7 +137,14 @@ std::pair<double, double> lost_light(const RxtSetup& f, const SlabParameters& p,
 
 RxtFit fit_rxt(const RxtFile& file, const RxtFitOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  if (!(options.g > -1 && options.g < 1)) throw InvalidInput("g", format_number(options.g), "-1 < g < 1");
+  if (!std::isnan(options.g) && !(options.g > -1 && options.g < 1))
+    throw InvalidInput("g", format_number(options.g), "-1 < g < 1");
+  const auto& held = options.constraints;
+  if (!std::isnan(held.mu_s_prime) && (!std::isnan(held.mu_s) || !std::isnan(held.power_mu_s0)))
+    throw InvalidInput("--fixed-mu-s-prime with --fixed-mu-s: give one (both fix mu_s)");
+  if (!std::isnan(held.power_mu_s0) && !(held.power_lambda0 > 0 && std::isfinite(held.power_gamma)))
+    throw InvalidInput("--fixed-mu-s power law 'P lambda0 mu_s0 gamma'", format_number(held.power_lambda0),
+                       "lambda0 > 0 and a finite gamma");
   for (double s : {options.reflectance_stderr, options.transmittance_stderr, options.unscattered_stderr})
     if (!(s > 0 && s < 1)) throw InvalidInput("measurement standard error", format_number(s), "(0, 1)");
   if (options.lost_light && file.spheres == 0)
@@ -157,17 +165,12 @@ RxtFit fit_rxt(const RxtFile& file, const RxtFitOptions& options) {
     throw InvalidInput("wall-first fraction", format_number(model.wall_first), "0 with the dual-beam method (as iad)");
   // What we do not model: refused with the feature's name (docs/rxt.md lists them).
   for (const auto& row : file.rows) {
-    const auto& k = row.constraints;
     auto refuse = [&](const std::string& what, const std::string& value, const std::string& accepted) {
       throw FileError(file.name, row.line, what + " = " + value + ": supported is " + accepted);
     };
     if (row.setup.incidence_degrees != 0)
       refuse("angle of incidence (column i, iad -i)", format_number(row.setup.incidence_degrees), "0 degrees");
-    for (auto [letter, v] : {std::pair{"a (albedo)", k.albedo},
-                             {"b (optical thickness)", k.optical_thickness},
-                             {"A (mu_a)", k.mu_a},
-                             {"F (mu_s)", k.mu_s}})
-      if (!std::isnan(v)) refuse(std::string("constraint column ") + letter, format_number(v), "none (only g is held)");
+    row_constraint(row, held, options.g);  // refuses two constraints at once or a power law without wavelength
   }
   RxtFit out;
   out.file = file;
@@ -177,7 +180,9 @@ RxtFit fit_rxt(const RxtFile& file, const RxtFitOptions& options) {
   std::map<std::vector<double>, std::array<double, 3>> grid;
   for (const auto& row : file.rows) {
     const RxtSetup& setup = row.setup;
-    const double g = std::isnan(row.constraints.g) ? options.g : row.constraints.g;
+    const double g_given = std::isnan(row.constraints.g) ? options.g : row.constraints.g;  // NaN: not given
+    const double g = std::isnan(g_given) ? 0.0 : g_given;
+    const auto constraint = row_constraint(row, held, options.g);
     const int points = row.constraints.quadrature > 0 ? row.constraints.quadrature : options.quadrature;
     const int final_points = points > 0 ? points : 32;
     RxtRowFit fit;
@@ -188,7 +193,13 @@ RxtFit fit_rxt(const RxtFile& file, const RxtFitOptions& options) {
       out.rows.push_back(fit);
       continue;
     }
-    if (row.m_t == 0 && row.m_u == 0) {  // M_R alone
+    if (constraint && row.m_u > 0) {
+      fit.status = "not solved: " + constraint->label +
+                   " with M_U: M_R, M_T, M_U determine a, b, g (iad ignores the constraint then); drop one";
+      out.rows.push_back(fit);
+      continue;
+    }
+    if (!constraint && row.m_t == 0 && row.m_u == 0) {  // M_R alone
       const double a = albedo_of_half_space(setup, model, g, row.m_r, final_points);
       fit.mu_a = (1 - a) / a;
       fit.mu_s_prime = 1 - g;
@@ -242,7 +253,18 @@ RxtFit fit_rxt(const RxtFile& file, const RxtFitOptions& options) {
     // With the points fixed the search runs on the final forward itself: Ceres then differentiates
     // forwards (p + 1 solves per Jacobian instead of 2p + 1) and the polish only confirms.
     const SlabForward search = points > 0 ? forward : forward_at(16);
+    const SampleReadings readings = [&](double sigma_a, double sigma_s, double g_at, double d) {
+      return sphere_measurements(
+          setup, model,
+          sample_totals(setup, slab_of(setup, sigma_a, sigma_s, g_at, d), final_points, ur1_lost, ut1_lost));
+    };
     auto invert = [&] {
+      if (constraint) {
+        auto solved = solve_constrained(*constraint, row.m_r, row.m_t, options.reflectance_stderr,
+                                        options.transmittance_stderr, g_given, setup.sample_thickness, readings);
+        fit.constraint = solved.search;
+        return solved.inversion;
+      }
       return invert_slab({row.m_r, row.m_t, with_u ? row.m_u : 0.0},
                          {options.reflectance_stderr, options.transmittance_stderr, u_stderr}, with_u ? 3 : 2, with_u,
                          g, setup.sample_thickness, forward, coarse, &search);
@@ -270,7 +292,7 @@ RxtFit fit_rxt(const RxtFile& file, const RxtFitOptions& options) {
     fit.g = r.parameters.g;
     fit.mu_a_stderr = r.standard_error[0];
     fit.mu_s_prime_stderr = r.standard_error[1];
-    fit.g_stderr = with_u ? r.standard_error[2] : 0;
+    fit.g_stderr = with_u || constraint ? r.standard_error[2] : 0;
     fit.fitted_m_r = r.predicted[0];
     fit.fitted_m_t = r.predicted[1];
     fit.fitted_m_u = with_u ? r.predicted[2] : -1;
