@@ -31,7 +31,7 @@ COMMANDS = {
     "materials export": ["--sigma-a", "--sigma-s-prime", "--g", "--eta", "--unit", "--channels", "--to"],
     "fit slab": ["--quadrature", "--baffles", "--wall-first", "--detector-reflectance", "--unscattered-in-mr",
                  "--unscattered-in-mt", "--g", "--dual-beam", "--fixed-albedo", "--fixed-optical-thickness",
-                 "--fixed-mu-a", "--fixed-mu-s", "--fixed-mu-s-prime"],
+                 "--fixed-mu-a", "--fixed-mu-s", "--fixed-mu-s-prime", "--incidence-angle"],
 }
 # Values of iad's -F form (the power law 'P lambda0 mu_s0 gamma'), mutated, for --fixed-mu-s.
 POWER_LAWS = ["P 500 1 -1.3", "P 500 1", "p 0 1 1", "P 500 nan -1", "P -1 1e308 1e308", "P", "Q 500 1 1",

@@ -76,14 +76,21 @@ double min_index(double ambient, const std::vector<ClearLayer>& clear) {
 // boundaries and each scattering layer's phase function. Slabs that differ only in thickness share it.
 struct Geometry {
   Angles angles;
+  std::size_t beam = 0;  // the collimated beam's angle
   Boundary top, bottom;
   std::vector<PhaseBlocks> phase;  // per scattering layer
 };
 
-Geometry make_geometry(const Slab& slab, int points) {
+Geometry make_geometry(const Slab& slab, int points, double incidence_cosine) {
   Geometry geo;
-  geo.angles = make_angles(points, {critical_cosine(slab.n, min_index(slab.ambient_above, slab.above)),
-                                    critical_cosine(slab.n, min_index(slab.ambient_below, slab.below))});
+  // The beam inside the slab, by Snell's law from the ambient above (the slides do not change it).
+  const double sine = slab.ambient_above / slab.n * std::sqrt(1 - incidence_cosine * incidence_cosine);
+  const double beam = incidence_cosine == 1 ? 1.0 : std::sqrt(std::max(0.0, 1 - sine * sine));
+  geo.angles = make_angles(points,
+                           {critical_cosine(slab.n, min_index(slab.ambient_above, slab.above)),
+                            critical_cosine(slab.n, min_index(slab.ambient_below, slab.below))},
+                           beam);
+  geo.beam = node_of(geo.angles, beam);
   // The boundaries, as media from top to bottom with the half-spaces at the ends.
   std::vector<ClearLayer> top{{slab.ambient_above, 0, 0}}, bottom{{slab.n, 0, 0}};
   top.insert(top.end(), slab.above.begin(), slab.above.end());
@@ -138,7 +145,7 @@ std::vector<Totals> solve_with(const Slab& slab, const std::vector<Incidence>& i
     VectorXd incident = VectorXd::Zero(n);
     double cannot_enter = 0;  // diffuse light at angles with no counterpart inside (n < ambient)
     if (incidence == Incidence::collimated) {
-      incident(n - 1) = 1;
+      incident(static_cast<Eigen::Index>(geo.beam)) = 1;
     } else {
       // Uniform radiance outside: by Snell, n_a^2 nu dnu = n^2 mu dmu, so angle i carries
       // (n/n_a)^2 2 mu_i w_i of the flux where it connects to the outside.
@@ -210,22 +217,32 @@ std::vector<Totals> solve_converged(const Slab& slab, const std::vector<Incidenc
   }
 }
 
+void check_incidence(const Options& options) {
+  if (!(options.incidence_cosine > 0 && options.incidence_cosine <= 1))
+    throw InvalidInput("incidence cosine", format_number(options.incidence_cosine),
+                       "(0, 1] (angle of incidence below 90 degrees)");
+}
+
 }  // namespace
 
 std::vector<Totals> solve(const Slab& slab, const std::vector<Incidence>& incidences, const Options& options) {
   slab.validate();
-  return solve_converged(slab, incidences, options, [&](int points) { return make_geometry(slab, points); });
+  check_incidence(options);
+  return solve_converged(slab, incidences, options,
+                         [&](int points) { return make_geometry(slab, points, options.incidence_cosine); });
 }
 
 std::vector<Totals> solve_thicknesses(const Slab& slab, const std::vector<double>& thicknesses, Incidence incidence,
                                       const Options& options) {
   slab.validate();
+  check_incidence(options);
   if (slab.layers.size() != 1)
     throw InvalidInput("layers", std::to_string(slab.layers.size()), "1 (one layer whose thickness varies)");
   std::map<int, Geometry> geometries;  // by number of angles, shared by every thickness
   const auto geometry = [&](int points) -> const Geometry& {
     auto it = geometries.find(points);
-    if (it == geometries.end()) it = geometries.emplace(points, make_geometry(slab, points)).first;
+    if (it == geometries.end())
+      it = geometries.emplace(points, make_geometry(slab, points, options.incidence_cosine)).first;
     return it->second;
   };
   std::vector<Totals> out;

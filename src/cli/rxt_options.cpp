@@ -22,6 +22,9 @@ void add_rxt_sphere_options(CLI::App& c, RxtSphereOptions& o) {
   c.add_flag("--dual-beam", o.dual_beam, "--rxt: dual-beam (comparison) sphere: no gain correction [off, iad -X]");
   c.add_option("--quadrature", o.quadrature,
                "Quadrature angles per hemisphere, as iad's -q (iad's default is 8) [automatic: 32]");
+  c.add_option(
+      "--incidence-angle", o.incidence,
+      "--rxt: angle of incidence of the beam in degrees, for every row (iad -i) [the file's column i, else 0]");
   c.add_option("--fixed-albedo", o.albedo, "--rxt: hold the albedo mu_s/(mu_a + mu_s) (iad -a) [none]");
   c.add_option("--fixed-optical-thickness", o.optical_thickness,
                "--rxt: hold the optical thickness (mu_a + mu_s) d (iad -b) [none]");
@@ -37,7 +40,7 @@ bool any_rxt_sphere_option(const RxtSphereOptions& o) {
   return o.baffles != "both" || !o.wall_first.empty() || !o.detector_reflectance.empty() ||
          !o.unscattered_in_m_r.empty() || !o.unscattered_in_m_t.empty() || o.dual_beam || o.quadrature != 0 ||
          !o.albedo.empty() || !o.optical_thickness.empty() || !o.mu_a.empty() || !o.mu_s.empty() ||
-         !o.mu_s_prime.empty();
+         !o.mu_s_prime.empty() || !o.incidence.empty();
 }
 
 void apply_rxt_sphere_options(const RxtSphereOptions& o, RxtFitOptions& options) {
@@ -55,6 +58,7 @@ void apply_rxt_sphere_options(const RxtSphereOptions& o, RxtFitOptions& options)
   if (!o.unscattered_in_m_t.empty()) m.unscattered_in_m_t = parse_number(o.unscattered_in_m_t, "--unscattered-in-mt");
   m.dual_beam = o.dual_beam;
   options.quadrature = o.quadrature;
+  if (!o.incidence.empty()) options.incidence_degrees = parse_number(o.incidence, "--incidence-angle");
   auto& k = options.constraints;
   if (!o.albedo.empty()) k.albedo = parse_number(o.albedo, "--fixed-albedo");
   if (!o.optical_thickness.empty())

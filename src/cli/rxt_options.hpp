@@ -15,6 +15,7 @@ struct RxtSphereOptions {
   bool dual_beam = false;
   int quadrature = 0;
   std::string albedo, optical_thickness, mu_a, mu_s, mu_s_prime;  // the constraints (empty: not given)
+  std::string incidence;                                          // iad's -i (degrees)
 };
 
 void add_rxt_sphere_options(CLI::App& command, RxtSphereOptions& o);

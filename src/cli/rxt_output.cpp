@@ -1,6 +1,7 @@
 // Output of 'bssrdf fit slab --rxt FILE'; see rxt_output.hpp.
 #include "rxt_output.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -56,6 +57,8 @@ std::string rxt_fit_json(const RxtFit& fit) {
                          {"unscattered_in_m_t", or_file(m.unscattered_in_m_t)}};
   doc["quadrature"] =
       fit.options.quadrature == 0 ? nlohmann::json("automatic (32)") : nlohmann::json(fit.options.quadrature);
+  doc["incidence_angle"] = std::isnan(fit.options.incidence_degrees) ? nlohmann::json("file (column i, else 0)")
+                                                                     : nlohmann::json(fit.options.incidence_degrees);
   doc["measurement_stderr"] = {{"m_r", fit.options.reflectance_stderr},
                                {"m_t", fit.options.transmittance_stderr},
                                {"m_u", fit.options.unscattered_stderr}};
@@ -86,6 +89,7 @@ std::string rxt_fit_json(const RxtFit& fit) {
                        {"m_r", {{"measured", r.row.m_r}, {"fitted", r.fitted_m_r}}},
                        {"m_t", {{"measured", r.row.m_t}, {"fitted", r.fitted_m_t}}},
                        {"spheres", r.row.setup.spheres},
+                       {"incidence_angle", r.row.setup.incidence_degrees},
                        {"chi2", r.chi2},
                        {"converged", r.converged},
                        {"status", r.status}};
@@ -145,6 +149,16 @@ std::string rxt_fit_table(const RxtFit& fit) {
                 share(m.unscattered_in_m_t).c_str(),
                 fit.options.quadrature == 0 ? "automatic (32)" : std::to_string(fit.options.quadrature).c_str());
   out << line;
+  double oblique_min = 90, oblique_max = 0;
+  for (const auto& r : fit.rows)
+    if (r.row.setup.incidence_degrees != 0) {
+      oblique_min = std::min(oblique_min, r.row.setup.incidence_degrees);
+      oblique_max = std::max(oblique_max, r.row.setup.incidence_degrees);
+    }
+  if (oblique_max > 0)
+    out << "oblique incidence (iad -i / column i): " << format_number(oblique_min)
+        << (oblique_max > oblique_min ? " to " + format_number(oblique_max) : std::string())
+        << " degrees, the refracted beam one of the quadrature angles\n";
   if (k.any()) {
     out << "constraints (iad's):";
     for (auto [name, v] : {std::pair{" albedo a", k.albedo},

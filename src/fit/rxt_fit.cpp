@@ -31,6 +31,7 @@ SampleTotals sample_totals(const RxtSetup& f, const adding_doubling::Slab& slab,
                            double ut1_lost = 0) {
   adding_doubling::Options ad;
   ad.points = points;
+  ad.incidence_cosine = f.incidence_degrees == 0 ? 1.0 : std::cos(f.incidence_degrees * M_PI / 180);
   using adding_doubling::Incidence;
   const auto both = adding_doubling::solve(
       slab, f.spheres > 0 ? std::vector{Incidence::collimated, Incidence::diffuse} : std::vector{Incidence::collimated},
@@ -135,8 +136,11 @@ std::pair<double, double> lost_light(const RxtSetup& f, const SlabParameters& p,
 
 }  // namespace
 
-RxtFit fit_rxt(const RxtFile& file, const RxtFitOptions& options) {
+RxtFit fit_rxt(const RxtFile& input, const RxtFitOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  RxtFile file = input;  // iad's -i sets every row's angle of incidence (over the column i)
+  if (!std::isnan(options.incidence_degrees))
+    for (auto& row : file.rows) row.setup.incidence_degrees = options.incidence_degrees;
   if (!std::isnan(options.g) && !(options.g > -1 && options.g < 1))
     throw InvalidInput("g", format_number(options.g), "-1 < g < 1");
   const auto& held = options.constraints;
@@ -168,8 +172,12 @@ RxtFit fit_rxt(const RxtFile& file, const RxtFitOptions& options) {
     auto refuse = [&](const std::string& what, const std::string& value, const std::string& accepted) {
       throw FileError(file.name, row.line, what + " = " + value + ": supported is " + accepted);
     };
-    if (row.setup.incidence_degrees != 0)
-      refuse("angle of incidence (column i, iad -i)", format_number(row.setup.incidence_degrees), "0 degrees");
+    if (!(row.setup.incidence_degrees >= 0 && row.setup.incidence_degrees < 90))
+      refuse("angle of incidence (column i or -i)", format_number(row.setup.incidence_degrees),
+             "0 to below 90 degrees (grazing light does not enter)");
+    if (options.lost_light && row.setup.incidence_degrees != 0)
+      refuse("angle of incidence (column i) with the lost-light correction", format_number(row.setup.incidence_degrees),
+             "0 degrees (the Monte Carlo beam is normal)");
     row_constraint(row, held, options.g);  // refuses two constraints at once or a power law without wavelength
   }
   RxtFit out;
@@ -183,7 +191,9 @@ RxtFit fit_rxt(const RxtFile& file, const RxtFitOptions& options) {
     const double g_given = std::isnan(row.constraints.g) ? options.g : row.constraints.g;  // NaN: not given
     const double g = std::isnan(g_given) ? 0.0 : g_given;
     const auto constraint = row_constraint(row, held, options.g);
-    const int points = row.constraints.quadrature > 0 ? row.constraints.quadrature : options.quadrature;
+    int points = row.constraints.quadrature > 0 ? row.constraints.quadrature : options.quadrature;
+    // iad's oblique incidence (ad_cone.w RT_Cone) takes a multiple of 12 angles, at least 12.
+    if (points > 0 && setup.incidence_degrees != 0) points = std::max(12, 12 * (points / 12));
     const int final_points = points > 0 ? points : 32;
     RxtRowFit fit;
     fit.row = row;
@@ -241,6 +251,7 @@ RxtFit fit_rxt(const RxtFile& file, const RxtFitOptions& options) {
                               x.wall_reflectance,
                               setup.unscattered_in_m_r,
                               setup.unscattered_in_m_t,
+                              setup.incidence_degrees,
                               ur1_lost,
                               ut1_lost,
                               p.sigma_a,

@@ -2,7 +2,8 @@
 // header with the row's columns applied) and the row's g when it has one: per row, mu_a and mu_s' (and g
 // with M_U) with 1-sigma errors propagated from the measurement errors (the file carries none:
 // they are options), the fitted M_R, M_T, chi^2 and a status. Forward model: adding-doubling
-// (32 angles) with the file's slides and the sphere equations of integrating_sphere.hpp. g is
+// (32 angles) with the file's slides and the sphere equations of integrating_sphere.hpp; a row's
+// beam at its angle of incidence (column i or options.incidence_degrees, iad's -i). g is
 // held (at options.g, 0 by default as in iad) with two measurements and fitted with M_U (> 0).
 // A row with M_R alone is a semi-infinite sample (iad's convention: mu_s = 1/mm, the albedo fitted).
 // Rows iad would flag (M_R or M_T outside [0, 1], M_R + M_T > 1 without spheres, M_U < 0 or above
@@ -47,6 +48,7 @@ struct RxtFitOptions {
   SphereModel sphere;  // iad's instrument options (baffles, f, r_d, dual beam, c, C)
   int quadrature = 0;  // angles per hemisphere as iad's -q; 0: 32 for the result (iad's default is 8)
   RxtConstraintOptions constraints;
+  double incidence_degrees = NAN;  // iad's -i: every row's angle of incidence, over the column i; NaN: the file's
 };
 
 struct RxtRowFit {
