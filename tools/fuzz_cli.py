@@ -30,15 +30,20 @@ COMMANDS = {
     "fit albedo": ["--albedo", "--distance", "--eta", "--g"],
     "materials export": ["--sigma-a", "--sigma-s-prime", "--g", "--eta", "--unit", "--channels", "--to"],
     "fit slab": ["--quadrature", "--baffles", "--wall-first", "--detector-reflectance", "--unscattered-in-mr",
-                 "--unscattered-in-mt", "--g", "--dual-beam"],
+                 "--unscattered-in-mt", "--g", "--dual-beam", "--fixed-albedo", "--fixed-optical-thickness",
+                 "--fixed-mu-a", "--fixed-mu-s", "--fixed-mu-s-prime", "--incidence-angle"],
 }
+# Values of iad's -F form (the power law 'P lambda0 mu_s0 gamma'), mutated, for --fixed-mu-s.
+POWER_LAWS = ["P 500 1 -1.3", "P 500 1", "p 0 1 1", "P 500 nan -1", "P -1 1e308 1e308", "P", "Q 500 1 1",
+              "P 500 1 -1 7"]
 # The medium each command starts from (the mutated options are added after it).
 BASE = {"fit albedo": ["--albedo", "0.5", "--distance", "1"], "skin": [], "fit skin": ["--srgb", "0.7,0.5,0.4"],
         "materials export": ["Mine", "--to", "json", "--sigma-a", "0.1", "--sigma-s-prime", "1"]}
 # fit slab reads a mutated .rxt file (iad's layouts: a count, column letters, one line).
 RXT_SEEDS = ["IAD1 1.4 1.5 1 1 5 .98 1 203.2 25.4 12.7 1 .96 203.2 25.4 12.7 1 .96\n2\n500 0.3 0.2\n0.25 0.3\n",
              "IAD1 1.4 1.5 1 1 5 .98 2 203.2 25.4 12.7 1 .96 203.2 25.4 12.7 1 .96\nL r t n g\n500 0.3 0.2 1.33 0.8\n",
-             "IAD1 1.4 1 1 0 5 .98 0 0 0 0 0 0 0 0 0 0 0 1 0.3 0.2"]
+             "IAD1 1.4 1 1 0 5 .98 0 0 0 0 0 0 0 0 0 0 0 1 0.3 0.2",
+             "IAD1 1.4 1.5 1 1 5 .98 0 0 0 0 0 0 0 0 0 0 0\nL r t A g\n500 0.3 0.2 0.05 0.5\n600 0.3 0 0.05 0.5\n"]
 
 
 def mutated_rxt(rng):
@@ -88,6 +93,8 @@ def main():
                     args.append(option)
                     continue
                 value = rng.choice(HOSTILE) if rng.random() < 0.8 or option not in SAFE else SAFE[option]
+                if option == "--fixed-mu-s" and rng.random() < 0.5:
+                    value = rng.choice(POWER_LAWS)
                 if option in SAFE and is_number(value) and abs(float(value)) > 1e5:
                     value = "-1"  # never start a huge Monte Carlo run: still a count the tool must refuse or bound
                 args += [option, value]

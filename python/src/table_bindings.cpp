@@ -307,7 +307,7 @@ r["sigma_a"] -> array over channels of the values; r.stderr("sigma_a") -> their 
         py::gil_scoped_release release;
         return fit_rxt(data, options);
       },
-      py::arg("file"), py::kw_only(), py::arg("g") = 0.0, py::arg("reflectance_stderr") = 0.002,
+      py::arg("file"), py::kw_only(), py::arg("g") = NAN, py::arg("reflectance_stderr") = 0.002,
       py::arg("transmittance_stderr") = 0.002, py::arg("unscattered_stderr") = 0.002, py::arg("lost_light") = false,
       py::arg("lost_light_photons") = 100000,
       "Every row of an integrating-sphere file of Prahl's iad (.rxt): `bssrdf fit slab --rxt FILE`.");

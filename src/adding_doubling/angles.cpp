@@ -60,7 +60,9 @@ void gauss_radau_right(int n, std::vector<double>& nodes, std::vector<double>& w
   }
 }
 
-Angles make_angles(int points, std::vector<double> cuts) {
+Angles make_angles(int points, std::vector<double> cuts, double beam) {
+  const bool oblique = beam > 1e-9 && beam < 1 - 1e-9;
+  if (oblique) cuts.push_back(beam);
   cuts.erase(std::remove_if(cuts.begin(), cuts.end(), [](double c) { return !(c > 1e-9 && c < 1 - 1e-9); }),
              cuts.end());
   std::sort(cuts.begin(), cuts.end());
@@ -75,9 +77,10 @@ Angles make_angles(int points, std::vector<double> cuts) {
   for (int k = 0; k < intervals; ++k) {
     const double a = ends[k], b = ends[k + 1];
     const bool last = k + 1 == intervals;
+    const bool ends_at_beam = oblique && std::abs(b - beam) < 1e-12;
     const int n = last ? std::max(2, points - share * (intervals - 1)) : share;
     std::vector<double> x, w;
-    if (last) {
+    if (last || ends_at_beam) {
       gauss_radau_right(n, x, w);
     } else {
       const auto& rule = gauss_legendre(static_cast<std::size_t>(n));
@@ -95,9 +98,17 @@ Angles make_angles(int points, std::vector<double> cuts) {
       angles.mu.push_back(a + (b - a) * (x[i] + 1) / 2);
       angles.weight.push_back(w[i] * (b - a) / 2);
     }
+    if (ends_at_beam) angles.mu.back() = beam;  // exactly the beam's cosine
   }
   angles.mu.back() = 1.0;
   return angles;
+}
+
+std::size_t node_of(const Angles& angles, double mu) {
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < angles.size(); ++i)
+    if (std::abs(angles.mu[i] - mu) < std::abs(angles.mu[best] - mu)) best = i;
+  return best;
 }
 
 }  // namespace bssrdf::adding_doubling

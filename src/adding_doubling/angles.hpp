@@ -14,8 +14,13 @@ struct Angles {
 };
 
 // `points` angles in all, split at the `cuts` (critical cosines in (0, 1), any order, duplicates
-// ignored); each interval gets an equal share (at least 2), the last the remainder.
-Angles make_angles(int points, std::vector<double> cuts);
+// ignored); each interval gets an equal share (at least 2), the last the remainder. `beam`, the
+// cosine of an oblique beam inside the slab, is made a node too: the interval ending there is
+// Gauss-Radau with its fixed node at `beam` (Prahl's iad, ad_start.w Choose_Cone_Method).
+Angles make_angles(int points, std::vector<double> cuts, double beam = 1.0);
+
+// The index of the node nearest to mu (the beam's node after make_angles).
+std::size_t node_of(const Angles& angles, double mu);
 
 // n-point Gauss-Radau rule on [-1, 1] with the fixed node at +1 (nodes ascending).
 void gauss_radau_right(int n, std::vector<double>& nodes, std::vector<double>& weights);

@@ -10,6 +10,7 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/fit/integrating_sphere.hpp"
 #include "bssrdf/montecarlo.hpp"
+#include "constrained_search.hpp"
 #include "slab_inversion.hpp"
 
 namespace bssrdf {
@@ -30,6 +31,7 @@ SampleTotals sample_totals(const RxtSetup& f, const adding_doubling::Slab& slab,
                            double ut1_lost = 0) {
   adding_doubling::Options ad;
   ad.points = points;
+  ad.incidence_cosine = f.incidence_degrees == 0 ? 1.0 : std::cos(f.incidence_degrees * M_PI / 180);
   using adding_doubling::Incidence;
   const auto both = adding_doubling::solve(
       slab, f.spheres > 0 ? std::vector{Incidence::collimated, Incidence::diffuse} : std::vector{Incidence::collimated},
@@ -134,9 +136,19 @@ std::pair<double, double> lost_light(const RxtSetup& f, const SlabParameters& p,
 
 }  // namespace
 
-RxtFit fit_rxt(const RxtFile& file, const RxtFitOptions& options) {
+RxtFit fit_rxt(const RxtFile& input, const RxtFitOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  if (!(options.g > -1 && options.g < 1)) throw InvalidInput("g", format_number(options.g), "-1 < g < 1");
+  RxtFile file = input;  // iad's -i sets every row's angle of incidence (over the column i)
+  if (!std::isnan(options.incidence_degrees))
+    for (auto& row : file.rows) row.setup.incidence_degrees = options.incidence_degrees;
+  if (!std::isnan(options.g) && !(options.g > -1 && options.g < 1))
+    throw InvalidInput("g", format_number(options.g), "-1 < g < 1");
+  const auto& held = options.constraints;
+  if (!std::isnan(held.mu_s_prime) && (!std::isnan(held.mu_s) || !std::isnan(held.power_mu_s0)))
+    throw InvalidInput("--fixed-mu-s-prime with --fixed-mu-s: give one (both fix mu_s)");
+  if (!std::isnan(held.power_mu_s0) && !(held.power_lambda0 > 0 && std::isfinite(held.power_gamma)))
+    throw InvalidInput("--fixed-mu-s power law 'P lambda0 mu_s0 gamma'", format_number(held.power_lambda0),
+                       "lambda0 > 0 and a finite gamma");
   for (double s : {options.reflectance_stderr, options.transmittance_stderr, options.unscattered_stderr})
     if (!(s > 0 && s < 1)) throw InvalidInput("measurement standard error", format_number(s), "(0, 1)");
   if (options.lost_light && file.spheres == 0)
@@ -157,17 +169,16 @@ RxtFit fit_rxt(const RxtFile& file, const RxtFitOptions& options) {
     throw InvalidInput("wall-first fraction", format_number(model.wall_first), "0 with the dual-beam method (as iad)");
   // What we do not model: refused with the feature's name (docs/rxt.md lists them).
   for (const auto& row : file.rows) {
-    const auto& k = row.constraints;
     auto refuse = [&](const std::string& what, const std::string& value, const std::string& accepted) {
       throw FileError(file.name, row.line, what + " = " + value + ": supported is " + accepted);
     };
-    if (row.setup.incidence_degrees != 0)
-      refuse("angle of incidence (column i, iad -i)", format_number(row.setup.incidence_degrees), "0 degrees");
-    for (auto [letter, v] : {std::pair{"a (albedo)", k.albedo},
-                             {"b (optical thickness)", k.optical_thickness},
-                             {"A (mu_a)", k.mu_a},
-                             {"F (mu_s)", k.mu_s}})
-      if (!std::isnan(v)) refuse(std::string("constraint column ") + letter, format_number(v), "none (only g is held)");
+    if (!(row.setup.incidence_degrees >= 0 && row.setup.incidence_degrees < 90))
+      refuse("angle of incidence (column i or -i)", format_number(row.setup.incidence_degrees),
+             "0 to below 90 degrees (grazing light does not enter)");
+    if (options.lost_light && row.setup.incidence_degrees != 0)
+      refuse("angle of incidence (column i) with the lost-light correction", format_number(row.setup.incidence_degrees),
+             "0 degrees (the Monte Carlo beam is normal)");
+    row_constraint(row, held, options.g);  // refuses two constraints at once or a power law without wavelength
   }
   RxtFit out;
   out.file = file;
@@ -177,8 +188,12 @@ RxtFit fit_rxt(const RxtFile& file, const RxtFitOptions& options) {
   std::map<std::vector<double>, std::array<double, 3>> grid;
   for (const auto& row : file.rows) {
     const RxtSetup& setup = row.setup;
-    const double g = std::isnan(row.constraints.g) ? options.g : row.constraints.g;
-    const int points = row.constraints.quadrature > 0 ? row.constraints.quadrature : options.quadrature;
+    const double g_given = std::isnan(row.constraints.g) ? options.g : row.constraints.g;  // NaN: not given
+    const double g = std::isnan(g_given) ? 0.0 : g_given;
+    const auto constraint = row_constraint(row, held, options.g);
+    int points = row.constraints.quadrature > 0 ? row.constraints.quadrature : options.quadrature;
+    // iad's oblique incidence (ad_cone.w RT_Cone) takes a multiple of 12 angles, at least 12.
+    if (points > 0 && setup.incidence_degrees != 0) points = std::max(12, 12 * (points / 12));
     const int final_points = points > 0 ? points : 32;
     RxtRowFit fit;
     fit.row = row;
@@ -188,7 +203,13 @@ RxtFit fit_rxt(const RxtFile& file, const RxtFitOptions& options) {
       out.rows.push_back(fit);
       continue;
     }
-    if (row.m_t == 0 && row.m_u == 0) {  // M_R alone
+    if (constraint && row.m_u > 0) {
+      fit.status = "not solved: " + constraint->label +
+                   " with M_U: M_R, M_T, M_U determine a, b, g (iad ignores the constraint then); drop one";
+      out.rows.push_back(fit);
+      continue;
+    }
+    if (!constraint && row.m_t == 0 && row.m_u == 0) {  // M_R alone
       const double a = albedo_of_half_space(setup, model, g, row.m_r, final_points);
       fit.mu_a = (1 - a) / a;
       fit.mu_s_prime = 1 - g;
@@ -230,6 +251,7 @@ RxtFit fit_rxt(const RxtFile& file, const RxtFitOptions& options) {
                               x.wall_reflectance,
                               setup.unscattered_in_m_r,
                               setup.unscattered_in_m_t,
+                              setup.incidence_degrees,
                               ur1_lost,
                               ut1_lost,
                               p.sigma_a,
@@ -242,7 +264,18 @@ RxtFit fit_rxt(const RxtFile& file, const RxtFitOptions& options) {
     // With the points fixed the search runs on the final forward itself: Ceres then differentiates
     // forwards (p + 1 solves per Jacobian instead of 2p + 1) and the polish only confirms.
     const SlabForward search = points > 0 ? forward : forward_at(16);
+    const SampleReadings readings = [&](double sigma_a, double sigma_s, double g_at, double d) {
+      return sphere_measurements(
+          setup, model,
+          sample_totals(setup, slab_of(setup, sigma_a, sigma_s, g_at, d), final_points, ur1_lost, ut1_lost));
+    };
     auto invert = [&] {
+      if (constraint) {
+        auto solved = solve_constrained(*constraint, row.m_r, row.m_t, options.reflectance_stderr,
+                                        options.transmittance_stderr, g_given, setup.sample_thickness, readings);
+        fit.constraint = solved.search;
+        return solved.inversion;
+      }
       return invert_slab({row.m_r, row.m_t, with_u ? row.m_u : 0.0},
                          {options.reflectance_stderr, options.transmittance_stderr, u_stderr}, with_u ? 3 : 2, with_u,
                          g, setup.sample_thickness, forward, coarse, &search);
@@ -270,7 +303,7 @@ RxtFit fit_rxt(const RxtFile& file, const RxtFitOptions& options) {
     fit.g = r.parameters.g;
     fit.mu_a_stderr = r.standard_error[0];
     fit.mu_s_prime_stderr = r.standard_error[1];
-    fit.g_stderr = with_u ? r.standard_error[2] : 0;
+    fit.g_stderr = with_u || constraint ? r.standard_error[2] : 0;
     fit.fitted_m_r = r.predicted[0];
     fit.fitted_m_t = r.predicted[1];
     fit.fitted_m_u = with_u ? r.predicted[2] : -1;

@@ -38,6 +38,19 @@ ceres::CostFunction* numeric_cost(const Residual& residual, int parameters, int 
 
 }  // namespace
 
+ceres::Solver::Options slab_solver_options() {
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = 100;
+  options.function_tolerance = 1e-12;
+  options.parameter_tolerance = 1e-10;
+  options.gradient_tolerance = 1e-14;
+  // Ceres refines every step of a bounded problem by a projected line search; with cubic
+  // interpolation (the default) each trial costs a Jacobian, with quadratic only a solve.
+  options.line_search_interpolation_type = ceres::QUADRATIC;
+  return options;
+}
+
 SlabInversion invert_slab(const std::array<double, 3>& measured, const std::array<double, 3>& stderr_, int count,
                           bool fit_g, double g, double d, const SlabForward& forward, const SlabForward& coarse,
                           const SlabForward* search) {
@@ -75,16 +88,7 @@ SlabInversion invert_slab(const std::array<double, 3>& measured, const std::arra
       problem.SetParameterLowerBound(x.data(), 2, -3.8);  // |g| < 0.999
       problem.SetParameterUpperBound(x.data(), 2, 3.8);
     }
-    ceres::Solver::Options options;
-    options.linear_solver_type = ceres::DENSE_QR;
-    options.max_num_iterations = 100;
-    options.function_tolerance = 1e-12;
-    options.parameter_tolerance = 1e-10;
-    options.gradient_tolerance = 1e-14;
-    // Ceres refines every step of a bounded problem by a projected line search; with cubic
-    // interpolation (the default) each trial costs a Jacobian, with quadratic only a solve.
-    options.line_search_interpolation_type = ceres::QUADRATIC;
-    ceres::Solve(options, &problem, &summary);
+    ceres::Solve(slab_solver_options(), &problem, &summary);
   }
   int polish_steps = 0;
 

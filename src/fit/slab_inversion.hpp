@@ -4,6 +4,8 @@
 // in each parameter's variance, and chi^2.
 #pragma once
 
+#include <ceres/ceres.h>
+
 #include <Eigen/Dense>
 #include <array>
 #include <functional>
@@ -30,6 +32,9 @@ struct SlabInversion {
   bool converged = false;
   std::string termination;
 };
+
+// The least-squares settings of the slab inversions (tolerances ~1e-10 in the parameters' logarithms).
+ceres::Solver::Options slab_solver_options();
 
 // `count` measurements (2: R, T; 3: R, T, U). With fit_g, g is a parameter (start `g`), else held.
 // `forward` is evaluated at fixed accuracy; `coarse` (a cheaper forward) picks the starting point

@@ -4,13 +4,17 @@
 // given in wall time and in the thread's CPU time: on a shared, loaded machine the wall time
 // includes waiting for a core, the CPU time does not.
 //
-//   bench_adding_doubling [repetitions=51]
+//   bench_adding_doubling [repetitions=51] [IAD_BINARY RXT_FILE]
+// With Prahl's iad and an .rxt file: each row fitted by ours (in process) and by iad (its own
+// process, `iad -M 0 [-q 32]`, process start included) in the same run, per row, at iad's default
+// 8 angles (ours --quadrature 8) and at 32, with the ratio.
 #include <time.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include "bssrdf/adding_doubling/slab.hpp"
@@ -127,5 +131,18 @@ int main(int argc, char** argv) {
     const auto file = parse_rxt(text, "bench");
     const Timing t = median_us([&] { sink = fit_rxt(file).rows[0].mu_a; }, fits);
     std::printf("  .rxt row, %d sphere(s), slides: %.2f / %.2f ms\n", spheres, t.wall_us / 1000, t.cpu_us / 1000);
+  }
+  if (argc < 4) return 0;
+  const auto file = read_rxt(argv[3]);
+  const double rows = static_cast<double>(file.rows.size());
+  for (int points : {8, 32}) {
+    RxtFitOptions options;
+    options.quadrature = points;
+    const Timing ours = median_us([&] { sink = fit_rxt(file, options).rows[0].mu_a; }, fits);
+    const std::string command = std::string(argv[2]) + " -M 0" + (points == 32 ? " -q 32" : "") + " -o /dev/null '" +
+                                argv[3] + "' > /dev/null 2>&1";
+    const Timing iad = median_us([&] { sink = std::system(command.c_str()); }, fits);
+    std::printf("  %s, %d angles, per row (wall): ours %.3f ms, iad %.3f ms (process start included): iad/ours %.1f\n",
+                argv[3], points, ours.wall_us / rows / 1000, iad.wall_us / rows / 1000, iad.wall_us / ours.wall_us);
   }
 }

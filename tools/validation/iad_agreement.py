@@ -13,6 +13,7 @@ made by tools/validation/iad_precision.sh.
 Usage:
   iad_agreement.py --bssrdf build/bssrdf --rxt-dir IAD/tests/rxt --iad-results DIR [--quadrature 8]
   iad_agreement.py ... --iad IAD/src/iad_hp --iad-args "-M 0 -q 32" --iad-results OUT_DIR
+  iad_agreement.py ... --iad-args "-M 0 -a 0.9" --ours-args "--fixed-albedo 0.9" --quadrature 8 (a constraint)
 Prints a table per sphere count (files parsed, rows compared, median and 90th percentile of
 |ours/iad - 1| over mu_a and mu_s') and exits 1 when --max-median / --max-p90 are exceeded.
 """
@@ -60,6 +61,8 @@ def main():
     p.add_argument('--iad', help='run this iad to make the results (else they must exist)')
     p.add_argument('--iad-args', default='-M 0 -q 32')
     p.add_argument('--quadrature', type=int, default=0, help='ours: --quadrature N (0: our default)')
+    p.add_argument('--ours-args', default='', help="more options for ours, e.g. the constraint matching --iad-args "
+                   "('--fixed-albedo 0.9' for '-a 0.9')")
     p.add_argument('--files', nargs='*', help='only these files (sphere_dir/name.rxt)')
     p.add_argument('--max-median', type=float, default=None)
     p.add_argument('--max-p90', type=float, default=None)
@@ -92,6 +95,7 @@ def main():
         cmd = [a.bssrdf, 'fit', 'slab', '--rxt', rxt, '-f', 'json']
         if a.quadrature:
             cmd += ['--quadrature', str(a.quadrature)]
+        cmd += shlex.split(a.ours_args)
         t0 = time.time()
         r = subprocess.run(cmd, capture_output=True, text=True)
         elapsed = time.time() - t0
@@ -134,6 +138,7 @@ def main():
                   f'max {max(file_dev) if file_dev else float("nan"):.2e}')
     failed = False
     print(f'ours: {a.bssrdf}' + (f' --quadrature {a.quadrature}' if a.quadrature else ' (default quadrature)') +
+          (f' {a.ours_args}' if a.ours_args else '') +
           f'; iad results: {a.iad_results}' + (f' (iad {a.iad_args})' if a.iad else ''))
     print('| files | parse | rows compared | median / p90 of |ours/iad - 1| (mu_a, mu_s\') '
           '| iad flags: also ours / only iad | only ours flag |')

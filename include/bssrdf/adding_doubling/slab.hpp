@@ -9,7 +9,10 @@
 //  - phase function: delta-M (Wiscombe 1977) with 2N Legendre terms for N angles per hemisphere,
 //    normalised so the discrete scattering conserves energy exactly;
 //  - a thin starting layer (diamond initialisation, Wiscombe 1976) doubled to the thickness;
-//  - layers, boundaries and slides combined with the adding equations.
+//  - layers, boundaries and slides combined with the adding equations;
+//  - an oblique collimated beam (Options::incidence_cosine) enters along the quadrature angle made
+//    equal to its refracted direction (the interval below it ends in a Radau node there), as
+//    Prahl's ad does for oblique incidence.
 // The number of angles is chosen from a tolerance (8, 16, 32, ... until R and T change by less)
 // and reported with the last change as the error estimate.
 //
@@ -68,6 +71,9 @@ Incidence parse_incidence(const std::string& text);  // "collimated" | "diffuse"
 struct Options {
   double tolerance = 1e-4;  // on R and T (absolute): angles are doubled until they change by less
   int points = 0;           // angles per hemisphere; 0: chosen from the tolerance
+  // Cosine of the collimated beam's angle to the normal in the ambient above, in (0, 1]: an
+  // oblique beam (iad's -i) refracts into the slab at a cosine made one of the quadrature angles.
+  double incidence_cosine = 1;
 };
 
 struct Totals {
