@@ -17,6 +17,7 @@
 #include "bssrdf/models/layered.hpp"
 #include "bssrdf/models/multipole.hpp"
 #include "bssrdf/profile_report.hpp"
+#include "bssrdf/spectral/colour_medium.hpp"
 #include "bssrdf/spectral/colour_profile.hpp"
 #include "cli_common.hpp"
 #include "colour_options.hpp"
@@ -217,8 +218,11 @@ Action register_profile(CLI::App& app) {
     report.material = resolved.material;
     report.model_choice = auto_note;
     for (const auto& ch : report.channels) warn_validity(report.model, ch.name, ch.validity);
-    if (const auto colour = options->colour.resolve(resolved.medium))
-      report = spectral::colour_profile(report, resolved.medium.wavelength_nm, *colour);
+    // A layer stack is spectral when its channels are named by wavelength (bssrdf skin --layers-out).
+    const auto wavelengths = stack_file ? spectral::wavelengths_from_channel_names(stack_file->stack.channel_names)
+                                        : resolved.medium.wavelength_nm;
+    if (const auto colour = options->colour.resolve(wavelengths))
+      report = spectral::colour_profile(report, wavelengths, *colour);
     emit(
         options->output, [&] { return to_json(report); }, [&] { return to_csv(report); }, to_table(report));
   };
