@@ -23,9 +23,9 @@ template <class Tabulate>
 BuiltTable with_model(const LutOptions& o, Tabulate&& tabulate) {
   const auto resolved = o.medium.resolve();
   const auto chosen = resolve_model(o.model, o.accuracy, resolved.medium);
+  const auto settings = o.all && !resolved.medium.spectral() ? std::nullopt : o.colour.resolve(resolved.medium);
   const std::shared_ptr<const Model> model = make_model(chosen.name);
   warn_validity(*model, resolved.medium);
-  const auto settings = o.all && !resolved.medium.spectral() ? std::nullopt : o.colour.resolve(resolved.medium);
   if (!settings) {
     BuiltTable built =
         tabulate(resolved, TableContext{resolved.material, &resolved.medium, model.get(), resolved.unit, chosen.note});
