@@ -323,6 +323,20 @@ TEST(SpectralImport, RxtFitBecomesASpectralMaterial) {
   ASSERT_EQ(lut.status, 0) << lut.err;
   EXPECT_NE(test_cli::slurp(test_cli::temp("sample-lut.json")).find("from 4 wavelengths (500-700 nm)"),
             std::string::npos);
+  // lut --all --colour (its --db is the whole database): the spectral material in colour, the RGB ones as they are.
+  const auto all_db = test_cli::temp("all-db"), out = test_cli::temp("all");
+  std::filesystem::create_directories(all_db);
+  std::filesystem::create_directories(out);
+  std::filesystem::copy_file(db / "sample.json", all_db / "sample.json");
+  std::filesystem::copy_file(std::string(BSSRDF_TEST_DATA) + "/../fuzz/corpus/materials/small.json",
+                             all_db / "small.json");  // Wax, Milk: RGB, names the bundled database does not use
+  const auto all = test_cli::run("lut --all --db " + all_db.string() + " --colour srgb -f json --output-dir " +
+                                 out.string() + " -q");
+  ASSERT_EQ(all.status, 0) << all.err;
+  EXPECT_NE(test_cli::slurp(out / "sample-radial.json").find("\"bssrdf:colour_space\""), std::string::npos);
+  const auto wax = test_cli::slurp(out / "wax-radial.json");
+  EXPECT_FALSE(wax.empty());
+  EXPECT_EQ(wax.find("bssrdf:colour_space"), std::string::npos);
   const auto exported = test_cli::run("materials export Sample --db " + db.string() + " --to unreal");
   ASSERT_EQ(exported.status, 0) << exported.err;
   EXPECT_NE(exported.out.find("linear sRGB under D65"), std::string::npos);
