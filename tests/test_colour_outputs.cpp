@@ -366,7 +366,7 @@ TEST(SpectralImport, RepeatedWavelengthsAndNoConvergedRowAreRefused) {
 // Skin's colour profile: 'bssrdf skin --layers-out' then 'bssrdf reference --layers --colour' (Monte Carlo per
 // wavelength, integrated per bin). Its colour totals agree with the skin command's adding-doubling colour within
 // 4 standard errors; the multipole ('profile --layers') refuses the thin epidermis and says where to go.
-TEST(SkinColour, TwoCommandPathAgreesWithAddingDoubling) {
+TEST(SkinColour, ColourProfileAgreesWithAddingDoubling) {
   const auto layers = test_cli::temp("skin.json").string();
   const auto skin = test_cli::run("skin --melanin 0.05 --wavelengths 400,450,500,550,600,650,700 --layers-out " +
                                   layers + " -f json");
@@ -380,6 +380,22 @@ TEST(SkinColour, TwoCommandPathAgreesWithAddingDoubling) {
     const auto& total = doc["channels"][c]["diffuse_reflectance"];
     EXPECT_NEAR(total["value"].get<double>(), rgb[c].get<double>(), 4 * total["stderr"].get<double>()) << "RGB"[c];
     EXPECT_GT(total["stderr"].get<double>(), 0.0);
+  }
+  // In one command: skin --profile-photons, the same Monte Carlo integrated per bin, beside the totals.
+  const auto one = test_cli::run(
+      "skin --melanin 0.05 --wavelengths 400,450,500,550,600,650,700 --profile-photons 40000 "
+      "--colour acescg -f json");
+  ASSERT_EQ(one.status, 0) << one.err;
+  const auto one_doc = nlohmann::json::parse(one.out);
+  const auto& profile = one_doc["profile"];
+  EXPECT_EQ(profile["colour"]["space"], "ACEScg");
+  ASSERT_EQ(profile["channels"].size(), 3u);
+  EXPECT_EQ(profile["channels"][2]["reflectance"].size(), profile["radius"].size());
+  for (int c = 0; c < 3; ++c) {
+    const auto& total = profile["channels"][c]["diffuse_reflectance"];
+    EXPECT_NEAR(total["value"].get<double>(), one_doc["colour"]["rgb"][c].get<double>(),
+                4 * total["stderr"].get<double>())
+        << "RGB"[c];
   }
   const auto multipole = test_cli::run("profile --layers " + layers + " --colour srgb");
   EXPECT_EQ(multipole.status, 2);

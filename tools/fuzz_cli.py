@@ -19,7 +19,7 @@ COMMANDS = {
     "profile": ["--sigma-a", "--sigma-s", "--g", "--eta", "--radii", "--samples", "--r-min", "--r-max",
                 "--thickness", "--model", "--unit", "--wavelengths", "--colour", "--illuminant"],
     "skin": ["--melanin", "--eumelanin", "--blood", "--oxygenation", "--epidermis", "--scattering", "--wavelengths",
-             "--colour", "--illuminant", "--specular"],
+             "--colour", "--illuminant", "--specular", "--profile-photons"],
     "fit skin": ["--srgb", "--melanin", "--specular", "--min-nm", "--max-nm", "--solve-step"],
     "reference": ["--sigma-a", "--sigma-s", "--g", "--eta", "-n", "--bins", "--seed", "--threads", "--r-max",
                   "--thickness", "--depth-bins", "--roulette-threshold", "--wavelengths", "--colour", "--illuminant"],
@@ -57,7 +57,7 @@ def mutated_rxt(rng):
 
 
 # Small photon counts keep Monte Carlo runs short; the rest are random.
-SAFE = {"-n": "2000", "--photons": "2000"}
+SAFE = {"-n": "2000", "--photons": "2000", "--profile-photons": "2000"}
 
 
 def is_number(text):
