@@ -12,6 +12,7 @@
 #include "bssrdf/models/multipole.hpp"
 #include "bssrdf/models/normalized_diffusion.hpp"
 #include "bssrdf/models/quantized_diffusion.hpp"
+#include "bssrdf/spectral/colour_medium.hpp"
 
 namespace bssrdf {
 
@@ -256,6 +257,7 @@ std::string to_csv(const ProfileReport& report) {
   // Which model produced the numbers, and why when it was not the exact one (read_profile_csv skips it).
   out << "# model: " << report.model << '\n';
   if (!report.model_choice.empty()) out << "# model_choice: " << report.model_choice << '\n';
+  if (report.colour) out << "# colour: " << spectral::describe(*report.colour) << '\n';
   const std::string u(symbol(report.unit));
   out << "radius_" << u;
   for (const auto& ch : report.channels) out << ',' << ch.name << "_per_" << u << "2";
@@ -281,11 +283,7 @@ std::string to_table(const ProfileReport& report) {
   if (!report.model_choice.empty()) out << "choice    " << report.model_choice << '\n';
   if (report.material) out << "material  " << report.material->name << " (" << report.material->source << ")\n";
   out << "eta       " << format_number(report.eta) << "\n";
-  if (report.colour)
-    out << "colour    " << report.colour->space << " under " << report.colour->illuminant << ", "
-        << report.colour->observer << " observer, from " << report.colour->wavelength_nm.size() << " wavelengths ("
-        << format_number(report.colour->wavelength_nm.front()) << "-"
-        << format_number(report.colour->wavelength_nm.back()) << " nm); coefficients are per wavelength\n";
+  if (report.colour) out << "colour    " << spectral::describe(*report.colour) << "; coefficients are per wavelength\n";
   if (report.thickness) out << "slab      thickness " << format_number(*report.thickness) << ' ' << u << "\n";
   if (report.layers) {
     const double mm = millimetres_per(report.unit);

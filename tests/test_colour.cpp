@@ -16,6 +16,7 @@
 #include "bssrdf/spectral/resample.hpp"
 #include "cli_runner.hpp"
 #include "exr_reader.hpp"
+#include "spectral_medium.hpp"
 
 namespace bssrdf::spectral {
 namespace {
@@ -124,20 +125,7 @@ TEST(Colour, SrgbTransferRoundTrips) {
   EXPECT_NEAR(srgb_to_linear(0.5), 0.214041, 1e-6);
 }
 
-// A spectral medium with skin-like absorption falling with wavelength.
-Medium spectral_medium() {
-  Medium m;
-  for (double nm = 400; nm <= 700; nm += 20) {
-    m.wavelength_nm.push_back(nm);
-    m.sigma_a.push_back(0.02 + 2.0 * std::exp(-(nm - 400) / 40));
-    m.sigma_s.push_back(10 * std::pow(nm / 500, -1.2));
-    m.g.push_back(0.8);
-  }
-  m.channel_names = wavelength_channel_names(m.wavelength_nm);
-  m.eta = 1.4;
-  m.validate();
-  return m;
-}
+Medium spectral_medium(double step = 20) { return test_spectral::skin_like_medium(step); }
 
 TEST(Colour, TotalsCheckOfTheIntegratedProfile) {
   // The RGB total of the integrated profile (2 pi r R_c(r) integrated over radius) equals the colour of the spectral

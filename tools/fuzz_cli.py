@@ -19,16 +19,17 @@ COMMANDS = {
     "profile": ["--sigma-a", "--sigma-s", "--g", "--eta", "--radii", "--samples", "--r-min", "--r-max",
                 "--thickness", "--model", "--unit", "--wavelengths", "--colour", "--illuminant"],
     "skin": ["--melanin", "--eumelanin", "--blood", "--oxygenation", "--epidermis", "--scattering", "--wavelengths",
-             "--colour", "--illuminant", "--specular"],
+             "--colour", "--illuminant", "--specular", "--profile-photons"],
     "fit skin": ["--srgb", "--melanin", "--specular", "--min-nm", "--max-nm", "--solve-step"],
     "reference": ["--sigma-a", "--sigma-s", "--g", "--eta", "-n", "--bins", "--seed", "--threads", "--r-max",
-                  "--thickness", "--depth-bins", "--roulette-threshold"],
+                  "--thickness", "--depth-bins", "--roulette-threshold", "--wavelengths", "--colour", "--illuminant"],
     "transmission": ["--sigma-a", "--sigma-s", "--eta", "--samples", "--d-min", "--d-max"],
     "lut": ["--sigma-a", "--sigma-s", "--kind", "--samples", "--taps", "--count", "--photons", "--tolerance",
-            "--size", "--energy", "--band"],
+            "--size", "--energy", "--band", "--wavelengths", "--colour", "--illuminant"],
     "fit gaussians": ["--sigma-a", "--sigma-s", "-n", "--samples"],
     "fit albedo": ["--albedo", "--distance", "--eta", "--g"],
-    "materials export": ["--sigma-a", "--sigma-s-prime", "--g", "--eta", "--unit", "--channels", "--to"],
+    "materials export": ["--sigma-a", "--sigma-s-prime", "--g", "--eta", "--unit", "--channels", "--to", "--wavelengths",
+                         "--colour", "--illuminant"],
     "fit slab": ["--quadrature", "--baffles", "--wall-first", "--detector-reflectance", "--unscattered-in-mr",
                  "--unscattered-in-mt", "--g", "--dual-beam", "--fixed-albedo", "--fixed-optical-thickness",
                  "--fixed-mu-a", "--fixed-mu-s", "--fixed-mu-s-prime", "--incidence-angle"],
@@ -61,7 +62,7 @@ def mutated_rxt(rng):
 
 
 # Small photon counts keep Monte Carlo runs short; the rest are random.
-SAFE = {"-n": "2000", "--photons": "2000"}
+SAFE = {"-n": "2000", "--photons": "2000", "--profile-photons": "2000"}
 
 
 def is_number(text):

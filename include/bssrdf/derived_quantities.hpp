@@ -59,6 +59,9 @@ struct DerivedQuantities {
   std::string physical_model;
   double object_size_mm = 0;
   std::vector<DerivedChannel> channels;
+  // A spectral material's colour stand-in (spectral/colour_medium.hpp): the colour integration and how well the R, G,
+  // B coefficients match it, said in every export beside the validity; empty otherwise.
+  std::string colour;
 };
 
 // Throws InvalidInput for an unvalidated medium, an unknown model or object_size_mm <= 0.

@@ -11,11 +11,12 @@ void ColourOptions::add_to(CLI::App& app) {
   app.add_option("--illuminant", illuminant, "Illuminant for --colour: d65, d50, a or e [d65]");
 }
 
-std::optional<spectral::ColourSettings> ColourOptions::resolve(const Medium& medium) const {
+std::optional<spectral::ColourSettings> ColourOptions::resolve(const std::vector<double>& wavelength_nm) const {
   if (colour.empty() && illuminant.empty()) return std::nullopt;
-  if (!medium.spectral())
+  if (wavelength_nm.empty())
     throw InvalidInput(std::string(colour.empty() ? "--illuminant" : "--colour") +
-                       ": needs a spectral medium (--wavelengths, or a material with wavelengths)");
+                       ": needs a spectral medium (--wavelengths, a material with wavelengths, or layers whose "
+                       "channels are named by wavelength, e.g. 550nm)");
   spectral::ColourSettings settings;
   if (!colour.empty()) settings.space = spectral::parse_colour_space(colour, "--colour");
   if (!illuminant.empty()) settings.illuminant = spectral::parse_illuminant(illuminant, "--illuminant");

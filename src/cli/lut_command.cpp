@@ -128,6 +128,7 @@ Action register_lut(CLI::App& app) {
   auto* sub =
       app.add_subcommand("lut", "Lookup tables for renderers: OpenEXR, JSON or CSV with their conventions recorded");
   o->medium.add_to(*sub);
+  o->colour.add_to(*sub);
   std::string kinds_help = "Table:";
   for (const auto& kind : table_kinds())
     kinds_help += "\n  " + std::string(kind.name) + ": " + std::string(kind.summary);

@@ -10,26 +10,52 @@
 #include "bssrdf/model.hpp"
 #include "bssrdf/model_choice.hpp"
 #include "bssrdf/model_registry.hpp"
+#include "bssrdf/spectral/colour_medium.hpp"
 
 namespace bssrdf::cli {
 namespace {
 
 // The kinds that tabulate a profile model: the medium, --model (auto resolved here, saying so in the
 // summary) and the context every such table records.
+// With --colour (with --all: for the spectral materials), the table is of R, G, B integrated per radius from each
+// wavelength's profile under the model (spectral/colour_medium.hpp), and records the integration.
 template <class Tabulate>
 BuiltTable with_model(const LutOptions& o, Tabulate&& tabulate) {
   const auto resolved = o.medium.resolve();
   const auto chosen = resolve_model(o.model, o.accuracy, resolved.medium);
-  const auto model = make_model(chosen.name);
+  const auto settings = o.all && !resolved.medium.spectral() ? std::nullopt : o.colour.resolve(resolved.medium);
+  const std::shared_ptr<const Model> model = make_model(chosen.name);
   warn_validity(*model, resolved.medium);
-  BuiltTable built =
-      tabulate(resolved, TableContext{resolved.material, &resolved.medium, model.get(), resolved.unit, chosen.note});
-  if (!chosen.note.empty()) built.summary = chosen.note + "\n" + built.summary;
+  if (!settings) {
+    BuiltTable built =
+        tabulate(resolved, TableContext{resolved.material, &resolved.medium, model.get(), resolved.unit, chosen.note});
+    if (!chosen.note.empty()) built.summary = chosen.note + "\n" + built.summary;
+    return built;
+  }
+  if (!o.pixel.empty())
+    throw InvalidInput("--pixel: not with --colour (the image check re-renders the model per channel, not the colour)");
+  if (o.kind == "gaussians" && o.count == 0 && model_entry(chosen.name).own_gaussians)
+    throw InvalidInput("--colour: --model " + chosen.name +
+                       "'s own Gaussians are per wavelength; give --count N to fit N to the colour profile");
+  const auto colour = spectral::colour_medium(resolved.medium, model, *settings);
+  auto rgb = resolved;
+  rgb.medium = colour.rgb;
+  BuiltTable built = tabulate(
+      rgb, TableContext{resolved.material, &colour.rgb, colour.model.get(), resolved.unit, chosen.note, &colour});
+  built.summary =
+      "colour: " + colour.summary() + "\n" + (chosen.note.empty() ? "" : chosen.note + "\n") + built.summary;
   return built;
+}
+
+// The kinds that take no profile refuse --colour rather than ignore it.
+void refuse_colour(const LutOptions& o, const std::string& why) {
+  if (!o.colour.colour.empty() || !o.colour.illuminant.empty())
+    throw InvalidInput("--colour: not for --kind " + o.kind + " (" + why + ")");
 }
 
 // --kind radial --reference: the Monte Carlo reference tabulated, for a medium or a layer stack.
 BuiltTable build_reference_radial(const LutOptions& o) {
+  refuse_colour(o, "--reference: use 'bssrdf reference --colour' for the colour Monte Carlo profile");
   if (o.model_given || !o.accuracy.empty())
     throw InvalidInput(
         "--reference: the table is the Monte Carlo reference, not a model (give no --model or --accuracy)");
@@ -68,6 +94,7 @@ BuiltTable build_radial(const LutOptions& o) {
 // albedo-radius tables are dimensionless: only (g, eta) come from the medium (a material's first
 // channel, or --g and --eta, default 0 and 1.3).
 BuiltTable build_albedo_radius(const LutOptions& o) {
+  refuse_colour(o, "its rows are dimensionless, over every albedo: no medium's profile");
   AlbedoRadiusKindOptions options;
   if (!o.medium.material.empty() || !o.medium.sigma_a.empty()) {
     const auto resolved = o.medium.resolve();
@@ -114,6 +141,7 @@ BuiltTable build_albedo_radius(const LutOptions& o) {
 }
 
 BuiltTable build_transmission(const LutOptions& o) {
+  refuse_colour(o, "slab totals; the profile kinds take it");
   if (!o.accuracy.empty())
     throw InvalidInput("--accuracy: only with --model auto (transmission tables use adding-doubling or the multipole)");
   const auto resolved = o.medium.resolve();

@@ -12,12 +12,14 @@
 
 #include "bssrdf/lut/table_kinds.hpp"
 #include "cli_common.hpp"
+#include "colour_options.hpp"
 
 namespace bssrdf::cli {
 
 // What the command line gave; empty strings and zero counts mean "the library's default".
 struct LutOptions {
   MediumOptions medium;
+  ColourOptions colour;  // a spectral medium's profile kinds as R, G, B integrated per radius
   std::string kind = "radial", model, accuracy, tolerance, energy, interpolation;
   std::string output, format, output_dir, layout = "pbrt", size, table_tolerance;
   bool half = false, all = false, quiet = false;

@@ -19,7 +19,9 @@
 #include "bssrdf/fit/fit_import.hpp"
 #include "bssrdf/io/atomic_file.hpp"
 #include "bssrdf/io/renderer_export.hpp"
+#include "bssrdf/spectral/colour_medium.hpp"
 #include "cli_common.hpp"
+#include "colour_options.hpp"
 #include "commands.hpp"
 #include "materials_show.hpp"
 
@@ -34,8 +36,9 @@ void import_fit(const std::string& fit_file, const std::string& name, const std:
                 const std::string& source, const std::string& output, const std::string& db) {
   namespace fs = std::filesystem;
   const std::optional<double> eta = eta_text.empty() ? std::nullopt : std::optional(parse_number(eta_text, "--eta"));
+  std::vector<std::string> skipped;  // fit slab --rxt rows that did not converge
   const std::string text =
-      materials_file_from_fit(read_data_file(fit_file, "the fit result"), fit_file, name, eta, source);
+      materials_file_from_fit(read_data_file(fit_file, "the fit result"), fit_file, name, eta, source, &skipped);
   std::string target = output;
   if (target.empty()) {
     if (db.empty()) throw InvalidInput("materials import: give --db DIR (your materials directory) or -o FILE");
@@ -54,6 +57,9 @@ void import_fit(const std::string& fit_file, const std::string& name, const std:
   database.add_text(text, target);  // a valid file whose name clashes with no loaded material
   if (output.empty()) fs::create_directories(db);
   write_file_atomically(target, text);
+  if (!skipped.empty())
+    std::cerr << "bssrdf: skipped " << skipped.size() << " row" << (skipped.size() > 1 ? "s" : "")
+              << " that did not converge (listed in the file's notes), first " << skipped.front() << '\n';
   std::cout << "written: " << target << " (use it with --db " << (output.empty() ? db : target) << ")\n";
 }
 
@@ -73,6 +79,7 @@ Action register_materials(CLI::App& app) {
     std::string blender_method = "fixed-radius", blender_version = "auto";
     bool all = false;
     MediumOptions inline_medium;  // materials export with --sigma-a ...: a medium not in the database
+    ColourOptions colour;         // materials export of spectral materials to R, G, B
   };
   auto o = std::make_shared<Options>();
   auto* sub =
@@ -105,6 +112,7 @@ Action register_materials(CLI::App& app) {
   auto* exp_all = exp->add_flag("--all", o->all, "Every material (with --source: every one from that source)");
   exp_name->excludes(exp_all);
   o->inline_medium.add_coefficients_to(*exp);  // as 'bssrdf profile' takes them; their unit is --unit [mm]
+  o->colour.add_to(*exp);                      // spectral materials to RGB targets: srgb under d65 unless given
   exp_all->excludes(exp->get_option("--sigma-a"));
   exp->add_option("--to", o->to,
                   "json, pbrt-v4, mitsuba3, blender, unity-hdrp, unity-hdrp-editor, unreal, unreal-python")
@@ -171,9 +179,23 @@ Action register_materials(CLI::App& app) {
       options.object_size_mm = object_size_mm(o->object_size);
       const auto db = MaterialDatabase::load_with_user(o->db);
       std::vector<ExportEntry> entries;
-      const auto add = [&](const Material& m) {
+      const bool colour_given = !o->colour.colour.empty() || !o->colour.illuminant.empty();
+      if (colour_given && target == RendererTarget::json)
+        throw InvalidInput("--colour: not with --to json (it keeps a spectral material's wavelengths; it loads back)");
+      const auto add = [&](Material m) {
+        std::string colour;  // a spectral material for an RGB target (pbrt-v4 takes spectra): its colour stand-in
+        if (colour_given && !o->all) o->colour.resolve(m.medium);  // refuses a material without wavelengths
+        if (m.medium.spectral() &&
+            (colour_given || (target != RendererTarget::json && target != RendererTarget::pbrt_v4))) {
+          auto settings = o->colour.resolve(m.medium).value_or(spectral::ColourSettings{});
+          auto stand_in = spectral::colour_material(m, settings);
+          m = stand_in.material;
+          colour = "colour: " + stand_in.colour.summary() +
+                   (colour_given ? "" : " (the default colour; give --colour and --illuminant to choose)");
+        }
         entries.push_back(
             {m, target == RendererTarget::json ? DerivedQuantities{} : derive_quantities(m.medium, options)});
+        entries.back().derived.colour = colour;
         for (const auto& c : entries.back().derived.channels)
           warn_validity(c.physical_model, (o->all ? m.name + " " : "") + c.name, c.validity);
       };

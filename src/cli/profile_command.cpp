@@ -17,6 +17,7 @@
 #include "bssrdf/models/layered.hpp"
 #include "bssrdf/models/multipole.hpp"
 #include "bssrdf/profile_report.hpp"
+#include "bssrdf/spectral/colour_medium.hpp"
 #include "bssrdf/spectral/colour_profile.hpp"
 #include "cli_common.hpp"
 #include "colour_options.hpp"
@@ -132,6 +133,11 @@ Action register_profile(CLI::App& app) {
     } else {
       resolved = options->medium.resolve();
     }
+    // A layer stack is spectral when its channels are named by wavelength (bssrdf skin --layers-out); a bad --colour
+    // is refused before any work (and any validity warning).
+    const auto wavelengths = stack_file ? spectral::wavelengths_from_channel_names(stack_file->stack.channel_names)
+                                        : resolved.medium.wavelength_nm;
+    const auto colour = options->colour.resolve(wavelengths);
     const double mm = millimetres_per(resolved.unit);
     std::unique_ptr<Model> model;
     std::string auto_note;  // --model auto: which model and why
@@ -217,8 +223,7 @@ Action register_profile(CLI::App& app) {
     report.material = resolved.material;
     report.model_choice = auto_note;
     for (const auto& ch : report.channels) warn_validity(report.model, ch.name, ch.validity);
-    if (const auto colour = options->colour.resolve(resolved.medium))
-      report = spectral::colour_profile(report, resolved.medium.wavelength_nm, *colour);
+    if (colour) report = spectral::colour_profile(report, wavelengths, *colour);
     emit(
         options->output, [&] { return to_json(report); }, [&] { return to_csv(report); }, to_table(report));
   };

@@ -11,7 +11,10 @@
 #include "bssrdf/io/mci.hpp"
 #include "bssrdf/io/mco.hpp"
 #include "bssrdf/montecarlo.hpp"
+#include "bssrdf/spectral/colour_medium.hpp"
+#include "bssrdf/spectral/colour_reference.hpp"
 #include "cli_common.hpp"
+#include "colour_options.hpp"
 #include "commands.hpp"
 #include "launched_process_group.hpp"
 
@@ -20,6 +23,7 @@ namespace bssrdf::cli {
 Action register_reference(CLI::App& app) {
   struct Options {
     MediumOptions medium;
+    ColourOptions colour;
     OutputOptions output;
     std::string thickness, layers, mci, mco_dir = ".", r_max, r_min, spacing = "linear", absorption = "implicit";
     std::uint64_t photons = 1'000'000, seed = 1;
@@ -32,6 +36,7 @@ Action register_reference(CLI::App& app) {
       "reference",
       "Monte Carlo reference: R_d, T_t, R(r), T(r) with standard errors (radiative transfer, exact phase function)");
   options->medium.add_to(*sub);
+  options->colour.add_to(*sub);
   auto* thickness = sub->add_option("--thickness", options->thickness, "Slab thickness in --unit [semi-infinite]");
   auto* layers = sub->add_option("--layers", options->layers, "Layer stack file (JSON, format bssrdf-layers)");
   auto* mci = sub->add_option("--mci", options->mci, "Run the cases of an MCML input file (cm, 1/cm; outputs in cm)");
@@ -109,6 +114,7 @@ Action register_reference(CLI::App& app) {
     };
     std::vector<Case> cases;
     LengthUnit unit = LengthUnit::millimetre;
+    std::vector<double> wavelengths;  // of a spectral medium or layer stack: --colour integrates them
     const auto lengths = [&](MonteCarloOptions& mc, LengthUnit u) {
       if (!o.r_max.empty()) {
         mc.r_max = to_mm(parse_length(o.r_max, "--r-max"), u);
@@ -147,9 +153,11 @@ Action register_reference(CLI::App& app) {
       MonteCarloOptions mc = base;
       lengths(mc, unit);
       cases.push_back({o.layers, file.stack, mc, "", 1});
+      wavelengths = spectral::wavelengths_from_channel_names(file.stack.channel_names);
     } else {
       const auto resolved = o.medium.resolve();
       unit = resolved.unit;
+      wavelengths = resolved.medium.wavelength_nm;
       double thickness_mm = kSemiInfinite;
       if (!o.thickness.empty()) {
         const double t = parse_length(o.thickness, "--thickness");
@@ -163,6 +171,9 @@ Action register_reference(CLI::App& app) {
       cases.push_back({resolved.material ? resolved.material->name : "medium", stack, mc, "", 1});
     }
     for (auto& c : cases) c.options.validate();  // every case checked before any photon is traced
+    if (!o.mci.empty() && (!o.colour.colour.empty() || !o.colour.illuminant.empty()))
+      throw InvalidInput("--colour: not with --mci (MCML runs have no wavelengths)");
+    const auto colour = o.colour.resolve(wavelengths);
 
     // Under mpirun or srun every rank runs the same cases and traces its share; rank 0 writes.
     ProcessGroup* group = launched_process_group();
@@ -173,6 +184,15 @@ Action register_reference(CLI::App& app) {
       results.push_back(run_monte_carlo(c.stack, c.options));
     }
     if (!results[0].gathered) return;
+    if (colour) {  // R, G, B per radial bin from the wavelengths' estimates
+      results[0] = spectral::colour_reference(results[0], wavelengths, *colour);
+      const auto note = spectral::colour_note(wavelengths, *colour);
+      emit(
+          o.output, [&] { return spectral::colour_reference_json(results[0], unit, note); },
+          [&] { return spectral::colour_reference_csv(results[0], unit, note); },
+          spectral::colour_reference_report(results[0], unit, note));
+      return;
+    }
 
     std::string content, table;
     for (std::size_t k = 0; k < results.size(); ++k) {

@@ -1,5 +1,6 @@
 // bssrdf skin: the two-layer skin model's spectral layers, total reflectance and colour; bssrdf fit skin: its
 // parameters from a measured reflectance spectrum (--spectrum) or a target colour (--srgb).
+#include <cmath>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -9,7 +10,10 @@
 #include "bssrdf/fit/skin_fit.hpp"
 #include "bssrdf/io/atomic_file.hpp"
 #include "bssrdf/io/layers_json.hpp"
+#include "bssrdf/montecarlo.hpp"
 #include "bssrdf/skin/skin_model.hpp"
+#include "bssrdf/spectral/colour_medium.hpp"
+#include "bssrdf/spectral/colour_reference.hpp"
 #include "cli_common.hpp"
 #include "colour_options.hpp"
 #include "commands.hpp"
@@ -77,6 +81,7 @@ Action register_skin(CLI::App& app) {
     ColourOptions colour;
     OutputOptions output;
     std::string wavelengths, specular = "excluded", layers_out;
+    std::uint64_t profile_photons = 0;  // 0: no profile
   };
   auto o = std::make_shared<Options>();
   auto* sub = app.add_subcommand("skin",
@@ -92,6 +97,9 @@ Action register_skin(CLI::App& app) {
                   "Write the layer stack (bssrdf-layers JSON, channels by wavelength) "
                   "for 'bssrdf reference --layers' and 'bssrdf profile --layers'")
       ->check(file_name("--layers-out"));
+  add_count_option(*sub, "--profile-photons", o->profile_photons, 1, kMaxPhotons,
+                   "Also the colour radial profile: Monte Carlo of the layers with this many photons per wavelength, "
+                   "integrated per bin to --colour ('profile' in -f json) [off]");
   o->output.add_to(*sub);
   return [o] {
     const auto p = o->parameters.resolve();
@@ -136,6 +144,22 @@ Action register_skin(CLI::App& app) {
             << format_number(stack.layers[1].sigma_a[i]) << "    "
             << format_number(stack.layers[1].sigma_s[i] * (1 - p.g)) << "    " << format_number(reflectance.diffuse[i])
             << "\n";
+    if (o->profile_photons) {  // the colour R(r): each wavelength's Monte Carlo profile, integrated per bin
+      MonteCarloOptions mc;
+      mc.photons = o->profile_photons;
+      mc.progress = progress_bar("skin profile");
+      const auto result = spectral::colour_reference(run_monte_carlo(stack, mc), nm, settings);
+      doc["profile"] = nlohmann::json::parse(
+          spectral::colour_reference_json(result, LengthUnit::millimetre, spectral::colour_note(nm, settings)));
+      const auto diffuse = colour.rgb(reflectance.diffuse);  // Monte Carlo's R_d leaves the specular out
+      table << "profile   Monte Carlo, " << mc.photons << " photons per wavelength (R(r) per bin: -f json); its "
+            << "diffuse totals R, G, B (+- 1 standard error) against adding-doubling's:";
+      const auto five = [](double x) { return format_number(std::round(x * 1e5) / 1e5); };
+      for (int c = 0; c < 3; ++c)
+        table << (c ? "," : "") << " " << five(result.channels[c].diffuse_reflectance.value) << " +- "
+              << five(result.channels[c].diffuse_reflectance.standard_error) << " (" << five(diffuse[c]) << ")";
+      table << "\n";
+    }
     if (!o->layers_out.empty()) write_file_atomically(o->layers_out, layers_json(stack));
     emit(
         o->output, [&] { return doc.dump(2) + "\n"; },

@@ -1,11 +1,13 @@
 #include "bssrdf/fit/fit_import.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <vector>
 
 #include "../io/data_file.hpp"
 #include "bssrdf/error.hpp"
+#include "bssrdf/medium.hpp"
 
 namespace bssrdf {
 namespace {
@@ -20,37 +22,74 @@ struct ImportedChannel {
   double sigma_a = 0, sigma_s = 0, g = 0;
 };
 
-// 'bssrdf fit slab --rxt FILE -f json': one channel per row (named by its wavelength), eta from
-// the header, coefficients in mm.
-std::vector<ImportedChannel> rxt_rows(const nlohmann::json& fit, std::string& unit, double& eta) {
+// 'bssrdf fit slab --rxt FILE -f json': one channel per converged row, named by its wavelength, eta from the header,
+// coefficients in mm. Rows that did not converge (any other status: not solved, not converged, not unique, no
+// parameters reproduce the measurements, M_R only) are skipped and listed in `skipped`. When every kept row has a
+// wavelength within [kMinWavelength, kMaxWavelength] nm, strictly increasing, they are the spectral material's
+// wavelengths (a repeated or decreasing one is refused: a medium has one value per wavelength).
+struct RxtRows {
+  std::vector<ImportedChannel> channels;
+  std::vector<double> wavelength_nm;  // empty: not spectral (e.g. iad's row numbers in the wavelength column)
+  std::vector<std::string> skipped;
+};
+
+RxtRows rxt_rows(const nlohmann::json& fit, const std::string& fit_file, std::string& unit, double& eta) {
   unit = fit.value("unit", std::string("mm"));
   eta = fit.at("header").at("sample_index").get<double>();
-  std::vector<ImportedChannel> out;
-  for (const auto& r : fit.at("rows")) {
+  RxtRows out;
+  std::vector<double> nm;
+  for (std::size_t i = 0; i < fit.at("rows").size(); ++i) {
+    const auto& r = fit.at("rows").at(i);
+    const double wavelength = r.value("wavelength", 0.0);
+    std::string name = format_number(wavelength);
+    const std::string line = "line " + std::to_string(r.at("line").get<int>());
+    const std::string status = r.value("status", std::string("converged"));  // results before status: all kept
+    if (status != "converged") {
+      out.skipped.push_back(line + (wavelength > 0 ? " (" + name + " nm)" : "") + ": " + status);
+      continue;
+    }
     const double g = number_at(r, "g");
-    const double wavelength = r.at("wavelength").get<double>();
-    std::string name = std::to_string(wavelength);
-    name.erase(name.find_last_not_of('0') + 1);
-    if (name.back() == '.') name.pop_back();
-    out.push_back({r.value("wavelength", 0.0) > 0 ? name + "nm" : "row " + std::to_string(r.at("line").get<int>()),
-                   number_at(r, "mu_a"), number_at(r, "mu_s_prime") / (1 - g), g});
+    out.channels.push_back({wavelength > 0 ? name + "nm" : "row " + std::to_string(r.at("line").get<int>()),
+                            number_at(r, "mu_a"), number_at(r, "mu_s_prime") / (1 - g), g});
+    nm.push_back(wavelength);
   }
+  if (out.channels.empty())
+    throw FileError(fit_file, 0,
+                    "$.rows: no row converged, nothing to import (" + std::to_string(out.skipped.size()) +
+                        " skipped; first: " + (out.skipped.empty() ? std::string("none") : out.skipped.front()) + ")");
+  const bool in_range = std::all_of(
+      nm.begin(), nm.end(), [](double x) { return std::isfinite(x) && x >= kMinWavelength && x <= kMaxWavelength; });
+  if (!in_range) return out;
+  for (std::size_t i = 1; i < nm.size(); ++i)
+    if (!(nm[i] > nm[i - 1]))
+      throw FileError(fit_file, 0,
+                      "$.rows: wavelength " + format_number(nm[i]) + " nm after " + format_number(nm[i - 1]) +
+                          " nm: a spectral material takes strictly increasing wavelengths (fit one row per "
+                          "wavelength: average or drop the repeated rows of the .rxt)");
+  out.wavelength_nm = nm;
   return out;
 }
 
 // at(), never the const operator[]: on a missing key that is undefined behaviour (found by the
 // mutation test under the sanitizers); at() throws, and the caller names the file.
 std::string from_fit(const nlohmann::json& fit, const std::string& fit_file, const std::string& name,
-                     std::optional<double> eta_given, const std::string& source) {
+                     std::optional<double> eta_given, const std::string& source, std::vector<std::string>* skipped) {
   const bool rxt = fit.is_object() && fit.contains("rows") && fit.contains("header");
   if (!fit.is_object() || (!rxt && fit.value("source", "") != "fit"))
     throw FileError(fit_file, 0, "$.source: expected \"fit\" (the output of 'bssrdf fit ... -f json')");
   std::vector<ImportedChannel> channels;
   std::string unit = "mm";
   double eta = NAN;
+  std::vector<double> wavelength_nm;
+  std::vector<std::string> notes{"Imported from " + fit_file + " by 'bssrdf materials import'."};
   if (rxt) {
-    channels = rxt_rows(fit, unit, eta);
-    if (channels.empty()) throw FileError(fit_file, 0, "$.rows: expected a non-empty array");
+    if (!fit.at("rows").is_array() || fit.at("rows").empty())
+      throw FileError(fit_file, 0, "$.rows: expected a non-empty array");
+    auto rows = rxt_rows(fit, fit_file, unit, eta);
+    channels = std::move(rows.channels);
+    wavelength_nm = std::move(rows.wavelength_nm);
+    for (const auto& row : rows.skipped) notes.push_back("Skipped (not converged): " + row);
+    if (skipped) *skipped = std::move(rows.skipped);
   } else {
     if (!fit.contains("channels") || !fit.at("channels").is_array() || fit.at("channels").empty())
       throw FileError(fit_file, 0, "$.channels: expected a non-empty array");
@@ -94,19 +133,21 @@ std::string from_fit(const nlohmann::json& fit, const std::string& fit_file, con
                                fit.value(rxt ? "source" : "data", std::string("?")) + ", " +
                                fit.value("tool", std::string(""))},
               {"unit", unit},
-              {"channels", names},
-              {"notes", {"Imported from " + fit_file + " by 'bssrdf materials import'."}},
-              {"materials", {{{"name", name}, {"eta", eta}, {"sigma_a", sigma_a}, {"sigma_s", sigma_s}, {"g", g}}}}};
+              {"channels", names}};
+  if (!wavelength_nm.empty()) doc["wavelength_nm"] = wavelength_nm;  // a spectral material (docs/spectral.md)
+  doc["notes"] = notes;
+  doc["materials"] = {{{"name", name}, {"eta", eta}, {"sigma_a", sigma_a}, {"sigma_s", sigma_s}, {"g", g}}};
   return doc.dump(2) + "\n";
 }
 
 }  // namespace
 
 std::string materials_file_from_fit(const std::string& fit_text, const std::string& fit_file, const std::string& name,
-                                    std::optional<double> eta, const std::string& source) {
+                                    std::optional<double> eta, const std::string& source,
+                                    std::vector<std::string>* skipped) {
   const nlohmann::json fit = parse_json_document(fit_text, fit_file);
   try {
-    return from_fit(fit, fit_file, name, eta, source);
+    return from_fit(fit, fit_file, name, eta, source, skipped);
   } catch (const nlohmann::json::exception& e) {  // a field of the wrong type (a string where a number belongs)
     const std::string what = e.what();
     throw FileError(fit_file, 0, "not the output of 'bssrdf fit ... -f json': " + what.substr(what.find(' ') + 1));

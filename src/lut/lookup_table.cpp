@@ -63,8 +63,9 @@ std::string to_json(const LookupTable& table) {
 
 std::string to_csv(const LookupTable& table) {
   std::ostringstream out;
-  // Which model produced the numbers, and why when it was not the exact one: a leading comment.
-  for (const char* key : {"bssrdf:model", "bssrdf:model_choice"})
+  // Which model produced the numbers, why when it was not the exact one, and the colour integration of a spectral
+  // medium: leading comments.
+  for (const char* key : {"bssrdf:model", "bssrdf:model_choice", "bssrdf:colour"})
     if (const auto* v = table.attribute(key); v && std::holds_alternative<std::string>(*v))
       out << "# " << (key + 7) << ": " << std::get<std::string>(*v) << '\n';
   const bool two_d = table.height > 1;

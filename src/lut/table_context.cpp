@@ -1,6 +1,7 @@
 #include "bssrdf/lut/table_context.hpp"
 
 #include "bssrdf/error.hpp"
+#include "bssrdf/spectral/colour_medium.hpp"
 
 namespace bssrdf {
 namespace {
@@ -45,6 +46,14 @@ void describe(LookupTable& table, const TableContext& context) {
     table.set("bssrdf:g", join(context.medium->g, 1.0));
     // A spectral medium: its channels' wavelengths (the OpenEXR writer lays them out as spectral channels).
     if (context.medium->spectral()) table.set("bssrdf:wavelength_nm", join(context.medium->wavelength_nm, 1.0));
+  }
+  if (context.colour) {  // the R, G, B channels integrated from the spectral medium's wavelengths
+    const auto& note = context.colour->note;
+    table.set("bssrdf:colour", context.colour->summary());
+    table.set("bssrdf:colour_observer", note.observer);
+    table.set("bssrdf:colour_illuminant", note.illuminant);
+    table.set("bssrdf:colour_space", note.space);
+    table.set("bssrdf:colour_wavelength_nm", join(note.wavelength_nm, 1.0));
   }
 }
 

@@ -5,6 +5,7 @@
 
 #include "bssrdf/check.hpp"
 #include "bssrdf/error.hpp"
+#include "bssrdf/spectral/colour_medium.hpp"
 
 namespace bssrdf::spectral {
 
@@ -17,8 +18,7 @@ ProfileReport colour_profile(const ProfileReport& report, const std::vector<doub
   const auto& w = colour.rgb_weights();
   ProfileReport out = report;
   out.channels.clear();
-  out.colour = ColourNote{std::string(kObserverName), std::string(to_string(settings.illuminant)),
-                          std::string(to_string(settings.space)), wavelength_nm};
+  out.colour = colour_note(wavelength_nm, settings);
   const auto& first = report.channels.front();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (int c = 0; c < 3; ++c) {

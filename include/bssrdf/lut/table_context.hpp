@@ -12,6 +12,9 @@
 #include "bssrdf/units.hpp"
 
 namespace bssrdf {
+namespace spectral {
+struct ColourMedium;
+}
 
 struct TableContext {
   std::optional<Material> material;  // when the medium came from the database
@@ -19,11 +22,15 @@ struct TableContext {
   const Model* model = nullptr;      // optional (transmission tables come from Monte Carlo)
   LengthUnit unit = LengthUnit::millimetre;
   std::string model_choice{};  // why this model when it is not `exact` by default or was chosen by auto; else empty
+  // A colour table of a spectral medium: `medium` is colour->rgb and `model` colour->model
+  // (spectral/colour_medium.hpp).
+  const spectral::ColourMedium* colour = nullptr;
 };
 
 // Adds bssrdf:tool, bssrdf:kind, bssrdf:material (+ source, citation), bssrdf:model (+ description,
 // single scattering, and bssrdf:model_choice when the context gives one), bssrdf:eta, bssrdf:channels and
-// bssrdf:coefficients (sigma_a, sigma_s, g in 1/unit), and bssrdf:normalization.
+// bssrdf:coefficients (sigma_a, sigma_s, g in 1/unit), and bssrdf:normalization; for a colour table,
+// bssrdf:colour (one line) and bssrdf:colour_observer, _illuminant, _space, _wavelength_nm.
 void describe(LookupTable& table, const TableContext& context);
 
 // A width x height table of `kind`, described, with bssrdf:unit naming the context's length unit.

@@ -108,7 +108,8 @@ std::string validity_summary(const DerivedQuantities& derived) {
       }
     if (!any) valid += (valid.empty() ? "" : ", ") + c.name;
   }
-  const std::string model = "the " + derived.physical_model + " profile";
+  const std::string model =
+      (derived.colour.empty() ? "" : derived.colour + "; ") + "the " + derived.physical_model + " profile";
   if (problems.empty()) return model + " valid in every channel (object size " + num(derived.object_size_mm) + " mm)";
   return model + " valid in " + (valid.empty() ? std::string("no channel") : valid) + "; " + problems;
 }
