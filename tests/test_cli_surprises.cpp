@@ -39,6 +39,16 @@ TEST(CliSurprises, OutputWithAllIsADirectory) {
   r = run("lut --all --db " + db.string() + " --kind radial -f json -q -o " + dir.string());
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(std::filesystem::exists(dir / "one-radial.json"));
+  // A --db holding a copy of a bundled file: its names clash with the bundled ones, one error, no table
+  // (it once skipped every material, one stderr line each, and exited 0).
+  const auto clash = temp("clash-db"), clash_out = temp("clash-out");
+  std::filesystem::create_directories(clash);
+  std::filesystem::create_directories(clash_out);
+  std::filesystem::copy_file(std::string(BSSRDF_TEST_DATA) + "/../../materials/jensen2001.json",
+                             clash / "jensen2001.json", std::filesystem::copy_options::overwrite_existing);
+  expect_refused(run("lut --all --db " + clash.string() + " --kind radial -q -o " + clash_out.string()),
+                 "'Apple' is already defined");
+  EXPECT_TRUE(std::filesystem::is_empty(clash_out));
 }
 
 TEST(CliSurprises, UnknownExtensionsAreRefused) {

@@ -73,6 +73,10 @@ void tabulate_all(const LutOptions& o, const TableKind& kind) {
   if (!o.preview.empty() && std::filesystem::path(o.preview).extension() != ".png")
     throw InvalidInput("--preview", "'" + o.preview + "'",
                        "a file name ending in .png (with --all: <material>-NAME.png each)");
+  // With --db, every material of that database (without it, the bundled ones). Each is then looked
+  // up as every command looks up a name, in the bundled database plus --db: a name clash between
+  // the two is one error here, before any work, not one skipped table per material.
+  if (!o.medium.db.empty()) MaterialDatabase::load_with_user(o.medium.db);
   const auto database =
       MaterialDatabase::load(o.medium.db.empty() ? default_materials_dir() : std::filesystem::path(o.medium.db));
   const auto& materials = database.all();
