@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <numbers>
 
 #include "bssrdf/check.hpp"
 #include "bssrdf/error.hpp"
@@ -10,8 +11,6 @@
 
 namespace bssrdf::spectral {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 Mat3 multiply(const Mat3& a, const Mat3& b) {
   Mat3 c{};
@@ -145,8 +144,8 @@ Vec3 xyz_to_lab(const Vec3& xyz, const Vec3& white) {
 }
 
 double ciede2000(const Vec3& lab1, const Vec3& lab2) {
-  const auto deg = [](double rad) { return rad * 180 / kPi; };
-  const auto rad = [](double degrees) { return degrees * kPi / 180; };
+  const auto deg = [](double rad) { return rad * 180 / std::numbers::pi; };
+  const auto rad = [](double degrees) { return degrees * std::numbers::pi / 180; };
   const double c1 = std::hypot(lab1[1], lab1[2]), c2 = std::hypot(lab2[1], lab2[2]);
   const double c_mean7 = std::pow((c1 + c2) / 2, 7);
   const double G = 0.5 * (1 - std::sqrt(c_mean7 / (c_mean7 + std::pow(25.0, 7))));

@@ -9,12 +9,12 @@
 #include "bssrdf/error.hpp"
 #include "bssrdf/model_choice.hpp"
 #include "bssrdf/model_registry.hpp"
+#include "bssrdf/scalar_math.hpp"
 
 namespace bssrdf::spectral {
 namespace {
 
 constexpr const char* kChannels[] = {"R", "G", "B"};
-constexpr double kPi = 3.14159265358979323846;
 
 // The colour channels of a spectral medium under one model: sums over its wavelengths with the colour weights.
 struct Integration {
@@ -212,7 +212,7 @@ ColourMedium colour_medium(const Medium& medium, std::shared_ptr<const Model> mo
       difference += w * (fitted - target) * (fitted - target);
       norm += w * target * target;
       if (target < 0 && negative_from == 0) negative_from = r;
-      negative -= w * std::min(target, 0.0) * 2 * kPi * std::log(r_far / r_lo) / n;
+      negative -= w * std::min(target, 0.0) * kTwoPi * std::log(r_far / r_lo) / n;
     }
     out.shape_error.push_back(norm > 0 ? std::sqrt(difference / norm) : 0.0);
     out.negative.push_back(negative / total);
