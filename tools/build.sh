@@ -20,6 +20,6 @@ python=()
 if [ -x /usr/bin/python3 ]; then python=(-DPython_EXECUTABLE=/usr/bin/python3); fi
 launcher=()
 if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DBSSRDF_WERROR=ON -DBSSRDF_BUILD_TESTS="$tests" \
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DBSSRDF_WERROR=ON -DBSSRDF_UNITY=ON -DBSSRDF_BUILD_TESTS="$tests" \
   -DBSSRDF_BUILD_BENCHMARKS="$tests" "${launcher[@]}" "${python[@]}" "$@" >/dev/null
 cmake --build build -j "$(nproc)" "${targets[@]}"
