@@ -17,6 +17,7 @@
 #include "bssrdf/model_registry.hpp"
 #include "bssrdf/spectral/colour_medium.hpp"
 #include "cli_runner.hpp"
+#include "spectral_medium.hpp"
 
 using namespace bssrdf;
 using json = nlohmann::json;
@@ -125,17 +126,9 @@ TEST(CliBlenderExport, ScriptStatesMethodAndFormula) {
 // the colour-integrated total and median radius) is the medium Cycles simulates.
 TEST(BlenderExport, SpectralMaterialIsItsColourStandIn) {
   if (!have_blender()) GTEST_SKIP() << "blender not installed (apt-get install blender)";
-  Medium m;
-  m.wavelength_nm = {450, 500, 550, 600, 650};
-  m.sigma_a = {0.5, 0.2, 0.1, 0.03, 0.02};
-  m.sigma_s.assign(5, 10.0);
-  m.g.assign(5, 0.8);
-  m.eta = 1.4;
-  m.channel_names = wavelength_channel_names(m.wavelength_nm);
+  const Medium m = test_spectral::tint_medium();
   const auto stand_in = spectral::colour_medium(m, make_model(default_model(m).name), {}).rgb;
-  const auto j = run_in_blender("Tint",
-                                "--unit mm --wavelengths 450,500,550,600,650 --sigma-a 0.5,0.2,0.1,0.03,0.02 "
-                                "--sigma-s 10 --g 0.8 --eta 1.4");
+  const auto j = run_in_blender("Tint", "--unit mm " + test_spectral::kTintOptions);
   for (std::size_t c = 0; c < 3; ++c) {
     const double sigma_t = stand_in.sigma_a[c] + stand_in.sigma_s[c];
     EXPECT_NEAR(j["medium"]["sigma_t"][c].get<double>() / sigma_t, 1.0, 2e-5) << c;

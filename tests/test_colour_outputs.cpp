@@ -166,9 +166,7 @@ TEST(ColourReference, BinsAndTotalsAreTheColourOfTheWavelengths) {
 namespace bssrdf::spectral {
 namespace {
 
-const std::string kSpectral =
-    "--wavelengths 450,500,550,600,650 --sigma-a 0.5,0.2,0.1,0.03,0.02 --sigma-s 10 --g 0.8 "
-    "--eta 1.4";
+const std::string& kSpectral = test_spectral::kTintOptions;
 
 TEST(ColourCli, LutRecordsTheColourInJsonAndCsv) {
   const auto json_file = test_cli::temp("colour.json").string(), csv_file = test_cli::temp("colour.csv").string();
@@ -269,13 +267,7 @@ TEST(ColourCli, UnitySurfaceAlbedoIsTheColourTotal) {
   const auto run = test_cli::run("materials export Tint --to unity-hdrp " + kSpectral);
   ASSERT_EQ(run.status, 0) << run.err;
   const auto doc = nlohmann::json::parse(run.out);
-  Medium m;
-  m.wavelength_nm = {450, 500, 550, 600, 650};
-  m.sigma_a = {0.5, 0.2, 0.1, 0.03, 0.02};
-  m.sigma_s.assign(5, 10.0);
-  m.g.assign(5, 0.8);
-  m.eta = 1.4;
-  m.channel_names = wavelength_channel_names(m.wavelength_nm);
+  const Medium m = test_spectral::tint_medium();
   const auto colour = colour_medium(m, make_model(default_model(m).name), kSrgbD65);
   const auto text = doc.dump();
   // The first profile's surface albedo (the key Unity's exporter writes), R, G, B.

@@ -79,11 +79,13 @@ double illinois_root(const F& f, double a, double b, double fa, double fb, int& 
     const double fc = f(c);
     if (fc == 0) return c;
     if ((fc > 0) == (fb > 0)) {
-      b = c, fb = fc;
+      b = c;
+      fb = fc;
       if (kept == -1) fa /= 2;
       kept = -1;
     } else {
-      a = c, fa = fc;
+      a = c;
+      fa = fc;
       if (kept == 1) fb /= 2;
       kept = 1;
     }
