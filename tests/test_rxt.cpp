@@ -77,7 +77,8 @@ TEST(Rxt, PublishedExampleRecoversTheTruthOfEveryRow) {
   for (std::size_t k = 0; k < fit.rows.size(); ++k) {
     const double mu_s = 5.0 * (1 + k / 5), mu_a = 0.1 + 0.2 * (k % 5);  // the file's comments, row order
     const auto& r = fit.rows[k];
-    EXPECT_EQ(r.status, "converged");
+    EXPECT_TRUE(r.converged) << r.status;
+    EXPECT_EQ(r.status.rfind("converged", 0), 0u) << r.status;  // "converged" or "converged; ..." (near iad's edge)
     EXPECT_NEAR(r.mu_a / mu_a, 1, 5e-3) << "row " << k + 1;
     EXPECT_NEAR(r.mu_s_prime / mu_s, 1, 5e-3) << "row " << k + 1;
     worst = std::max({worst, std::abs(r.mu_a / mu_a - 1), std::abs(r.mu_s_prime / mu_s - 1)});

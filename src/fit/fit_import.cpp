@@ -23,9 +23,9 @@ struct ImportedChannel {
 };
 
 // 'bssrdf fit slab --rxt FILE -f json': one channel per converged row, named by its wavelength, eta from the header,
-// coefficients in mm. Rows that did not converge (any other status: not solved, not converged, not unique, no
-// parameters reproduce the measurements, M_R only) are skipped and listed in `skipped`. When every kept row has a
-// wavelength within [kMinWavelength, kMaxWavelength] nm, strictly increasing, they are the spectral material's
+// coefficients in mm. Rows that did not converge (a status not starting "converged": not solved, not converged, not
+// unique, no parameters reproduce the measurements, M_R only) are skipped and listed in `skipped`. When every kept row
+// has a wavelength within [kMinWavelength, kMaxWavelength] nm, strictly increasing, they are the spectral material's
 // wavelengths (a repeated or decreasing one is refused: a medium has one value per wavelength).
 struct RxtRows {
   std::vector<ImportedChannel> channels;
@@ -44,7 +44,8 @@ RxtRows rxt_rows(const nlohmann::json& fit, const std::string& fit_file, std::st
     std::string name = format_number(wavelength);
     const std::string line = "line " + std::to_string(r.at("line").get<int>());
     const std::string status = r.value("status", std::string("converged"));  // results before status: all kept
-    if (status != "converged") {
+    // "converged" or "converged; ..." / "converged at the edge ..." (a note on iad's search, the result holds)
+    if (status.rfind("converged", 0) != 0) {
       out.skipped.push_back(line + (wavelength > 0 ? " (" + name + " nm)" : "") + ": " + status);
       continue;
     }

@@ -11,6 +11,7 @@
 #include "bssrdf/fit/integrating_sphere.hpp"
 #include "bssrdf/montecarlo.hpp"
 #include "constrained_search.hpp"
+#include "iad_search_edge.hpp"
 #include "slab_inversion.hpp"
 
 namespace bssrdf {
@@ -325,7 +326,7 @@ RxtFit fit_rxt(const RxtFile& input, const RxtFitOptions& options) {
     else if (!r.determined)
       fit.status = "not unique: the measurements do not separate absorption from scattering";
     else
-      fit.status = "converged";
+      fit.status = constraint ? "converged" : converged_status(fit.mu_a, fit.mu_s_prime, fit.g, fit.chi2);
     out.rows.push_back(fit);
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

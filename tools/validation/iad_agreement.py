@@ -4,7 +4,10 @@
 For every .rxt file under RXT_DIR (iad's tests/rxt: 0_sphere, 1_sphere, 2_sphere) this runs ours
 and compares mu_a and mu_s' row by row with iad's results, read from IAD_RESULTS/<sphere dir>/<name>.txt
 (iad's output file) or computed here with --iad PATH. Rows compared: those iad solves ('*') and we
-solve; rows iad flags are reported with whether we flag them too.
+solve. Rows iad flags (its last column not '*': a measurement out of range, or 'x', its search
+stalled) are counted by what ours says: flagged (not converged), marked (converged, with a status
+saying why iad may stop there, e.g. near its albedo edge a = 1), or neither; --require-iad-flags-marked
+fails when any row iad flags is neither. Rows we flag or mark that iad solves are counted too.
 
 iad prints 4 decimals, too few for a 0.1 % comparison; its results here come from iad 4-0-0 with
 one change, the format of its result rows ("%6.4f" -> "%.10g" in print_optical_property_result),
@@ -68,6 +71,8 @@ def main():
     p.add_argument('--max-p90', type=float, default=None)
     p.add_argument('--details', action='store_true', help='print every file')
     p.add_argument('--require-all', action='store_true', help='fail when a file is not compared')
+    p.add_argument('--require-iad-flags-marked', action='store_true',
+                   help='fail when a row iad flags is neither flagged nor marked by ours')
     a = p.parse_args()
     if a.quadrature and not 4 <= a.quadrature <= 256:
         print(f'--quadrature = {a.quadrature}: accepted range is 4 to 256', file=sys.stderr)
@@ -80,7 +85,8 @@ def main():
     for rel in files:
         sphere_dir, name = os.path.split(rel)
         s = summary.setdefault(sphere_dir, {'files': 0, 'parsed': 0, 'refused': [], 'dev': [], 'rows': 0,
-                                            'iad_flagged': 0, 'both_flagged': 0, 'only_iad': 0, 'only_ours': 0,
+                                            'iad_flagged': 0, 'both_flagged': 0, 'marked': 0, 'only_iad': 0,
+                                            'only_ours': 0, 'only_ours_marked': 0, 'unmarked': [],
                                             'truncated': []})
         s['files'] += 1
         rxt = os.path.join(a.rxt_dir, rel)
@@ -116,16 +122,21 @@ def main():
         for mine, theirs in zip(ours, reference):
             iad_ok = theirs['flag'] == '*'
             ours_ok = mine['converged']
+            ours_marked = ours_ok and mine['status'] != 'converged'  # converged, with a note on iad's search
             if a.details and iad_ok != ours_ok:
                 print(f"    {rel} row {mine['line']}: iad '{theirs['flag']}' {theirs['mu_a']:.4g} {theirs['mu_s_prime']:.4g}, "
                       f"ours {mine['mu_a']['value']:.4g} {mine['mu_s_prime']['value']:.4g} {mine['status']}")
             if not iad_ok:
                 s['iad_flagged'] += 1
-                s['both_flagged' if not ours_ok else 'only_iad'] += 1
+                s['both_flagged' if not ours_ok else 'marked' if ours_marked else 'only_iad'] += 1
+                if ours_ok and not ours_marked:
+                    s['unmarked'].append(f"{name} line {mine['line']} (iad '{theirs['flag']}')")
                 continue
             if not ours_ok:
                 s['only_ours'] += 1
                 continue
+            if ours_marked:
+                s['only_ours_marked'] += 1
             s['rows'] += 1
             for key in ('mu_a', 'mu_s_prime'):
                 ref = theirs[key]
@@ -141,12 +152,15 @@ def main():
           (f' {a.ours_args}' if a.ours_args else '') +
           f'; iad results: {a.iad_results}' + (f' (iad {a.iad_args})' if a.iad else ''))
     print('| files | parse | rows compared | median / p90 of |ours/iad - 1| (mu_a, mu_s\') '
-          '| iad flags: also ours / only iad | only ours flag |')
+          '| iad flags: ours flag / mark / neither | iad solves: ours flag / mark |')
     print('|---|---|---|---|---|---|')
     for d, s in sorted(summary.items()):
         med, p90 = percentile(s['dev'], 0.5), percentile(s['dev'], 0.9)
         print(f"| {d} | {s['parsed']} of {s['files']} | {s['rows']} | {med:.2e} / {p90:.2e} "
-              f"| {s['both_flagged']} / {s['only_iad']} | {s['only_ours']} |")
+              f"| {s['both_flagged']} / {s['marked']} / {s['only_iad']} | {s['only_ours']} / {s['only_ours_marked']} |")
+        if a.require_iad_flags_marked and s['only_iad']:
+            failed = True
+            print(f"rows iad flags that ours neither flags nor marks ({d}): {', '.join(s['unmarked'])}")
         if a.max_median is not None and not med <= a.max_median:
             failed = True
         if a.max_p90 is not None and not p90 <= a.max_p90:
