@@ -19,6 +19,14 @@
 #include "bssrdf/spectral/cie.hpp"
 #include "bssrdf/spectral/colour.hpp"
 #include "bssrdf/spectral/colour_medium.hpp"
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_PNG
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wsign-compare"
+#include <stb/stb_image.h>
+#pragma GCC diagnostic pop
 #include "cli_runner.hpp"
 #include "spectral_medium.hpp"
 
@@ -192,6 +200,105 @@ TEST(ColourTables, KindsWithoutColourSayWhyInOneLine) {
   EXPECT_NE(test_cli::run("lut --kind albedo-radius " + test_spectral::kTintOptions + " --colour srgb -o a.json")
                 .err.find("one (g, eta) in no colour"),
             std::string::npos);
+}
+
+// The preview of a spectral medium: its colour in sRGB (each wavelength's profile summed with the colour weights).
+struct Decoded {
+  int width = 0, height = 0;
+  std::vector<unsigned char> pixels;
+  const unsigned char* at(int x, int y) const { return pixels.data() + (static_cast<std::size_t>(y) * width + x) * 3; }
+};
+
+Decoded decode_png(const std::string& bytes) {
+  Decoded out;
+  int channels = 0;
+  unsigned char* data = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()),
+                                              static_cast<int>(bytes.size()), &out.width, &out.height, &channels, 3);
+  if (!data) {
+    ADD_FAILURE() << "not a PNG";
+    return out;
+  }
+  out.pixels.assign(data, data + static_cast<std::size_t>(out.width) * out.height * 3);
+  stbi_image_free(data);
+  return out;
+}
+
+// A nearly grey medium: its colour profile stays inside linear sRGB over the preview's width.
+const std::string kPaleOptions = "--wavelengths 450,550,650 --sigma-a 0.012,0.01,0.008 --sigma-s 10 --g 0.8 --eta 1.4";
+
+TEST(ColourPreview, SwatchShowsTheColourOfTheTotals) {
+  const auto png = test_cli::temp("pale.png");
+  const auto run = test_cli::run("lut " + kPaleOptions + " --colour srgb --preview " + png.string());
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_TRUE(run.err.empty()) << run.err;  // nothing clipped
+  const auto image = decode_png(test_cli::slurp(png));
+  ASSERT_EQ(image.width, 512);
+  // Far into the light, the surface shows the colour of the wavelengths' total reflectances (the model the preview
+  // names: the registry's default for this medium).
+  Medium m;
+  m.wavelength_nm = {450, 550, 650};
+  m.sigma_a = {0.012, 0.01, 0.008};
+  m.sigma_s.assign(3, 10.0);
+  m.g.assign(3, 0.8);
+  m.eta = 1.4;
+  m.channel_names = wavelength_channel_names(m.wavelength_nm);
+  const auto model = make_model(default_model(m).name);
+  std::vector<double> totals;
+  for (std::size_t i = 0; i < 3; ++i) totals.push_back(model->total_reflectance(m.reduced(i)));
+  const auto rgb = ColourIntegrator(m.wavelength_nm, {Illuminant::d65, ColourSpace::srgb}).rgb(totals);
+  for (int k = 0; k < 3; ++k) {
+    ASSERT_GT(rgb[k], 0.05);
+    ASSERT_LT(rgb[k], 1.0);
+    EXPECT_NEAR(image.at(0, 10)[k], to_srgb8(rgb[k]), 1) << "RGB"[k];
+  }
+  // The table's --colour does not change the preview: a preview is an sRGB image.
+  const auto other = test_cli::temp("pale-acescg.png");
+  ASSERT_EQ(test_cli::run("lut " + kPaleOptions + " --colour acescg --preview " + other.string()).status, 0);
+  EXPECT_EQ(decode_png(test_cli::slurp(other)).pixels, image.pixels);
+}
+
+// Far from the edge a skin-like medium leaves deep red, outside linear sRGB: clipped in the image only, said in one
+// stderr line and in the PNG's text.
+TEST(ColourPreview, ClippingIsSaidOnStderrAndInThePng) {
+  const auto m = test_spectral::skin_like_medium(20);
+  std::string options = "--wavelengths ", sa = " --sigma-a ", ss = " --sigma-s ";
+  for (std::size_t i = 0; i < m.channels(); ++i) {
+    const std::string comma = i ? "," : "";
+    options += comma + format_number(m.wavelength_nm[i]);
+    sa += comma + format_number(m.sigma_a[i]);
+    ss += comma + format_number(m.sigma_s[i]);
+  }
+  const auto png = test_cli::temp("skin.png"), table = test_cli::temp("skin.json");
+  const auto run = test_cli::run("lut " + options + sa + ss + " --g 0.8 --eta 1.4 --colour srgb --preview " +
+                                 png.string() + " -o " + table.string() + " -q");
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_EQ(test_cli::count_lines(run.err), 1) << run.err;
+  EXPECT_NE(run.err.find("clipped to [0, 1] in the image only"), std::string::npos) << run.err;
+  const auto bytes = test_cli::slurp(png);
+  EXPECT_NE(bytes.find(std::string("tEXtWarning\0preview: B outside linear sRGB", 41)), std::string::npos);
+  EXPECT_NE(bytes.find("colour: linear sRGB under D65"), std::string::npos);
+  EXPECT_EQ(decode_png(bytes).width, 512);
+  // The table keeps the negative values: its colour line says so.
+  EXPECT_NE(test_cli::slurp(table).find("B < 0 from"), std::string::npos);
+}
+
+// The library: display weights sum channels; the identity weights are the plain RGB preview.
+TEST(ColourPreview, DisplayWeightsSumChannels) {
+  const auto model = make_model("pbd");
+  const auto m = test_spectral::tint_medium();
+  const auto three = [&] {
+    Medium rgb = m;
+    rgb.wavelength_nm.clear();
+    rgb.sigma_a.resize(3), rgb.sigma_s.resize(3), rgb.g.resize(3);
+    rgb.channel_names = {"R", "G", "B"};
+    return rgb;
+  }();
+  PreviewOptions o;
+  const auto plain = render_material_preview(three, *model, o);
+  o.display_weights = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  EXPECT_EQ(render_material_preview(three, *model, o).image.pixels, plain.image.pixels);
+  EXPECT_THROW(render_material_preview(m, *model, o), InvalidInput);  // 5 channels, 3 weights
+  EXPECT_THROW(render_material_preview(m, *model), InvalidInput);     // 5 channels, no weights
 }
 
 }  // namespace
