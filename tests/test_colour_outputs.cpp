@@ -100,8 +100,9 @@ TEST(ColourTables, RadialTableTotalsAreTheColourOfTheSpectralTotals) {
   const auto colour = colour_medium(m, model, acescg);
   RadialKindOptions options;
   options.table.energy = 0.99999;
-  const auto built =
-      tabulate_radial({std::nullopt, &colour.rgb, colour.model.get(), LengthUnit::millimetre, "", &colour}, options);
+  const auto built = tabulate_radial({std::nullopt, &colour.rgb, colour.model.get(), LengthUnit::millimetre, "",
+                                      TableColour{colour.note, colour.summary()}},
+                                     options);
   const auto& t = built.table;
   const auto& radius = t.channel("radius").values;
   std::vector<double> totals;
@@ -192,7 +193,6 @@ TEST(ColourCli, LutRecordsTheColourInJsonAndCsv) {
 
 TEST(ColourCli, LutRefusesColourWhereItDoesNotApply) {
   for (const std::string& args : {"lut " + kSpectral + " --colour srgb --kind albedo-radius -o x.exr",
-                                  "lut " + kSpectral + " --colour srgb --kind transmission -o x.exr",
                                   "lut " + kSpectral + " --colour srgb --reference -o x.exr",
                                   "lut " + kSpectral + " --colour srgb --pixel 0.1 -o x.exr",
                                   std::string("lut --sigma-a 0.1 --sigma-s 1 --colour srgb -o x.exr"),

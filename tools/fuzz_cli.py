@@ -25,7 +25,7 @@ COMMANDS = {
                   "--thickness", "--depth-bins", "--roulette-threshold", "--wavelengths", "--colour", "--illuminant"],
     "transmission": ["--sigma-a", "--sigma-s", "--eta", "--samples", "--d-min", "--d-max"],
     "lut": ["--sigma-a", "--sigma-s", "--kind", "--samples", "--taps", "--count", "--photons", "--tolerance",
-            "--size", "--energy", "--band", "--wavelengths", "--colour", "--illuminant"],
+            "--size", "--energy", "--band", "--wavelengths", "--colour", "--illuminant", "--preview", "--thickness"],
     "fit gaussians": ["--sigma-a", "--sigma-s", "-n", "--samples"],
     "fit albedo": ["--albedo", "--distance", "--eta", "--g"],
     "materials export": ["--sigma-a", "--sigma-s-prime", "--g", "--eta", "--unit", "--channels", "--to", "--wavelengths",
@@ -63,6 +63,11 @@ def mutated_rxt(rng):
 
 # Small photon counts keep Monte Carlo runs short; the rest are random.
 SAFE = {"-n": "2000", "--photons": "2000", "--profile-photons": "2000"}
+# Valid values, sometimes, so the mutations also reach the paths behind them (every lut kind, a spectral medium in
+# colour: --wavelengths with the base's one coefficient for all).
+VALID = {"--kind": ["radial", "albedo-radius", "transmission", "preintegrated", "penumbra", "separable", "gaussians"],
+         "--wavelengths": ["450,550,650", "400,500,600,700"], "--colour": ["srgb", "acescg", "rec2020"],
+         "--illuminant": ["d65", "a"], "--thickness": ["0.5,2", "1"]}
 
 
 def is_number(text):
@@ -94,6 +99,10 @@ def main():
                     args.append(option)
                     continue
                 value = rng.choice(HOSTILE) if rng.random() < 0.8 or option not in SAFE else SAFE[option]
+                if option in VALID and rng.random() < 0.5:
+                    value = rng.choice(VALID[option])
+                if option == "--preview":  # a PNG in the scratch directory, or a hostile name there
+                    value = os.path.join(tmp, f"p{i}.png" if rng.random() < 0.7 else f"p{i}" + rng.choice(HOSTILE))
                 if option == "--fixed-mu-s" and rng.random() < 0.5:
                     value = rng.choice(POWER_LAWS)
                 if option in SAFE and is_number(value) and abs(float(value)) > 1e5:
@@ -116,7 +125,7 @@ def main():
                 outcomes["exit 0"] += 1
             elif run.returncode == 2 and err.count("\n") == 1 and "internal error" not in err:
                 outcomes["exit 2 (one line)"] += 1
-                if any(os.path.exists(p) for p in (output, output.replace(".json", ".exr"))):
+                if any(os.path.exists(p) for p in (output, output.replace(".json", ".exr"), os.path.join(tmp, f"p{i}.png"))):
                     findings.append(("file left after exit 2", args))
             else:
                 findings.append((f"exit {run.returncode}: {err.strip()[:200]!r}", args))

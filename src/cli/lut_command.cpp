@@ -6,6 +6,7 @@
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <optional>
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/io/atomic_file.hpp"
@@ -82,7 +83,8 @@ void tabulate_all(const LutOptions& o, const TableKind& kind) {
   const auto& materials = database.all();
   const auto progress = progress_bar("lut --all");
   const auto start = std::chrono::steady_clock::now();
-  std::vector<std::string> encoded(materials.size()), failure(materials.size()), previews(materials.size());
+  std::vector<std::string> encoded(materials.size()), failure(materials.size()), previews(materials.size()),
+      notes(materials.size());
   std::size_t done = 0;
   std::mutex progress_mutex;
   parallel_for(materials.size(), o.threads, [&](std::size_t i) {
@@ -91,7 +93,11 @@ void tabulate_all(const LutOptions& o, const TableKind& kind) {
     one.threads = 1;
     try {
       encoded[i] = encode(kind.build(one), format, o.half);
-      if (!o.preview.empty()) previews[i] = render_preview(one, one.medium.resolve()).png;
+      if (!o.preview.empty()) {
+        auto preview = render_preview(one, one.medium.resolve());
+        previews[i] = std::move(preview.png);
+        if (!preview.warning.empty()) notes[i] = materials[i].name + ": " + preview.warning;
+      }
     } catch (const InvalidInput& e) {
       failure[i] = e.what();
     }
@@ -116,6 +122,8 @@ void tabulate_all(const LutOptions& o, const TableKind& kind) {
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   for (const auto& line : skipped) std::cerr << "bssrdf: skipped " << line << '\n';
+  for (std::size_t i = 0; i < materials.size(); ++i)
+    if (!notes[i].empty() && failure[i].empty()) std::cerr << "bssrdf: " << notes[i] << '\n';
   if (!o.quiet)
     std::cout << written << " " << o.kind << " tables in " << format_number(std::round(seconds * 1000) / 1000) << " s"
               << (skipped.empty() ? "" : ", " + std::to_string(skipped.size()) + " materials skipped (see stderr)")
@@ -236,21 +244,27 @@ Action register_lut(CLI::App& app) {
       throw InvalidInput("--layers: only with --kind radial --reference (Monte Carlo)");
     const auto& kind = table_kind(o->kind);
     if (o->all) return tabulate_all(*o, kind);
-    if (!o->preview.empty()) {
-      const auto preview = render_preview(*o, o->medium.resolve());
-      if (!o->output.empty()) format_for(*o, o->output);  // bad -o fails before anything is written
-      write_file_atomically(o->preview, preview.png);
-      if (!o->quiet) std::cout << "preview: " << o->preview << " (" << preview.description << ")\n";
-      if (o->output.empty()) return;
+    if (o->output.empty() && o->preview.empty())
+      throw InvalidInput("-o: give an output file (.exr, .json, .csv), or --preview FILE.png");
+    // Everything is made before anything is written: an error leaves no file, not even the preview.
+    std::optional<RenderedPreview> preview;
+    if (!o->preview.empty()) preview = render_preview(*o, o->medium.resolve());
+    std::optional<BuiltTable> built;
+    double ms = 0;
+    if (!o->output.empty()) {
+      const std::string format = format_for(*o, o->output);
+      const auto start = std::chrono::steady_clock::now();
+      built = kind.build(*o);
+      ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      write_file_atomically(o->output, encode(*built, format, o->half));
     }
-    if (o->output.empty()) throw InvalidInput("-o: give an output file (.exr, .json, .csv), or --preview FILE.png");
-    const std::string format = format_for(*o, o->output);
-    const auto start = std::chrono::steady_clock::now();
-    const BuiltTable built = kind.build(*o);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    write_file_atomically(o->output, encode(built, format, o->half));
-    if (!o->quiet)
-      std::cout << built.summary << "built in " << format_number(std::round(ms * 100) / 100)
+    if (preview) {
+      write_file_atomically(o->preview, preview->png);
+      if (!preview->warning.empty()) std::cerr << "bssrdf: " << preview->warning << '\n';
+      if (!o->quiet) std::cout << "preview: " << o->preview << " (" << preview->description << ")\n";
+    }
+    if (built && !o->quiet)
+      std::cout << built->summary << "built in " << format_number(std::round(ms * 100) / 100)
                 << " ms\nwritten: " << o->output << '\n';
   };
 }

@@ -40,8 +40,8 @@ BuiltTable with_model(const LutOptions& o, Tabulate&& tabulate) {
   const auto colour = spectral::colour_medium(resolved.medium, model, *settings);
   auto rgb = resolved;
   rgb.medium = colour.rgb;
-  BuiltTable built = tabulate(
-      rgb, TableContext{resolved.material, &colour.rgb, colour.model.get(), resolved.unit, chosen.note, &colour});
+  BuiltTable built = tabulate(rgb, TableContext{resolved.material, &colour.rgb, colour.model.get(), resolved.unit,
+                                                chosen.note, TableColour{colour.note, colour.summary()}});
   built.summary =
       "colour: " + colour.summary() + "\n" + (chosen.note.empty() ? "" : chosen.note + "\n") + built.summary;
   return built;
@@ -94,7 +94,11 @@ BuiltTable build_radial(const LutOptions& o) {
 // albedo-radius tables are dimensionless: only (g, eta) come from the medium (a material's first
 // channel, or --g and --eta, default 0 and 1.3).
 BuiltTable build_albedo_radius(const LutOptions& o) {
-  refuse_colour(o, "its rows are dimensionless, over every albedo: no medium's profile");
+  // Colour does not apply: the rows span every albedo for one (g, eta), in no colour; a renderer finds each of its
+  // channels' rows from that channel's own albedo, so one table serves a spectral medium at every wavelength.
+  refuse_colour(o,
+                "its rows are over every albedo for one (g, eta) in no colour: a renderer looks up each channel's "
+                "row by its own albedo; give no --colour");
   AlbedoRadiusKindOptions options;
   if (!o.medium.material.empty() || !o.medium.sigma_a.empty()) {
     const auto resolved = o.medium.resolve();
@@ -141,10 +145,11 @@ BuiltTable build_albedo_radius(const LutOptions& o) {
 }
 
 BuiltTable build_transmission(const LutOptions& o) {
-  refuse_colour(o, "slab totals; the profile kinds take it");
   if (!o.accuracy.empty())
     throw InvalidInput("--accuracy: only with --model auto (transmission tables use adding-doubling or the multipole)");
   const auto resolved = o.medium.resolve();
+  // With --colour (with --all: for the spectral materials), each wavelength's slab integrated per thickness to R, G, B.
+  const auto colour = o.all && !resolved.medium.spectral() ? std::nullopt : o.colour.resolve(resolved.medium);
   if (o.model_given && o.model != "multipole" && o.model != "adding-doubling")
     throw InvalidInput(
         "--model", "'" + o.model + "'",
@@ -163,7 +168,8 @@ BuiltTable build_transmission(const LutOptions& o) {
   auto thickness = slab_thicknesses(o.thickness, o.d_min, o.d_max, o.samples, resolved.unit,
                                     default_thickness_range(resolved.medium, options));
   for (double& d : thickness) d *= millimetres_per(resolved.unit);
-  return tabulate_transmission({resolved.material, &resolved.medium, nullptr, resolved.unit}, thickness, options);
+  return tabulate_transmission({resolved.material, &resolved.medium, nullptr, resolved.unit}, thickness, options,
+                               colour);
 }
 
 BuiltTable build_preintegrated(const LutOptions& o) {

@@ -69,6 +69,7 @@ std::optional<ImageErrorCheck> image_check(const LutOptions& o, LengthUnit unit)
 // The PNG preview (any kind; the model is --model where given, else pbd) and a line about it.
 struct RenderedPreview {
   std::string png, description;
+  std::string warning;  // one line for stderr when colours were clipped for display; empty otherwise
 };
 RenderedPreview render_preview(const LutOptions& o, const MediumOptions::Resolved& resolved);
 

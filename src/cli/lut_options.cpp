@@ -6,9 +6,11 @@
 #include <tuple>
 
 #include "bssrdf/error.hpp"
+#include "bssrdf/io/png_image.hpp"
 #include "bssrdf/lut/material_preview.hpp"
 #include "bssrdf/model.hpp"
 #include "bssrdf/model_registry.hpp"
+#include "bssrdf/spectral/colour_medium.hpp"
 #include "lut_kinds.hpp"
 
 namespace bssrdf::cli {
@@ -75,13 +77,36 @@ RenderedPreview render_preview(const LutOptions& o, const MediumOptions::Resolve
   PreviewOptions options;
   options.unit = resolved.unit;
   options.label = (resolved.material ? resolved.material->name : std::string("custom medium")) + ", " + model->name();
+  // A preview is an sRGB image: a spectral medium shows its colour in linear sRGB under --illuminant (D65 unless
+  // given), whatever --colour the table is in; each wavelength's exact profile, summed with the colour weights.
+  std::string colour;
+  if (resolved.medium.spectral()) {
+    const auto settings = o.colour.resolve(resolved.medium).value_or(spectral::ColourSettings{});
+    const spectral::ColourIntegrator integrator(resolved.medium.wavelength_nm,
+                                                {settings.illuminant, spectral::ColourSpace::srgb});
+    options.display_weights = integrator.rgb_weights();
+    colour = "; colour: " + spectral::describe(spectral::colour_note(integrator.wavelengths(), integrator.settings()));
+  }
   const auto preview = render_material_preview(resolved.medium, *model, options);
   const std::string u(symbol(resolved.unit));
-  return {encode_png(preview.image), std::to_string(preview.image.width) + " x " +
-                                         std::to_string(preview.image.height) + " px; shadow edge at the centre, +-" +
-                                         short_number(from_mm(preview.half_width, resolved.unit)) + ' ' + u +
-                                         ", ticks every " + short_number(from_mm(preview.tick, resolved.unit)) + ' ' +
-                                         u + "; " + model->name()};
+  RenderedPreview out;
+  out.description = std::to_string(preview.image.width) + " x " + std::to_string(preview.image.height) +
+                    " px; shadow edge at the centre, +-" + short_number(from_mm(preview.half_width, resolved.unit)) +
+                    ' ' + u + ", ticks every " + short_number(from_mm(preview.tick, resolved.unit)) + ' ' + u + "; " +
+                    model->name() + colour;
+  if (preview.clipped_columns > 0) {
+    std::string channels;
+    for (int k = 0; k < 3; ++k)
+      if (preview.clipped_channel[k]) channels += std::string(channels.empty() ? "" : ", ") + "RGB"[k];
+    out.warning = "preview: " + channels + " outside linear sRGB's gamut in " +
+                  std::to_string(preview.clipped_columns) + " of " + std::to_string(preview.image.width) +
+                  " columns (a colour sRGB cannot show), clipped to [0, 1] in the image only; tables keep the values";
+  }
+  std::vector<std::pair<std::string, std::string>> text{{"Software", std::string("bssrdf ") + BSSRDF_VERSION},
+                                                        {"Description", out.description}};
+  if (!out.warning.empty()) text.emplace_back("Warning", out.warning);
+  out.png = encode_png(preview.image, text);
+  return out;
 }
 
 }  // namespace bssrdf::cli

@@ -26,7 +26,18 @@ std::string number(double v) {
 Preview render_material_preview(const Medium& medium, const Model& model, const PreviewOptions& o) {
   medium.validate();
   const std::size_t n = medium.channels();
-  if (n != 1 && n != 3) throw InvalidInput("preview", std::to_string(n) + " channels", "1 (grey) or 3 (R, G, B)");
+  // Display channel k = sum_i weight[i][k] x medium channel i.
+  auto weight = o.display_weights;
+  if (weight.empty() && n != 1 && n != 3)
+    throw InvalidInput("preview", std::to_string(n) + " channels",
+                       "1 (grey) or 3 (R, G, B), or display weights per channel (a spectral medium's colour)");
+  if (weight.empty())
+    for (std::size_t i = 0; i < n; ++i)
+      weight.push_back(n == 1 ? std::array<double, 3>{1, 1, 1}
+                              : std::array<double, 3>{1.0 * (i == 0), 1.0 * (i == 1), 1.0 * (i == 2)});
+  if (weight.size() != n)
+    throw InvalidInput("preview display weights", std::to_string(weight.size()),
+                       "one per channel (" + std::to_string(n) + ")");
   if (o.width < 16 || o.width > 8192 || o.swatch_height < 1 || o.strip_height < 1 ||
       o.swatch_height + o.strip_height > 8192)
     throw InvalidInput("preview size", std::to_string(o.width) + "x" + std::to_string(o.swatch_height + o.strip_height),
@@ -44,20 +55,25 @@ Preview render_material_preview(const Medium& medium, const Model& model, const 
   const double raw = half / unit / 8, decade = std::pow(10.0, std::floor(std::log10(raw)));
   out.tick = unit * (raw / decade < 2 ? decade : raw / decade < 5 ? 2 * decade : 5 * decade);
   const double pixel = 2 * half / o.width;
-  const auto source = [&](std::size_t k) {
-    return n == 1 ? 0 : k;
-  };  // display channel k shows medium channel source(k)
   for (int x = 0; x < o.width; ++x) {
     const double d = -half + (x + 0.5) * pixel;  // signed distance from the edge; lit for d < 0
     const double r = std::max(std::abs(d), 1e-9);
     std::array<double, 3> swatch{}, hue{};
-    double top = 0;
-    for (std::size_t k = 0; k < 3; ++k) {
-      const auto& q = p[source(k)];
-      swatch[k] = q ? q->half_plane(d) : 0;
-      top = std::max(top, hue[k] = q ? q->reflectance(r) : 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!p[i]) continue;
+      const double exitance = p[i]->half_plane(d), R = p[i]->reflectance(r);
+      for (std::size_t k = 0; k < 3; ++k) {
+        swatch[k] += weight[i][k] * exitance;
+        hue[k] += weight[i][k] * R;
+      }
     }
+    const double top = std::max({hue[0], hue[1], hue[2]});
     for (std::size_t k = 0; k < 3; ++k) hue[k] = top > 0 ? hue[k] / top : 0;
+    // Outside [0, 1]: a colour linear sRGB cannot show; clipped (to_srgb8) and counted.
+    bool clipped = false;
+    for (std::size_t k = 0; k < 3; ++k)
+      if (swatch[k] < 0 || swatch[k] > 1 || hue[k] < 0) clipped = out.clipped_channel[k] = true;
+    out.clipped_columns += clipped;
     for (int y = 0; y < o.swatch_height; ++y)
       for (std::size_t k = 0; k < 3; ++k) out.image.at(x, y)[k] = to_srgb8(swatch[k]);
     for (int y = o.swatch_height; y < o.swatch_height + o.strip_height; ++y)

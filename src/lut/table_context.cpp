@@ -1,7 +1,6 @@
 #include "bssrdf/lut/table_context.hpp"
 
 #include "bssrdf/error.hpp"
-#include "bssrdf/spectral/colour_medium.hpp"
 
 namespace bssrdf {
 namespace {
@@ -36,20 +35,24 @@ void describe(LookupTable& table, const TableContext& context) {
   }
   if (context.medium) {
     const double mm = millimetres_per(context.unit);
+    // A colour table of a spectral medium's own coefficients (transmission) has the colour's channels; its
+    // coefficients are per wavelength of bssrdf:colour_wavelength_nm.
+    const bool per_wavelength = context.colour && context.medium->spectral();
     std::string names;
     for (const auto& n : context.medium->channel_names) names += (names.empty() ? "" : ",") + n;
-    table.set("bssrdf:channels", names);
+    table.set("bssrdf:channels", per_wavelength ? std::string("R,G,B") : names);
     table.set("bssrdf:eta", context.medium->eta);
     const std::string per_unit = "1/" + std::string(symbol(context.unit));
     table.set("bssrdf:sigma_a", join(context.medium->sigma_a, mm) + " " + per_unit);
     table.set("bssrdf:sigma_s", join(context.medium->sigma_s, mm) + " " + per_unit);
     table.set("bssrdf:g", join(context.medium->g, 1.0));
     // A spectral medium: its channels' wavelengths (the OpenEXR writer lays them out as spectral channels).
-    if (context.medium->spectral()) table.set("bssrdf:wavelength_nm", join(context.medium->wavelength_nm, 1.0));
+    if (context.medium->spectral() && !per_wavelength)
+      table.set("bssrdf:wavelength_nm", join(context.medium->wavelength_nm, 1.0));
   }
   if (context.colour) {  // the R, G, B channels integrated from the spectral medium's wavelengths
     const auto& note = context.colour->note;
-    table.set("bssrdf:colour", context.colour->summary());
+    table.set("bssrdf:colour", context.colour->line);
     table.set("bssrdf:colour_observer", note.observer);
     table.set("bssrdf:colour_illuminant", note.illuminant);
     table.set("bssrdf:colour_space", note.space);

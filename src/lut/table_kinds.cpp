@@ -12,6 +12,8 @@
 #include "bssrdf/lut/gaussian_mixture_table.hpp"
 #include "bssrdf/model_registry.hpp"
 #include "bssrdf/models/multipole.hpp"
+#include "bssrdf/spectral/colour_medium.hpp"
+#include "bssrdf/spectral/colour_transmission.hpp"
 #include "bssrdf/units.hpp"
 
 namespace bssrdf {
@@ -133,19 +135,28 @@ BuiltTable tabulate_albedo_radius(const AlbedoRadiusKindOptions& o) {
 }
 
 BuiltTable tabulate_transmission(const TableContext& context, std::vector<double> thickness_mm,
-                                 const TransmissionTableOptions& options) {
+                                 const TransmissionTableOptions& options,
+                                 const std::optional<spectral::ColourSettings>& colour) {
   BSSRDF_CHECK(context.medium != nullptr);
-  const auto t = build_transmission_table(*context.medium, std::move(thickness_mm), options);
+  auto t = build_transmission_table(*context.medium, std::move(thickness_mm), options);
   const multipole::Model model(1.0);
   TableContext described = context;
   described.model = &model;
+  if (colour) {
+    if (!context.medium->spectral())
+      throw InvalidInput("colour: needs a spectral medium (--wavelengths, or a material with wavelengths)");
+    const spectral::ColourIntegrator integrator(context.medium->wavelength_nm, *colour);
+    t = spectral::colour_transmission(t, integrator);
+    described.colour = TableColour{spectral::colour_note(integrator.wavelengths(), *colour),
+                                   spectral::colour_transmission_line(t, integrator)};
+  }
   auto table = to_lookup_table(t, described);  // throws when nothing is left
   const bool exact = options.model == "adding-doubling" && !options.reference_everywhere;
   table.set("bssrdf:model_description",
             exact ? std::string("total transmittance of slabs: adding-doubling (exact)")
                   : std::string("total transmittance of slabs: multipole (Donner & Jensen 2005) where valid") +
                         (options.reference || options.reference_everywhere ? ", Monte Carlo reference elsewhere" : ""));
-  return {std::move(table), summary(t, described), {}};
+  return {std::move(table), (colour ? "colour: " + described.colour->line + "\n" : "") + summary(t, described), {}};
 }
 
 BuiltTable tabulate_preintegrated(const TableContext& context, const PreintegratedKindOptions& o) {

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace bssrdf {
@@ -20,6 +21,8 @@ struct RgbImage {
 // Linear [0, 1] (clamped) to 8-bit sRGB.
 std::uint8_t to_srgb8(double linear);
 
-std::string encode_png(const RgbImage& image);  // throws InvalidInput for an empty image
+// Throws InvalidInput for an empty image. `text`: PNG tEXt chunks (keyword, Latin-1 text), e.g. {"Description", ...};
+// a keyword is 1-79 printable characters.
+std::string encode_png(const RgbImage& image, const std::vector<std::pair<std::string, std::string>>& text = {});
 
 }  // namespace bssrdf

@@ -9,12 +9,17 @@
 #include "bssrdf/materials.hpp"
 #include "bssrdf/medium.hpp"
 #include "bssrdf/model.hpp"
+#include "bssrdf/profile_report.hpp"
 #include "bssrdf/units.hpp"
 
 namespace bssrdf {
-namespace spectral {
-struct ColourMedium;
-}
+
+// The colour integration a table's R, G, B channels come from (a spectral medium's wavelengths summed with the colour
+// weights: spectral/colour_medium.hpp for profiles, spectral/colour_transmission.hpp for slab totals).
+struct TableColour {
+  ColourNote note;   // observer, illuminant, space, wavelengths
+  std::string line;  // one line: the colour, what was integrated and how
+};
 
 struct TableContext {
   std::optional<Material> material;  // when the medium came from the database
@@ -22,9 +27,10 @@ struct TableContext {
   const Model* model = nullptr;      // optional (transmission tables come from Monte Carlo)
   LengthUnit unit = LengthUnit::millimetre;
   std::string model_choice{};  // why this model when it is not `exact` by default or was chosen by auto; else empty
-  // A colour table of a spectral medium: `medium` is colour->rgb and `model` colour->model
-  // (spectral/colour_medium.hpp).
-  const spectral::ColourMedium* colour = nullptr;
+  // A colour table of a spectral medium. Profile kinds: `medium` is the colour stand-in and `model` the integrated
+  // colour model (spectral/colour_medium.hpp); transmission: `medium` is the spectral medium itself (its coefficients
+  // are then per wavelength of colour->note).
+  std::optional<TableColour> colour{};
 };
 
 // Adds bssrdf:tool, bssrdf:kind, bssrdf:material (+ source, citation), bssrdf:model (+ description,

@@ -30,6 +30,7 @@
 #include "bssrdf/lut/separable_kernel.hpp"
 #include "bssrdf/lut/table_context.hpp"
 #include "bssrdf/lut/transmission_table.hpp"
+#include "bssrdf/spectral/colour.hpp"
 
 namespace bssrdf {
 
@@ -79,9 +80,12 @@ BuiltTable tabulate_albedo_radius(const AlbedoRadiusKindOptions& options);
 std::string to_string(AlbedoRadiusLayoutRule layout);  // "pbrt", "family", "adaptive"
 
 // Total transmittance of slabs of context.medium at thickness_mm (mm), by options.model, with the
-// model description that says which solver made which rows.
+// model description that says which solver made which rows. With `colour` (a spectral medium), the table's channels
+// are R, G, B: each wavelength's slab solved, then integrated per thickness (spectral/colour_transmission.hpp), and
+// recorded as the context's colour.
 BuiltTable tabulate_transmission(const TableContext& context, std::vector<double> thickness_mm,
-                                 const TransmissionTableOptions& options);
+                                 const TransmissionTableOptions& options,
+                                 const std::optional<spectral::ColourSettings>& colour = std::nullopt);
 
 // Pre-integrated skin over (N.L, curvature); with an image tolerance the size is chosen (unless
 // size_given), and curvature_max with it (unless curvature_given).
