@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "../src/fit/iad_search_edge.hpp"
 #include "bssrdf/adding_doubling/slab.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/fit/integrating_sphere.hpp"
@@ -300,4 +301,20 @@ TEST(Rxt, LostLightCorrectionRecoversWhatTheSmallPortMissed) {
   EXPECT_NEAR(corrected.rows[0].mu_a / mu_a, 1, 0.01);
   EXPECT_NEAR(corrected.rows[0].mu_s_prime / mu_s_prime, 1, 0.01);
   EXPECT_THROW(fit_rxt(parse_rxt(header(0, "2") + "0.3 0.3\n", "no sphere"), options), InvalidInput);
+}
+
+TEST(Rxt, ConvergedRowsNearIadsAlbedoEdgesSayWhy) {
+  // a = mu_s / (mu_a + mu_s), mu_s = mu_s' / (1 - g): marked within 1 % of a = 1 or a = 0 and on
+  // either edge, plain "converged" elsewhere.
+  EXPECT_EQ(converged_status(0.1, 5, 0, 1e-20), "converged");      // a = 0.980
+  EXPECT_EQ(converged_status(0.1, 0.5, 0.8, 1e-20), "converged");  // a = 0.962
+  const auto near_one = converged_status(0.01, 5, 0, 1.6e-24);     // a = 0.998
+  EXPECT_EQ(near_one.rfind("converged; albedo a = 0.998004, within 1 % of 1", 0), 0u) << near_one;
+  EXPECT_NE(near_one.find("flag the row 'x'"), std::string::npos) << near_one;
+  EXPECT_NE(near_one.find("chi^2 = 1.6e-24"), std::string::npos) << near_one;
+  EXPECT_EQ(converged_status(0.01, 0.5, 0.5, 0).rfind("converged; albedo a = 0.990099", 0), 0u);  // mu_s = 1
+  EXPECT_NE(converged_status(5, 0.01, 0, 0).find("within 1 % of 0"), std::string::npos);          // a = 0.002
+  EXPECT_EQ(converged_status(0, 5, 0, 2.8).rfind("converged at the edge mu_a = 0", 0), 0u);
+  EXPECT_EQ(converged_status(1.4e-11, 5, 0, 2.8).rfind("converged at the edge mu_a = 0", 0), 0u);  // our bound
+  EXPECT_EQ(converged_status(0.3, 0, 0, 0.085).rfind("converged at the edge mu_s' = 0", 0), 0u);
 }
