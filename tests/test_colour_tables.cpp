@@ -266,6 +266,20 @@ TEST(ColourReferenceTable, IsEachWavelengthsRunIntegrated) {
   EXPECT_NE(attribute(t, "bssrdf:layers").find("(2 layers)"), std::string::npos);
 }
 
+// --pixel: a colour table's image error is judged against its colour model (each wavelength's profile integrated), so
+// an interpolated radial table is within a fraction of a code value of it.
+TEST(ColourTables, ImageErrorAgainstTheColourModel) {
+  const auto path = test_cli::temp("pixel.json");
+  const auto run =
+      test_cli::run("lut " + test_spectral::kTintOptions + " --colour acescg --pixel 0.05 -q -o " + path.string());
+  ASSERT_EQ(run.status, 0) << run.err;
+  const auto table = nlohmann::json::parse(test_cli::slurp(path));
+  const double error = table["attributes"]["bssrdf:image_error"].get<double>();
+  EXPECT_GT(error, 0.0);
+  EXPECT_LT(error, 1.0);  // code values; measured 0.29
+  EXPECT_EQ(attribute(table, "bssrdf:colour_space"), "ACEScg");
+}
+
 // The preview of a spectral medium: its colour in sRGB (each wavelength's profile summed with the colour weights).
 struct Decoded {
   int width = 0, height = 0;

@@ -32,8 +32,6 @@ BuiltTable with_model(const LutOptions& o, Tabulate&& tabulate) {
     if (!chosen.note.empty()) built.summary = chosen.note + "\n" + built.summary;
     return built;
   }
-  if (!o.pixel.empty())
-    throw InvalidInput("--pixel: not with --colour (the image check re-renders the model per channel, not the colour)");
   if (o.kind == "gaussians" && o.count == 0 && model_entry(chosen.name).own_gaussians)
     throw InvalidInput("--colour: --model " + chosen.name +
                        "'s own Gaussians are per wavelength; give --count N to fit N to the colour profile");

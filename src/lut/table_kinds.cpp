@@ -28,8 +28,13 @@ struct ImageJudge {
 
 std::optional<ImageJudge> judge_for(const TableContext& context, const std::optional<ImageErrorCheck>& check) {
   if (!check) return std::nullopt;
-  return ImageJudge{judge_against(*context.medium, ModelReference(make_model(context.model->name())), check->pixel),
-                    *check};
+  // A colour table is judged against its colour model (each wavelength's profile integrated), held by the caller for
+  // the table's lifetime: borrowed, not owned.
+  const auto reference =
+      context.colour
+          ? ModelReference(std::shared_ptr<const Model>(std::shared_ptr<const Model>(), context.model), false)
+          : ModelReference(make_model(context.model->name()));
+  return ImageJudge{judge_against(*context.medium, reference, check->pixel), *check};
 }
 
 bool sized_by_image(const std::optional<ImageJudge>& j) { return j && j->check.tolerance; }
