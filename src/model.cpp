@@ -8,6 +8,7 @@
 #include "bssrdf/check.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/quadrature.hpp"
+#include "bssrdf/root_finding.hpp"
 
 namespace bssrdf {
 
@@ -16,20 +17,17 @@ double Model::cumulative_reflectance(const Reduced<double>& m, double r) const {
   return integrate_radial([&](double x) { return reflectance(m, x); }, 0.0, r, m.ell, 1e-9).value;
 }
 
-double Model::albedo_prime_from_total(double total, double eta) const {
-  const auto total_at = [&](double a) { return total_reflectance(reduced_optical(a, eta)); };
-  const double highest = total_at(1.0);
-  if (!(total >= 0 && total <= highest) || !std::isfinite(total))
-    throw InvalidInput(
-        "total_reflectance", format_number(total),
-        "[0, " + format_number(highest) + "] for the " + name() + " model at eta = " + format_number(eta));
-  // The total rises monotonically with alpha': bisect, then polish with a few secant steps.
-  double lo = 0, hi = 1;
-  for (int iter = 0; iter < 200 && hi - lo > 1e-15; ++iter) {
-    const double mid = 0.5 * (lo + hi);
-    (total_at(mid) < total ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
+double Model::albedo_prime_from_total(double total, double eta, double g) const {
+  const auto total_at = [&](double a) { return total_reflectance(reduced_optical(a, g, eta)); };
+  const double lowest = total_at(0.0), highest = total_at(1.0);
+  if (!(total >= lowest && total <= highest) || !std::isfinite(total))
+    throw InvalidInput("total_reflectance", format_number(total),
+                       "[" + format_number(lowest) + ", " + format_number(highest) + "] for the " + name() +
+                           " model at eta = " + format_number(eta) + ", g = " + format_number(g));
+  // The total rises monotonically with alpha'.
+  return illinois_root([&](double a) { return total_at(a) - total; }, 0.0, 1.0, lowest - total, highest - total, 1e-15,
+                       0.0, 1e-15 * total)
+      .x;
 }
 
 double Model::radius_for_fraction(const Reduced<double>& m, double fraction) const {

@@ -98,10 +98,6 @@ std::vector<ModelEntry> build() {
   exact.fit_form = {fit_forms::Numeric{}};
   exact.singular_at_origin = true;  // single scattering: R ~ 1/r
   exact.auto_candidate = true;
-  // Its own monotone inversion: the table covers alpha' 0.001-0.9999 only, so [0, 1] cannot bracket.
-  exact.albedo_prime_for_total = [](double total, double g, double eta) {
-    return exact_albedo_prime_from_total(bundled_exact_table(), total, g, eta);
-  };
   // Its accuracy against fresh Monte Carlo at random points off the grid, beyond the runs' own noise
   // (tools/validation/exact_vs_montecarlo.txt, exact_extended_vs_montecarlo.txt): the worst total and
   // the worst relative L2 of r R(r) (near or far) over the validation points of each region, and over

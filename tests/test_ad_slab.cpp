@@ -99,6 +99,32 @@ TEST(AddingDoubling, ConservesEnergyWithoutAbsorption) {
   }
 }
 
+TEST(AddingDoubling, FixedSizeAngleCountsConserveEnergyAndKeepTrappedLightDark) {
+  // 8, 12 and 16 angles run on fixed-size matrices, 9 and 17 on the general path. A clear slab of
+  // index 1.4 in air traps the grazing angles between two total reflections (a zero row with a
+  // zero source): they must stay dark, not 0/0. Collimated T of the clear slab is (1 - r)/(1 + r).
+  const double r = std::pow(0.4 / 2.4, 2);
+  for (int points : {8, 9, 12, 16, 17}) {
+    Options o;
+    o.points = points;
+    for (auto incidence : {Incidence::collimated, Incidence::diffuse}) {
+      Slab clear = one_layer(0.0, 0.0, 1.4, 1.0);
+      clear.layers[0].sigma_a = 0;
+      const auto c = solve(clear, incidence, o);
+      EXPECT_NEAR(c.specular_reflectance + c.diffuse_reflectance + c.total_transmittance, 1, 1e-12)
+          << points << " angles, " << to_string(incidence);
+      if (incidence == Incidence::collimated) {
+        EXPECT_NEAR(c.total_transmittance, (1 - r) / (1 + r), 1e-14);
+      }
+      Slab s = one_layer(1.0, 0.8, 1.4, 3.0);
+      s.above = s.below = {{1.5, 1.0, 0.0}};
+      const auto t = solve(s, incidence, o);
+      EXPECT_NEAR(t.specular_reflectance + t.diffuse_reflectance + t.total_transmittance, 1, 1e-9)
+          << points << " angles, " << to_string(incidence);
+    }
+  }
+}
+
 TEST(AddingDoubling, PureAbsorberMatchesExactExponentialIntegrals) {
   // Index-matched, no scattering: collimated T = exp(-b); diffuse T = 2 E_3(b) = int 2 mu exp(-b/mu).
   for (double b : {0.1, 1.0, 3.0}) {

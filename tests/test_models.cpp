@@ -60,14 +60,14 @@ TEST_P(EachModel, AlbedoInversionRoundTrips) {
   for (double eta : kEtas)
     for (double a : kAlbedos) {
       const double total = model->total_reflectance(reduced_optical(a, eta));
-      EXPECT_NEAR(model->albedo_prime_from_total(total, eta), a, 1e-12) << "alpha'=" << a << " eta=" << eta;
+      EXPECT_NEAR(model->albedo_prime_from_total(total, eta, 0.0), a, 1e-12) << "alpha'=" << a << " eta=" << eta;
     }
 }
 
 TEST_P(EachModel, AlbedoInversionRejectsUnreachableTotals) {
-  EXPECT_THROW(model->albedo_prime_from_total(1.2, 1.3), InvalidInput);
-  EXPECT_THROW(model->albedo_prime_from_total(-0.1, 1.3), InvalidInput);
-  EXPECT_THROW(model->albedo_prime_from_total(std::nan(""), 1.3), InvalidInput);
+  EXPECT_THROW(model->albedo_prime_from_total(1.2, 1.3, 0.0), InvalidInput);
+  EXPECT_THROW(model->albedo_prime_from_total(-0.1, 1.3, 0.0), InvalidInput);
+  EXPECT_THROW(model->albedo_prime_from_total(std::nan(""), 1.3, 0.0), InvalidInput);
 }
 
 TEST_P(EachModel, EnergyRadiusHoldsTheRequestedFraction) {

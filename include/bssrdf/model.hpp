@@ -46,8 +46,9 @@ class Model {
   ValidityReport validity(const Reduced<double>& m) const;
 
   // Albedo inversion: the reduced albedo alpha' whose total reflectance equals `total` at index
-  // eta. Throws InvalidInput when `total` is outside what the model can produce at that eta.
-  virtual double albedo_prime_from_total(double total, double eta) const;
+  // eta and anisotropy g (models that see only alpha' give the same answer for every g). Throws
+  // InvalidInput when `total` is outside what the model can produce there.
+  virtual double albedo_prime_from_total(double total, double eta, double g) const;
 
   // The radius holding `fraction` (0 < fraction < 1) of the total reflectance.
   double radius_for_fraction(const Reduced<double>& m, double fraction) const;

@@ -91,9 +91,6 @@ struct ModelEntry {
   // The model's own sum of 2D Gaussians at these coefficients, R(r) = sum w G2(v, r) (lut --kind
   // gaussians without --count: own_mixture_table); null if it has none. `model` is this row's make().
   std::function<quantized_diffusion::Mixture<double>(const Model& model, const Reduced<double>& m)> own_gaussians;
-  // The reduced albedo whose total is `total` at (g, eta), g-aware (fit albedo, profile fit starts);
-  // null: the fits' generic root finding on total_reflectance over alpha' in [0, 1].
-  std::function<double(double total, double g, double eta)> albedo_prime_for_total;
   // The same model with a given surface albedo A (profile --surface-albedo); null if it takes none.
   std::function<std::unique_ptr<Model>(double)> with_surface_albedo;
 };

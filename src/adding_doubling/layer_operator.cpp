@@ -57,35 +57,40 @@ PhaseBlocks truncated_phase_blocks(const Angles& angles, double g, double f) {
 // Diamond initialisation (Wiscombe 1976) of a layer of optical thickness t: the transfer equation
 // with the radiance inside taken as the mean of its values on the two faces. With light entering
 // at the top only, u = L_down(bottom) + L_up(top) and v = their difference solve two N x N systems.
-LayerOperator thin_layer(const Angles& angles, double albedo, const MatrixXd& same, const MatrixXd& opposite,
-                         double t) {
+// Returns R and T (equal from both sides) in the symmetric basis S^-1 (.) S, S = diag(s).
+template <int N>
+void thin_layer(const Angles& angles, double albedo, const Square<N>& same, const Square<N>& opposite, double t,
+                const Column<N>& s, Square<N>& R, Square<N>& T) {
   const int n = static_cast<int>(angles.size());
-  VectorXd w(n), mu(n), flux(n);
+  Column<N> w(n), mu(n);
   for (int i = 0; i < n; ++i) {
     w(i) = angles.weight[i];
     mu(i) = angles.mu[i];
-    flux(i) = 2 * mu(i) * w(i);
   }
-  const MatrixXd Sp = albedo / 2 * same * w.asDiagonal();
-  const MatrixXd Sm = albedo / 2 * opposite * w.asDiagonal();
-  MatrixXd D = (mu / t).asDiagonal();
-  const MatrixXd I = MatrixXd::Identity(n, n);
-  const MatrixXd G = D + I / 2 - Sp, H = D - I / 2 + Sp;
-  const MatrixXd U = (G - Sm).partialPivLu().solve(H + Sm);
-  const MatrixXd V = (G + Sm).partialPivLu().solve(H - Sm);
-  // Radiance operators to flux operators: C (.) C^-1 with C = diag(2 mu w).
-  const MatrixXd R = flux.asDiagonal() * ((U - V) / 2) * flux.cwiseInverse().asDiagonal();
-  const MatrixXd T = flux.asDiagonal() * ((U + V) / 2) * flux.cwiseInverse().asDiagonal();
-  return {R, R, T, T};
+  const Square<N> Sp = albedo / 2 * same * w.asDiagonal();
+  const Square<N> Sm = albedo / 2 * opposite * w.asDiagonal();
+  Square<N> D = (mu / t).asDiagonal();
+  const Square<N> I = Square<N>::Identity(n, n);
+  const Square<N> G = D + I / 2 - Sp, H = D - I / 2 + Sp;
+  const Square<N> U = (G - Sm).partialPivLu().solve(H + Sm);
+  const Square<N> V = (G + Sm).partialPivLu().solve(H - Sm);
+  // Radiance operators to the symmetric basis: the flux operators are C (.) C^-1 with C =
+  // diag(2 mu w) = S^2, so S^-1 C (.) C^-1 S = S (.) S^-1; symmetric up to rounding already.
+  const Column<N> s_inverse = s.cwiseInverse();
+  const Square<N> r = s.asDiagonal() * ((U - V) / 2) * s_inverse.asDiagonal();
+  const Square<N> d = s.asDiagonal() * ((U + V) / 2) * s_inverse.asDiagonal();
+  R = (r + r.transpose()) / 2;
+  T = (d + d.transpose()) / 2;
 }
 
 // Two copies of a homogeneous (up-down symmetric) layer: R2 = R + T R (I - RR)^-1 T,
 // T2 = T (I - RR)^-1 T (R commutes with (I - RR)^-1). Valid in any basis; the fallback of
 // double_symmetric.
-void double_layer(MatrixXd& R, MatrixXd& T) {
-  const MatrixXd I = MatrixXd::Identity(R.rows(), R.cols());
-  const MatrixXd Y = (I - R * R).partialPivLu().solve(T);
-  const MatrixXd TR = T * R;
+template <int N>
+void double_layer(Square<N>& R, Square<N>& T) {
+  const Square<N> I = Square<N>::Identity(R.rows(), R.cols());
+  const Square<N> Y = (I - R * R).partialPivLu().solve(T);
+  const Square<N> TR = T * R;
   R += TR * Y;
   T = T * Y;
 }
@@ -95,29 +100,69 @@ void double_layer(MatrixXd& R, MatrixXd& T) {
 // operators are C R, C T). Splitting (I - RR)^-1 = [(I - R)^-1 + (I + R)^-1] / 2 gives
 //   R2 + T2 = R + T (I - R)^-1 T,   R2 - T2 = R - T (I + R)^-1 T,
 // and I -+ R are positive definite (the eigenvalues of R lie in (-1, 1)), so each term is
-// W^T W with W = L^-1 T from a Cholesky factor: under half the operations of the LU form, with
-// symmetric results by construction. Returns false (R, T untouched) if a factorisation fails.
-bool double_symmetric(MatrixXd& R, MatrixXd& T) {
-  const auto n = R.rows();
-  MatrixXd sum = R, difference = R;  // lower triangles of R2 + T2 and R2 - T2
+// T A^-1 T = V V^T with V = T L^-T from a Cholesky factor A = L L^T: under half the operations of
+// the LU form, with symmetric results by construction. Returns false (R, T untouched) if a
+// factorisation fails. Written as whole-column and rank-one operations on fixed-size matrices,
+// which Eigen unrolls and vectorises: at 8-16 angles its blocked factorisation, triangular solve
+// and rank update spent most of their time in set-up and packing.
+template <int N>
+bool double_symmetric(Square<N>& R, Square<N>& T) {
+  const Eigen::Index n = R.rows();
+  Square<N> sum(n, n), difference(n, n);  // R2 + T2 and R2 - T2
+  Square<N> A(n, n), L(n, n), V(n, n);
   for (const double sign : {1.0, -1.0}) {
-    MatrixXd A = -sign * R;
+    // Cholesky factor of A = I - sign R, right-looking: column k of L, then A -= l_k l_k^T.
+    A = -sign * R;
     A.diagonal().array() += 1;
-    const Eigen::LLT<MatrixXd> cholesky(A);
-    if (cholesky.info() != Eigen::Success) return false;
-    const MatrixXd W = cholesky.matrixL().solve(T);
-    (sign > 0 ? sum : difference).selfadjointView<Eigen::Lower>().rankUpdate(W.transpose(), sign);
-  }
-  for (Eigen::Index j = 0; j < n; ++j)
-    for (Eigen::Index i = j; i < n; ++i) {
-      R(i, j) = R(j, i) = (sum(i, j) + difference(i, j)) / 2;
-      T(i, j) = T(j, i) = (sum(i, j) - difference(i, j)) / 2;
+    L.setZero();
+    for (Eigen::Index k = 0; k < n; ++k) {
+      if (!(A(k, k) > 0)) return false;
+      const double pivot = std::sqrt(A(k, k));
+      L.col(k).tail(n - k) = A.col(k).tail(n - k) / pivot;
+      A.noalias() -= L.col(k) * L.col(k).transpose();
     }
+    // V L^T = T, column by column.
+    for (Eigen::Index k = 0; k < n; ++k) {
+      V.col(k) = T.col(k);
+      for (Eigen::Index m = 0; m < k; ++m) V.col(k) -= L(k, m) * V.col(m);
+      V.col(k) /= L(k, k);
+    }
+    (sign > 0 ? sum : difference) = R + sign * V.lazyProduct(V.transpose());
+  }
+  R = (sum + difference) / 2;
+  T = (sum - difference) / 2;
   return true;
 }
 
-void double_in_symmetric_basis(MatrixXd& R, MatrixXd& T) {
-  if (!double_symmetric(R, T)) double_layer(R, T);
+template <int N>
+void double_in_symmetric_basis(Square<N>& R, Square<N>& T) {
+  if (!double_symmetric<N>(R, T)) double_layer<N>(R, T);
+}
+
+// The scattering layer of homogeneous_layer after delta-M: thin-layer start of thickness `start`,
+// then `doublings` doublings (or, for an infinite layer, doubling until nothing is transmitted).
+template <int N>
+LayerOperator scattering_layer(const Angles& angles, double albedo_m, const PhaseBlocks& phase, double start,
+                               int doublings, bool infinite) {
+  const int n = static_cast<int>(angles.size());
+  // Double in the symmetric basis: S^-1 (.) S with S = C^1/2 = diag(sqrt(2 mu w)).
+  Column<N> s(n);
+  for (int i = 0; i < n; ++i) s(i) = std::sqrt(2 * angles.mu[i] * angles.weight[i]);
+  const Column<N> s_inverse = s.cwiseInverse();
+  Square<N> R(n, n), T(n, n);
+  thin_layer<N>(angles, albedo_m, phase.same, phase.opposite, start, s, R, T);
+  auto to_flux = [&](const Square<N>& m) -> MatrixXd { return s.asDiagonal() * m * s_inverse.asDiagonal(); };
+  if (infinite) {
+    // Double until nothing is transmitted (each doubling squares the transmission far out);
+    // the column sums of the flux operator are s^T T / s^T.
+    auto transmitted = [&] { return ((s.transpose() * T).array() * s_inverse.transpose().array()).maxCoeff(); };
+    for (int k = 0; k < 80 && transmitted() > 1e-13; ++k) double_in_symmetric_basis<N>(R, T);
+    const MatrixXd R_flux = to_flux(R);
+    return {R_flux, R_flux, MatrixXd::Zero(n, n), MatrixXd::Zero(n, n)};
+  }
+  for (int k = 0; k < doublings; ++k) double_in_symmetric_basis<N>(R, T);
+  const MatrixXd R_flux = to_flux(R), T_flux = to_flux(T);
+  return {R_flux, R_flux, T_flux, T_flux};
 }
 
 }  // namespace
@@ -140,32 +185,21 @@ LayerOperator homogeneous_layer(const Angles& angles, double albedo, double g, d
     return {Z, Z, T, T};
   }
   const PhaseBlocks computed = phase ? PhaseBlocks{} : truncated_phase_blocks(angles, g, f);
-  const auto& [same, opposite] = phase ? *phase : computed;
+  const PhaseBlocks& blocks = phase ? *phase : computed;
   const double start_max = kStartThicknessPerMu * angles.mu.front();
   const bool infinite = std::isinf(tau);
   const int doublings = infinite ? 0 : std::max(0, static_cast<int>(std::ceil(std::log2(tau / start_max))));
-  const auto thin = thin_layer(angles, albedo_m, same, opposite, infinite ? start_max : std::ldexp(tau, -doublings));
-  // Double in the symmetric basis: S^-1 (.) S with S = C^1/2 = diag(sqrt(2 mu w)).
-  VectorXd s(n);
-  for (int i = 0; i < n; ++i) s(i) = std::sqrt(2 * angles.mu[i] * angles.weight[i]);
-  const VectorXd s_inverse = s.cwiseInverse();
-  auto to_symmetric = [&](const MatrixXd& flux) -> MatrixXd {
-    const MatrixXd m = s_inverse.asDiagonal() * flux * s.asDiagonal();
-    return (m + m.transpose()) / 2;  // symmetric up to rounding already
-  };
-  auto to_flux = [&](const MatrixXd& m) -> MatrixXd { return s.asDiagonal() * m * s_inverse.asDiagonal(); };
-  MatrixXd R = to_symmetric(thin.R_top), T = to_symmetric(thin.T_down);
-  if (infinite) {
-    // Double until nothing is transmitted (each doubling squares the transmission far out);
-    // the column sums of the flux operator are s^T T / s^T.
-    auto transmitted = [&] { return ((s.transpose() * T).array() * s_inverse.transpose().array()).maxCoeff(); };
-    for (int k = 0; k < 80 && transmitted() > 1e-13; ++k) double_in_symmetric_basis(R, T);
-    const MatrixXd R_flux = to_flux(R);
-    return {R_flux, R_flux, MatrixXd::Zero(n, n), MatrixXd::Zero(n, n)};
+  const double start = infinite ? start_max : std::ldexp(tau, -doublings);
+  switch (n) {
+    case 8:
+      return scattering_layer<8>(angles, albedo_m, blocks, start, doublings, infinite);
+    case 12:
+      return scattering_layer<12>(angles, albedo_m, blocks, start, doublings, infinite);
+    case 16:
+      return scattering_layer<16>(angles, albedo_m, blocks, start, doublings, infinite);
+    default:
+      return scattering_layer<Eigen::Dynamic>(angles, albedo_m, blocks, start, doublings, infinite);
   }
-  for (int k = 0; k < doublings; ++k) double_in_symmetric_basis(R, T);
-  const MatrixXd R_flux = to_flux(R), T_flux = to_flux(T);
-  return {R_flux, R_flux, T_flux, T_flux};
 }
 
 LayerOperator add(const LayerOperator& upper, const LayerOperator& lower) {

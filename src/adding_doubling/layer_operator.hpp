@@ -13,6 +13,15 @@
 
 namespace bssrdf::adding_doubling {
 
+// Fixed-size matrices for the angle counts inversions use most (iad's 8, oblique 12, the search's
+// 16): Eigen then unrolls the small products and allocates nothing, where the dynamic-size path
+// spends most of an 8-angle solve in its general product kernels and malloc. Any other count takes
+// the dynamic path (Eigen::Dynamic); the same formulas either way.
+template <int N>
+using Square = Eigen::Matrix<double, N, N>;
+template <int N>
+using Column = Eigen::Matrix<double, N, 1>;
+
 struct LayerOperator {
   Eigen::MatrixXd R_top;     // light arriving from above, reflected up
   Eigen::MatrixXd R_bottom;  // light arriving from below, reflected down

@@ -120,27 +120,20 @@ const Geometry& cached_geometry(const Slab& slab, int points, double incidence_c
   return cache.emplace(std::move(key), make_geometry(slab, points, incidence_cosine)).first->second;
 }
 
-std::vector<Totals> solve_with(const Slab& slab, const std::vector<Incidence>& incidences, const Geometry& geo) {
+// The scattering layers S between the slab's boundaries: totals for each incidence. Fixed-size
+// matrices at the common angle counts (see layer_operator.hpp: Square<N>), dynamic otherwise.
+template <int N>
+std::vector<Totals> with_boundaries(const Slab& slab, const std::vector<Incidence>& incidences, const Geometry& geo,
+                                    const LayerOperator& S, double optical_depth) {
+  using Matrix = Square<N>;
+  using Vector = Column<N>;
   const Angles& angles = geo.angles;
   const int n = static_cast<int>(angles.size());
   const Boundary& B_top = geo.top;
   const Boundary& B_bottom = geo.bottom;
-
-  // The scattering layers, added top to bottom.
-  LayerOperator S;
-  double optical_depth = 0;  // along the normal, true (not delta-M) coefficients
-  for (std::size_t k = 0; k < slab.layers.size(); ++k) {
-    const auto& l = slab.layers[k];
-    const double sigma_t = l.sigma_a + l.sigma_s;
-    const double tau = std::isinf(l.thickness) ? INFINITY : sigma_t * l.thickness;
-    const auto layer = homogeneous_layer(angles, sigma_t > 0 ? l.sigma_s / sigma_t : 0.0, l.g, tau, &geo.phase[k]);
-    S = k == 0 ? layer : add(S, layer);
-    optical_depth += tau;
-  }
-
   // Slab with its bottom boundary: y = (I - R_bottom Rb)^-1 T_down x is the downward flux at the
   // bottom face; R' = R_top + T_up Rb y, T' = Tb y.
-  VectorXd rb(n), tb(n), rt_out(n), rt_in(n), tt(n);
+  Vector rb(n), tb(n), rt_out(n), rt_in(n), tt(n);
   for (int i = 0; i < n; ++i) {
     rb(i) = B_bottom.r_top[i];
     tb(i) = B_bottom.t[i];
@@ -148,18 +141,20 @@ std::vector<Totals> solve_with(const Slab& slab, const std::vector<Incidence>& i
     rt_in(i) = B_top.r_bottom[i];
     tt(i) = B_top.t[i];
   }
-  const MatrixXd I = MatrixXd::Identity(n, n);
-  MatrixXd R1 = S.R_top, T1 = MatrixXd::Zero(n, n);
+  const Matrix I = Matrix::Identity(n, n);
+  Matrix R1 = S.R_top, T1 = Matrix::Zero(n, n);
   if (!std::isinf(optical_depth)) {
-    const MatrixXd Y = (I - S.R_bottom * rb.asDiagonal()).partialPivLu().solve(S.T_down);
-    R1 += S.T_up * rb.asDiagonal() * Y;
+    const Matrix R_bottom = S.R_bottom, T_down = S.T_down, T_up = S.T_up;
+    const Matrix Y = (I - R_bottom * rb.asDiagonal()).partialPivLu().solve(T_down);
+    R1.noalias() += T_up.lazyProduct(rb.asDiagonal() * Y);
     T1 = tb.asDiagonal() * Y;
   }
-
+  // Downward flux below the top boundary: x = tt f + rt_in R' x (one factorisation for all incidences).
+  const Eigen::PartialPivLU<Matrix> inward(I - rt_in.asDiagonal() * R1);
   std::vector<Totals> results;
   for (const auto incidence : incidences) {
     // Incident flux per angle (outside the slab, labelled by the slab angle it refracts into).
-    VectorXd incident = VectorXd::Zero(n);
+    Vector incident = Vector::Zero(n);
     double cannot_enter = 0;  // diffuse light at angles with no counterpart inside (n < ambient)
     if (incidence == Incidence::collimated) {
       incident(static_cast<Eigen::Index>(geo.beam)) = 1;
@@ -175,8 +170,12 @@ std::vector<Totals> solve_with(const Slab& slab, const std::vector<Incidence>& i
       }
       cannot_enter = std::max(0.0, 1 - sum);
     }
-    // Downward flux below the top boundary: x = tt f + rt_in R' x.
-    const VectorXd x = (I - rt_in.asDiagonal() * R1).partialPivLu().solve(tt.cwiseProduct(incident));
+    // Solved as a vector of run-time size (at most N, no allocation): Eigen's general triangular
+    // solver then skips zero entries, so angles that neither receive light nor couple to any
+    // (trapped between two total reflections in a clear sample: a zero row and zero source) stay
+    // dark instead of 0/0; its unrolled fixed-size solver would divide.
+    using Flux = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, N, 1>;
+    const Flux x = inward.solve(Flux(tt.cwiseProduct(incident)));
     Totals out;
     out.points = n;
     out.specular_reflectance = rt_out.dot(incident) + cannot_enter;
@@ -195,6 +194,30 @@ std::vector<Totals> solve_with(const Slab& slab, const std::vector<Incidence>& i
     results.push_back(out);
   }
   return results;
+}
+
+std::vector<Totals> solve_with(const Slab& slab, const std::vector<Incidence>& incidences, const Geometry& geo) {
+  // The scattering layers, added top to bottom.
+  LayerOperator S;
+  double optical_depth = 0;  // along the normal, true (not delta-M) coefficients
+  for (std::size_t k = 0; k < slab.layers.size(); ++k) {
+    const auto& l = slab.layers[k];
+    const double sigma_t = l.sigma_a + l.sigma_s;
+    const double tau = std::isinf(l.thickness) ? INFINITY : sigma_t * l.thickness;
+    const auto layer = homogeneous_layer(geo.angles, sigma_t > 0 ? l.sigma_s / sigma_t : 0.0, l.g, tau, &geo.phase[k]);
+    S = k == 0 ? layer : add(S, layer);
+    optical_depth += tau;
+  }
+  switch (geo.angles.size()) {
+    case 8:
+      return with_boundaries<8>(slab, incidences, geo, S, optical_depth);
+    case 12:
+      return with_boundaries<12>(slab, incidences, geo, S, optical_depth);
+    case 16:
+      return with_boundaries<16>(slab, incidences, geo, S, optical_depth);
+    default:
+      return with_boundaries<Eigen::Dynamic>(slab, incidences, geo, S, optical_depth);
+  }
 }
 
 // The tolerance loop over the number of angles; geometry(points) gives the slab's Geometry.

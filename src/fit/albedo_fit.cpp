@@ -41,7 +41,7 @@ AlbedoInversion invert_albedo(const std::string& model_name, double total, doubl
     model = make_model(model_name);
     cached_name = model_name;
   }
-  const double a = albedo_prime_for_total(*model, total, eta, g);
+  const double a = model->albedo_prime_from_total(total, eta, g);
   double sigma_t_prime = 0;
   switch (convention) {
     case DistanceConvention::transport_mfp:

@@ -10,6 +10,7 @@
 
 #include "bssrdf/adding_doubling/slab.hpp"
 #include "bssrdf/error.hpp"
+#include "bssrdf/root_finding.hpp"
 
 namespace bssrdf {
 
@@ -66,32 +67,6 @@ std::optional<RowConstraint> row_constraint(const RxtRow& row, const RxtConstrai
 }
 
 namespace {
-
-// The root of f in [a, b] where f(a), f(b) differ in sign: regula falsi with the Illinois
-// modification (Dowell & Jarratt 1971: an end kept twice has its value halved), so both ends close
-// in superlinearly; stops at a bracket 2^-44 of its size (iad's tolerance is far looser) or 100 steps.
-template <class F>
-double illinois_root(const F& f, double a, double b, double fa, double fb, int& iterations) {
-  int kept = 0;  // -1: b was replaced last, +1: a was
-  for (iterations = 0; iterations < 100; ++iterations) {
-    if (std::abs(b - a) <= 0x1p-44 * std::max(std::abs(a), std::abs(b))) break;
-    const double c = (fa * b - fb * a) / (fa - fb);
-    const double fc = f(c);
-    if (fc == 0) return c;
-    if ((fc > 0) == (fb > 0)) {
-      b = c;
-      fb = fc;
-      if (kept == -1) fa /= 2;
-      kept = -1;
-    } else {
-      a = c;
-      fa = fc;
-      if (kept == 1) fb /= 2;
-      kept = 1;
-    }
-  }
-  return 0.5 * (a + b);
-}
 
 enum class Unknown { albedo, optical_thickness, sigma_a, sigma_s, g };
 
@@ -280,11 +255,13 @@ ConstrainedSolution solve_constrained(const RowConstraint& constraint, double m_
       if (k > 0 && bracket < 0 && (fs[k - 1] <= 0) != (fs[k] <= 0)) bracket = k - 1;
     }
     if (bracket >= 0) {
-      int iterations = 0;
-      x[0] = illinois_root(f, xs[bracket], xs[bracket + 1], fs[bracket], fs[bracket + 1], iterations);
+      // Stops at a bracket 2^-44 of its size (iad's tolerance is far looser).
+      const BracketedRoot root =
+          illinois_root(f, xs[bracket], xs[bracket + 1], fs[bracket], fs[bracket + 1], 0.0, 0x1p-44);
+      x[0] = root.x;
       inv.converged = true;
       inv.termination = "CONVERGENCE";
-      inv.iterations = iterations;
+      inv.iterations = root.steps;
     } else {
       x[0] = xs[best];
       inv.termination = std::string("NO_CONVERGENCE (no ") + name_of(search.free[0]) + " reproduces " +

@@ -15,10 +15,5 @@ namespace bssrdf {
 // finds the Jacobian rank-deficient.
 std::optional<Eigen::MatrixXd> parameter_covariance(ceres::Problem& problem, const std::vector<const double*>& blocks);
 
-// The reduced albedo whose total reflectance under `model` is `total`, for a medium with
-// anisotropy g and index eta (the total of models with single scattering depends on g). Exact
-// root finding (bracketing + secant), no table. Throws InvalidInput when no alpha' in [0, 1]
-// reaches `total`.
-double albedo_prime_for_total(const Model& model, double total, double eta, double g);
 
 }  // namespace bssrdf

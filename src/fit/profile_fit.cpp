@@ -154,7 +154,7 @@ FitReport fit_profile(const MeasuredProfile& data, const ProfileFitOptions& give
     const double total = std::clamp(p.integrate(), 1e-3, 0.95);
     double a = 0.9;
     try {
-      a = std::clamp(albedo_prime_for_total(*model, total, options.eta, channels[c].g), 0.05, 0.999);
+      a = std::clamp(model->albedo_prime_from_total(total, options.eta, channels[c].g), 0.05, 0.999);
     } catch (const InvalidInput&) {
     }
     const auto unit_medium = reduced_optical(a, channels[c].g, options.eta);

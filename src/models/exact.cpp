@@ -9,6 +9,7 @@
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/models/dipole.hpp"
+#include "bssrdf/root_finding.hpp"
 #include "bssrdf/single_scattering.hpp"
 
 namespace bssrdf {
@@ -310,36 +311,15 @@ double exact_albedo_prime_from_total(const ExactTable& table, double total, doub
     const auto [t_last, t_before] = last_totals(table, weights_at(table, hi_a, g, eta));
     return AboveLastNode(table, hi_a, g, eta).albedo_prime_for(total, t_last, t_before);
   }
-  // ln T is smooth and increasing in u = logit(alpha'): regula falsi with the Illinois
-  // modification (superlinear, always bracketed), a handful of evaluations.
+  // ln T is smooth and increasing in u = logit(alpha'): a handful of evaluations.
   const auto from = [](double u) { return 1 / (1 + std::exp(-u)); };
   const double target = std::log(total);
   const auto residual = [&](double u) {
     return std::log(exact_total(table, std::clamp(from(u), lo_a, hi_a), g, eta)) - target;
   };
-  double lo = albedo_coordinate(lo_a), hi = albedo_coordinate(hi_a);
-  double f_lo = std::log(lo_t) - target, f_hi = std::log(hi_t) - target;
-  if (f_lo == 0) return lo_a;
-  if (f_hi == 0) return hi_a;
-  int side = 0;
-  double u = lo;
-  for (int k = 0; k < 100 && hi - lo > 1e-13; ++k) {
-    u = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
-    const double f_u = residual(u);
-    if (f_u == 0) break;
-    if ((f_u < 0) == (f_lo < 0)) {
-      lo = u;
-      f_lo = f_u;
-      if (side == -1) f_hi *= 0.5;
-      side = -1;
-    } else {
-      hi = u;
-      f_hi = f_u;
-      if (side == 1) f_lo *= 0.5;
-      side = 1;
-    }
-    if (std::abs(f_u) < 1e-13) break;
-  }
+  const double u = illinois_root(residual, albedo_coordinate(lo_a), albedo_coordinate(hi_a), std::log(lo_t) - target,
+                                 std::log(hi_t) - target, 1e-13, 0.0, 1e-13)
+                       .x;
   return std::clamp(from(u), lo_a, hi_a);
 }
 

@@ -31,9 +31,9 @@ class ExactModel final : public Model {
   double cumulative_reflectance(const Reduced<double>& m, double r) const override {
     return profile(m).cumulative(r * m.sigma_t_prime);
   }
-  // At g = 0, as every model's inversion (reduced_optical); exact_albedo_prime_from_total takes g.
-  double albedo_prime_from_total(double total, double eta) const override {
-    return exact_albedo_prime_from_total(bundled_exact_table(), total, 0.0, eta);
+  // Its own inversion: the table covers alpha' 0.001-0.9999 and continues beyond (models/exact.hpp).
+  double albedo_prime_from_total(double total, double eta, double g) const override {
+    return exact_albedo_prime_from_total(bundled_exact_table(), total, g, eta);
   }
 
  protected:

@@ -57,7 +57,7 @@ class ColourModel : public Model {
   double cumulative_reflectance(const Reduced<double>& m, double r) const override {
     return in_.cumulative(channel(m), r);
   }
-  double albedo_prime_from_total(double, double) const override {
+  double albedo_prime_from_total(double, double, double) const override {
     throw InvalidInput("colour: a colour channel has no albedo of its own to invert (integrate each wavelength)");
   }
 
@@ -177,12 +177,7 @@ ColourMedium colour_medium(const Medium& medium, std::shared_ptr<const Model> mo
       throw InvalidInput("colour", "channel " + channel + " total reflectance " + format_number(total),
                          "0 < total < " + format_number(highest) + " (the " + model->name() +
                              " model's largest here); a colour outside the space's gamut has no coefficients");
-    double lo = 0, hi = 1 - 1e-12;
-    for (int k = 0; k < 100 && hi - lo > 1e-15; ++k) {
-      const double mid = 0.5 * (lo + hi);
-      (model->total_reflectance(unit(mid)) < total ? lo : hi) = mid;
-    }
-    const double albedo_prime = 0.5 * (lo + hi);
+    const double albedo_prime = model->albedo_prime_from_total(total, medium.eta, g);
     // Scale: profiles of similar media scale as R(r; s sigma) = s^2 R(s r; sigma), so r_50 sets sigma_t'.
     const double r50_colour =
         radius_where([&](double r) { return in.cumulative(c, r); }, 0.5 * total, std::max(ell_min, 1e-9));

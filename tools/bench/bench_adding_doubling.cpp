@@ -8,6 +8,7 @@
 // With Prahl's iad and an .rxt file: each row fitted by ours (in process) and by iad (its own
 // process, `iad -M 0 [-q 32]`, process start included) in the same run, per row, at iad's default
 // 8 angles (ours --quadrature 8) and at 32, with the ratio.
+#include <sys/resource.h>
 #include <time.h>
 
 #include <algorithm>
@@ -141,8 +142,24 @@ int main(int argc, char** argv) {
     const Timing ours = median_us([&] { sink = fit_rxt(file, options).rows[0].mu_a; }, fits);
     const std::string command = std::string(argv[2]) + " -M 0" + (points == 32 ? " -q 32" : "") + " -o /dev/null '" +
                                 argv[3] + "' > /dev/null 2>&1";
-    const Timing iad = median_us([&] { sink = std::system(command.c_str()); }, fits);
-    std::printf("  %s, %d angles, per row (wall): ours %.3f ms, iad %.3f ms (process start included): iad/ours %.1f\n",
-                argv[3], points, ours.wall_us / rows / 1000, iad.wall_us / rows / 1000, iad.wall_us / ours.wall_us);
+    // iad's CPU time (user + system of the child process) per run, beside its wall time: on a
+    // loaded machine the wall time includes waiting for a core, the CPU time does not.
+    std::vector<double> iad_cpu;
+    const Timing iad = median_us(
+        [&] {
+          rusage before{}, after{};
+          getrusage(RUSAGE_CHILDREN, &before);
+          sink = std::system(command.c_str());
+          getrusage(RUSAGE_CHILDREN, &after);
+          auto us = [](const timeval& t) { return t.tv_sec * 1e6 + t.tv_usec; };
+          iad_cpu.push_back(us(after.ru_utime) + us(after.ru_stime) - us(before.ru_utime) - us(before.ru_stime));
+        },
+        fits);
+    const double iad_cpu_us = median(iad_cpu);
+    std::printf(
+        "  %s, %d angles, per row: wall ours %.3f ms, iad %.3f ms (process start included): iad/ours %.1f; cpu ours "
+        "%.3f ms, iad %.3f ms: iad/ours %.1f\n",
+        argv[3], points, ours.wall_us / rows / 1000, iad.wall_us / rows / 1000, iad.wall_us / ours.wall_us,
+        ours.cpu_us / rows / 1000, iad_cpu_us / rows / 1000, iad_cpu_us / ours.cpu_us);
   }
 }

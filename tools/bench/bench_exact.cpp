@@ -163,7 +163,7 @@ int main(int argc, char** argv) {
       10 * median_ms(
                [&] {
                  double s = 0;
-                 for (std::size_t k = 0; k < totals.size(); k += 10) s += pbd->albedo_prime_from_total(totals[k], 1.3);
+                 for (std::size_t k = 0; k < totals.size(); k += 10) s += pbd->albedo_prime_from_total(totals[k], 1.3, 0.0);
                  return s;
                },
                std::min(repetitions, 3)),
