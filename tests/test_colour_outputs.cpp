@@ -193,8 +193,6 @@ TEST(ColourCli, LutRecordsTheColourInJsonAndCsv) {
 
 TEST(ColourCli, LutRefusesColourWhereItDoesNotApply) {
   for (const std::string& args : {"lut " + kSpectral + " --colour srgb --kind albedo-radius -o x.exr",
-                                  "lut " + kSpectral + " --colour srgb --reference -o x.exr",
-                                  "lut " + kSpectral + " --colour srgb --pixel 0.1 -o x.exr",
                                   std::string("lut --sigma-a 0.1 --sigma-s 1 --colour srgb -o x.exr"),
                                   "lut " + kSpectral + " --colour cmyk -o x.exr"}) {
     const auto run = test_cli::run(args);

@@ -77,6 +77,19 @@ std::string attribute(const nlohmann::json& table, const std::string& key) {
   return table["attributes"].contains(key) ? table["attributes"][key].get<std::string>() : std::string();
 }
 
+// The skin-like medium of tests/spectral_medium.hpp as command-line options.
+std::string skin_like_options(double step) {
+  const auto m = test_spectral::skin_like_medium(step);
+  std::string nm = "--wavelengths ", sa = " --sigma-a ", ss = " --sigma-s ";
+  for (std::size_t i = 0; i < m.channels(); ++i) {
+    const std::string comma = i ? "," : "";
+    nm += comma + format_number(m.wavelength_nm[i]);
+    sa += comma + format_number(m.sigma_a[i]);
+    ss += comma + format_number(m.sigma_s[i]);
+  }
+  return nm + sa + ss + " --g 0.8 --eta 1.4";
+}
+
 // The tool's colour table is the tool's own per-wavelength table integrated with weights computed here, thickness by
 // thickness; and it records the colour.
 TEST(ColourTransmission, IsEachWavelengthsTableIntegrated) {
@@ -120,16 +133,9 @@ TEST(ColourTransmission, IsEachWavelengthsTableIntegrated) {
 // solved here by adding-doubling (per entered flux, the unscattered beam removed), to 1e-4.
 TEST(ColourTransmission, OneThicknessIsTheColourOfTheSpectralTotals) {
   const auto m = test_spectral::skin_like_medium(30);
-  std::string options = "--wavelengths ", sa = " --sigma-a ", ss = " --sigma-s ";
-  for (std::size_t i = 0; i < m.channels(); ++i) {
-    const std::string comma = i ? "," : "";
-    options += comma + format_number(m.wavelength_nm[i]);
-    sa += comma + format_number(m.sigma_a[i]);
-    ss += comma + format_number(m.sigma_s[i]);
-  }
   const double d = 1.5;
   const auto path = test_cli::temp("one.json");
-  const auto run = test_cli::run("lut --kind transmission " + options + sa + ss + " --g 0.8 --eta 1.4 --thickness " +
+  const auto run = test_cli::run("lut --kind transmission " + skin_like_options(30) + " --thickness " +
                                  format_number(d) + " --colour acescg -q -o " + path.string());
   ASSERT_EQ(run.status, 0) << run.err;
   const auto table = nlohmann::json::parse(test_cli::slurp(path));
@@ -202,6 +208,78 @@ TEST(ColourTables, KindsWithoutColourSayWhyInOneLine) {
             std::string::npos);
 }
 
+// The Monte Carlo radial table in colour: the same seed's per-wavelength bins integrated with the test's own weights,
+// standard errors as sqrt(sum w^2 se^2), totals likewise; and a layer stack named by wavelength (skin --layers-out).
+TEST(ColourReferenceTable, IsEachWavelengthsRunIntegrated) {
+  const std::string args = "lut --kind radial --reference " + test_spectral::kTintOptions + " --photons 4000 -q -o ";
+  const auto spectral_path = test_cli::temp("ref.json"), colour_path = test_cli::temp("ref-colour.json");
+  ASSERT_EQ(test_cli::run(args + spectral_path.string()).status, 0);
+  const auto run = test_cli::run(args + colour_path.string() + " --colour acescg --illuminant a");
+  ASSERT_EQ(run.status, 0) << run.err;
+  const auto s = nlohmann::json::parse(test_cli::slurp(spectral_path));
+  const auto c = nlohmann::json::parse(test_cli::slurp(colour_path));
+  const std::vector<double> nm{450, 500, 550, 600, 650};
+  const auto w = own_rgb_weights(nm, Illuminant::a, ColourSpace::acescg);
+  const auto bins = channel(c, "radius").size();
+  ASSERT_GT(bins, 10u);
+  for (int k = 0; k < 3; ++k) {
+    const std::string rgb(1, "RGB"[k]);
+    for (std::size_t j = 0; j < bins; ++j) {
+      double value = 0, variance = 0;
+      for (std::size_t i = 0; i < nm.size(); ++i) {
+        const std::string name = format_number(nm[i]) + "nm";
+        value += w[i][k] * channel(s, name)[j].get<double>();
+        variance += std::pow(w[i][k] * channel(s, "stderr." + name)[j].get<double>(), 2);
+      }
+      EXPECT_NEAR(channel(c, rgb)[j].get<double>(), value, 1e-9 * std::max(1.0, std::abs(value))) << rgb << j;
+      EXPECT_NEAR(channel(c, "stderr." + rgb)[j].get<double>(), std::sqrt(variance), 1e-9 * std::max(1.0, value));
+    }
+    double total = 0;
+    for (std::size_t i = 0; i < nm.size(); ++i)
+      total += w[i][k] * s["attributes"]["bssrdf:total_reflectance." + format_number(nm[i]) + "nm"].get<double>();
+    EXPECT_NEAR(c["attributes"]["bssrdf:total_reflectance." + rgb].get<double>(), total, 1e-9) << rgb;
+  }
+  EXPECT_EQ(attribute(c, "bssrdf:colour_space"), "ACEScg");
+  EXPECT_EQ(attribute(c, "bssrdf:colour_illuminant"), "A");
+  EXPECT_EQ(attribute(c, "bssrdf:channels"), "R,G,B");
+  EXPECT_NE(attribute(c, "bssrdf:colour").find("each wavelength's own Monte Carlo run"), std::string::npos);
+
+  // Far out, the skin-like medium's light is deep red: blue significantly negative in linear sRGB (from 2.05 mm, where
+  // the integrated exact profiles turn negative too: ColourMedium::negative_from), named in the colour line.
+  const auto far = test_cli::temp("skin-far.json");
+  ASSERT_EQ(test_cli::run("lut --kind radial --reference " + skin_like_options(20) +
+                          " --photons 20000 --colour srgb -q -o " + far.string())
+                .status,
+            0);
+  const auto line = attribute(nlohmann::json::parse(test_cli::slurp(far)), "bssrdf:colour");
+  EXPECT_NE(line.find("B < 0 beyond 2 standard errors"), std::string::npos) << line;
+  EXPECT_EQ(line.find("R < 0"), std::string::npos) << line;
+
+  const auto layers = test_cli::temp("skin-layers.json"), table = test_cli::temp("skin-ref.json");
+  ASSERT_EQ(test_cli::run("skin --melanin 0.05 --wavelengths 450,550,650 --layers-out " + layers.string()).status, 0);
+  const auto stack = test_cli::run("lut --kind radial --reference --layers " + layers.string() +
+                                   " --photons 2000 --colour srgb -q -o " + table.string());
+  ASSERT_EQ(stack.status, 0) << stack.err;
+  const auto t = nlohmann::json::parse(test_cli::slurp(table));
+  EXPECT_EQ(channel(t, "B").size(), channel(t, "radius").size());
+  EXPECT_EQ(attribute(t, "bssrdf:colour_wavelength_nm"), "450,550,650");
+  EXPECT_NE(attribute(t, "bssrdf:layers").find("(2 layers)"), std::string::npos);
+}
+
+// --pixel: a colour table's image error is judged against its colour model (each wavelength's profile integrated), so
+// an interpolated radial table is within a fraction of a code value of it.
+TEST(ColourTables, ImageErrorAgainstTheColourModel) {
+  const auto path = test_cli::temp("pixel.json");
+  const auto run =
+      test_cli::run("lut " + test_spectral::kTintOptions + " --colour acescg --pixel 0.05 -q -o " + path.string());
+  ASSERT_EQ(run.status, 0) << run.err;
+  const auto table = nlohmann::json::parse(test_cli::slurp(path));
+  const double error = table["attributes"]["bssrdf:image_error"].get<double>();
+  EXPECT_GT(error, 0.0);
+  EXPECT_LT(error, 1.0);  // code values; measured 0.29
+  EXPECT_EQ(attribute(table, "bssrdf:colour_space"), "ACEScg");
+}
+
 // The preview of a spectral medium: its colour in sRGB (each wavelength's profile summed with the colour weights).
 struct Decoded {
   int width = 0, height = 0;
@@ -260,17 +338,9 @@ TEST(ColourPreview, SwatchShowsTheColourOfTheTotals) {
 // Far from the edge a skin-like medium leaves deep red, outside linear sRGB: clipped in the image only, said in one
 // stderr line and in the PNG's text.
 TEST(ColourPreview, ClippingIsSaidOnStderrAndInThePng) {
-  const auto m = test_spectral::skin_like_medium(20);
-  std::string options = "--wavelengths ", sa = " --sigma-a ", ss = " --sigma-s ";
-  for (std::size_t i = 0; i < m.channels(); ++i) {
-    const std::string comma = i ? "," : "";
-    options += comma + format_number(m.wavelength_nm[i]);
-    sa += comma + format_number(m.sigma_a[i]);
-    ss += comma + format_number(m.sigma_s[i]);
-  }
   const auto png = test_cli::temp("skin.png"), table = test_cli::temp("skin.json");
-  const auto run = test_cli::run("lut " + options + sa + ss + " --g 0.8 --eta 1.4 --colour srgb --preview " +
-                                 png.string() + " -o " + table.string() + " -q");
+  const auto run = test_cli::run("lut " + skin_like_options(20) + " --colour srgb --preview " + png.string() + " -o " +
+                                 table.string() + " -q");
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_EQ(test_cli::count_lines(run.err), 1) << run.err;
   EXPECT_NE(run.err.find("clipped to [0, 1] in the image only"), std::string::npos) << run.err;

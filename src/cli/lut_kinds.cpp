@@ -32,8 +32,6 @@ BuiltTable with_model(const LutOptions& o, Tabulate&& tabulate) {
     if (!chosen.note.empty()) built.summary = chosen.note + "\n" + built.summary;
     return built;
   }
-  if (!o.pixel.empty())
-    throw InvalidInput("--pixel: not with --colour (the image check re-renders the model per channel, not the colour)");
   if (o.kind == "gaussians" && o.count == 0 && model_entry(chosen.name).own_gaussians)
     throw InvalidInput("--colour: --model " + chosen.name +
                        "'s own Gaussians are per wavelength; give --count N to fit N to the colour profile");
@@ -55,7 +53,6 @@ void refuse_colour(const LutOptions& o, const std::string& why) {
 
 // --kind radial --reference: the Monte Carlo reference tabulated, for a medium or a layer stack.
 BuiltTable build_reference_radial(const LutOptions& o) {
-  refuse_colour(o, "--reference: use 'bssrdf reference --colour' for the colour Monte Carlo profile");
   if (o.model_given || !o.accuracy.empty())
     throw InvalidInput(
         "--reference: the table is the Monte Carlo reference, not a model (give no --model or --accuracy)");
@@ -64,13 +61,16 @@ BuiltTable build_reference_radial(const LutOptions& o) {
   options.seed = o.seed;
   options.threads = o.threads;
   if (!o.all) options.progress = progress_bar("lut --reference");  // a terminal only; --all shows materials
+  // With --colour: each wavelength's run integrated per bin to R, G, B (with --all: for the spectral materials).
   if (o.layers.empty()) {
     const auto resolved = o.medium.resolve();
+    options.colour = o.all && !resolved.medium.spectral() ? std::nullopt : o.colour.resolve(resolved.medium);
     return tabulate_reference_radial({resolved.material, &resolved.medium, nullptr, resolved.unit}, options);
   }
   if (!o.medium.material.empty() || !o.medium.sigma_a.empty())
     throw InvalidInput("--layers: give no --material or coefficients with it");
   const auto file = read_layers_json(o.layers);
+  options.colour = o.colour.resolve(spectral::wavelengths_from_channel_names(file.stack.channel_names));
   const auto unit =
       o.medium.unit.empty() || o.medium.unit == "mm" ? file.unit : parse_length_unit(o.medium.unit, "--unit");
   return tabulate_reference_radial(file.stack, o.layers, {std::nullopt, nullptr, nullptr, unit}, options);

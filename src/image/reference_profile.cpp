@@ -85,7 +85,7 @@ ReferenceProfiles MonteCarloReference::profiles(const Medium& medium) const {
 ReferenceProfiles ModelReference::profiles(const Medium& medium) const {
   const auto start = std::chrono::steady_clock::now();
   const auto edges = reference_annuli(medium);
-  const ModelEntry* entry = find_model_entry(model_->name());
+  const ModelEntry* entry = registry_band_ ? find_model_entry(model_->name()) : nullptr;
   ReferenceProfiles out;
   for (std::size_t c = 0; c < medium.channels(); ++c) {
     const auto m = medium.reduced(c);

@@ -5,10 +5,13 @@
 #include <numbers>
 #include <sstream>
 
+#include "bssrdf/check.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/lut/interpolation.hpp"
 #include "bssrdf/lut/radial_table.hpp"
 #include "bssrdf/montecarlo.hpp"
+#include "bssrdf/spectral/colour_medium.hpp"
+#include "bssrdf/spectral/colour_reference.hpp"
 
 namespace bssrdf {
 
@@ -28,11 +31,17 @@ ReferenceRadialTable build_reference_radial_table(const LayerStack& stack, const
   mc.bins = options.bins;
   mc.r_min = 1e-3 * ell.min;
   mc.r_max = std::max(30 * ell.max, 10 * mc.r_min);
-  const auto run = run_monte_carlo(stack, mc);
+  auto run = run_monte_carlo(stack, mc);
+  if (options.colour) {  // each wavelength's run integrated to R, G, B, bin by bin
+    const auto nm = spectral::wavelengths_from_channel_names(stack.channel_names);
+    if (nm.empty())
+      throw InvalidInput("colour: needs channels named by wavelength (e.g. 550nm: --wavelengths, a spectral material)");
+    run = spectral::colour_reference(run, nm, *options.colour);
+  }
 
   ReferenceRadialTable t;
   t.options = options;
-  t.channel_names = stack.channel_names;
+  for (const auto& channel : run.channels) t.channel_names.push_back(channel.name);
   t.r_inner = run.bin_inner;
   t.r_outer = run.bin_outer;
   t.radius = run.bin_radius;
@@ -65,6 +74,26 @@ ReferenceRadialTable build_reference_radial_table(const LayerStack& stack, const
     t.table_reflectance.push_back(sum);
   }
   return t;
+}
+
+TableColour reference_table_colour(const ReferenceRadialTable& t, const std::vector<double>& wavelength_nm) {
+  BSSRDF_CHECK(t.options.colour.has_value());
+  TableColour out{spectral::colour_note(wavelength_nm, *t.options.colour), {}};
+  out.line = spectral::describe(out.note) +
+             "; per bin R_c = sum over 1 nm of R(lambda) S(lambda) cbar(lambda) / sum of S(lambda) ybar(lambda), each "
+             "wavelength's own Monte Carlo run, standard errors sqrt(sum w^2 se^2)";
+  // Bins negative beyond two standard errors: a colour outside the space there, not noise (a bin with few photons
+  // of wavelengths with negative weights may be negative by chance).
+  for (std::size_t c = 0; c < t.channel_names.size(); ++c) {
+    std::size_t count = 0, first = 0;
+    for (std::size_t j = t.size(); j-- > 0;)
+      if (t.reflectance[c][j] < -2 * t.reflectance_stderr[c][j]) ++count, first = j;
+    if (count)
+      out.line += "; " + t.channel_names[c] + " < 0 beyond 2 standard errors in " + std::to_string(count) +
+                  " bins from " + short_number(t.r_inner[first]) + " mm (a colour outside " + out.note.space +
+                  "; not clipped: its CDF is not a sampling distribution there)";
+  }
+  return out;
 }
 
 LookupTable to_lookup_table(const ReferenceRadialTable& t, const TableContext& context) {

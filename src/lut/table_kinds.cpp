@@ -28,8 +28,13 @@ struct ImageJudge {
 
 std::optional<ImageJudge> judge_for(const TableContext& context, const std::optional<ImageErrorCheck>& check) {
   if (!check) return std::nullopt;
-  return ImageJudge{judge_against(*context.medium, ModelReference(make_model(context.model->name())), check->pixel),
-                    *check};
+  // A colour table is judged against its colour model (each wavelength's profile integrated), held by the caller for
+  // the table's lifetime: borrowed, not owned.
+  const auto reference =
+      context.colour
+          ? ModelReference(std::shared_ptr<const Model>(std::shared_ptr<const Model>(), context.model), false)
+          : ModelReference(make_model(context.model->name()));
+  return ImageJudge{judge_against(*context.medium, reference, check->pixel), *check};
 }
 
 bool sized_by_image(const std::optional<ImageJudge>& j) { return j && j->check.tolerance; }
@@ -86,16 +91,19 @@ BuiltTable tabulate_radial(const TableContext& context, const RadialKindOptions&
 
 BuiltTable tabulate_reference_radial(const TableContext& context, const ReferenceRadialOptions& options) {
   BSSRDF_CHECK(context.medium != nullptr);
-  const auto t = build_reference_radial_table(LayerStack::half_space(*context.medium), options);
-  return {to_lookup_table(t, context), summary(t, context), {}};
+  return tabulate_reference_radial(LayerStack::half_space(*context.medium), "", context, options);
 }
 
 BuiltTable tabulate_reference_radial(const LayerStack& stack, const std::string& source, const TableContext& context,
                                      const ReferenceRadialOptions& options) {
   const auto t = build_reference_radial_table(stack, options);
-  auto table = to_lookup_table(t, context);
-  table.set("bssrdf:layers", source + " (" + std::to_string(stack.layers.size()) + " layers)");
-  return {std::move(table), summary(t, context), {}};
+  TableContext described = context;
+  if (options.colour)
+    described.colour = reference_table_colour(t, spectral::wavelengths_from_channel_names(stack.channel_names));
+  auto table = to_lookup_table(t, described);
+  if (!source.empty()) table.set("bssrdf:layers", source + " (" + std::to_string(stack.layers.size()) + " layers)");
+  return {
+      std::move(table), (options.colour ? "colour: " + described.colour->line + "\n" : "") + summary(t, described), {}};
 }
 
 std::string to_string(AlbedoRadiusLayoutRule layout) {

@@ -80,14 +80,18 @@ class MonteCarloReference : public ReferenceProfile {
 };
 
 // A model as the reference: `exact` (carrying its measured accuracy band from the model registry,
-// ModelEntry::reference_accuracy) or, for tests and benches, any model taken as the truth (no band).
+// ModelEntry::reference_accuracy) or, for tests and benches, any model taken as the truth (no band). `registry_band`
+// false: no band even for a registry name (a spectral medium's colour model, spectral/colour_medium.hpp, is named after
+// the model of its wavelengths but is evaluated at stand-in coefficients).
 class ModelReference : public ReferenceProfile {
  public:
-  explicit ModelReference(std::unique_ptr<Model> model) : model_(std::move(model)) {}
+  explicit ModelReference(std::shared_ptr<const Model> model, bool registry_band = true)
+      : model_(std::move(model)), registry_band_(registry_band) {}
   ReferenceProfiles profiles(const Medium& medium) const override;
 
  private:
-  std::unique_ptr<Model> model_;
+  std::shared_ptr<const Model> model_;
+  bool registry_band_ = true;
 };
 
 }  // namespace bssrdf

@@ -13,12 +13,14 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "bssrdf/layers.hpp"
 #include "bssrdf/lut/lookup_table.hpp"
 #include "bssrdf/lut/table_context.hpp"
+#include "bssrdf/spectral/colour.hpp"
 
 namespace bssrdf {
 
@@ -30,6 +32,10 @@ struct ReferenceRadialOptions {
   // Photons finished and total (all channels), from worker threads, never concurrently. Walks are
   // long where absorption is tiny: Spectralon (alpha' ~ 1 - 1e-5) takes ~5 ms per photon.
   std::function<void(std::uint64_t done, std::uint64_t total)> progress;
+  // A stack whose channels are named by wavelength ("550nm"): the table's channels are R, G, B, per bin and total
+  // sum_i w_ci X_i of the wavelengths' estimates with standard errors sqrt(sum_i w_ci^2 se_i^2)
+  // (spectral/colour_reference.hpp). nullopt: the stack's own channels.
+  std::optional<spectral::ColourSettings> colour{};
 };
 
 struct ReferenceRadialTable {
@@ -50,6 +56,9 @@ struct ReferenceRadialTable {
 };
 
 ReferenceRadialTable build_reference_radial_table(const LayerStack& stack, const ReferenceRadialOptions& options);
+// The bssrdf:colour of a table built with options.colour: the colour, the integration, and each channel that has a
+// negative bin (a colour outside the space far out; its CDF is then not a sampling distribution there).
+TableColour reference_table_colour(const ReferenceRadialTable& table, const std::vector<double>& wavelength_nm);
 
 // Channels: R(r) under the channel names, "radius", "r_inner", "r_outer" (unit), "stderr.<c>",
 // "ring.<c>", "cdf.<c>", "u", "inverse_cdf.<c>"; attributes record photons, seed, bins and totals.
