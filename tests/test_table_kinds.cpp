@@ -146,6 +146,11 @@ TEST(TableKinds, TransmissionSaysWhichSolverMadeIt) {
   EXPECT_EQ(to_json(built.table), written_by_cli("--kind transmission --material Skin1 --thickness 0.5,1,2"));
   EXPECT_EQ(std::get<std::string>(*built.table.attribute("bssrdf:model_description")),
             "total transmittance of slabs: adding-doubling (exact)");
+  EXPECT_EQ(std::get<std::string>(*built.table.attribute("bssrdf:model")), "adding-doubling");
+  options.model = "multipole";
+  const auto multipole =
+      tabulate_transmission({skin1(), &skin1().medium, nullptr, LengthUnit::millimetre}, {5}, options);
+  EXPECT_EQ(std::get<std::string>(*multipole.table.attribute("bssrdf:model")), "multipole");
   EXPECT_NE(built.summary.find("3 thicknesses"), npos) << built.summary;
   EXPECT_NE(built.summary.find("(3 adding-doubling, 0 Monte Carlo"), npos) << built.summary;
 }

@@ -160,6 +160,9 @@ BuiltTable tabulate_transmission(const TableContext& context, std::vector<double
   }
   auto table = to_lookup_table(t, described);  // throws when nothing is left
   const bool exact = options.model == "adding-doubling" && !options.reference_everywhere;
+  // The model that produced the rows (the multipole above only describes the table's medium).
+  table.set("bssrdf:model", options.reference_everywhere ? std::string("monte carlo") : options.model);
+  if (exact) table.set("bssrdf:includes_single_scattering", std::string("yes"));
   table.set("bssrdf:model_description",
             exact ? std::string("total transmittance of slabs: adding-doubling (exact)")
                   : std::string("total transmittance of slabs: multipole (Donner & Jensen 2005) where valid") +
