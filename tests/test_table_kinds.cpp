@@ -138,6 +138,19 @@ TEST(TableKinds, AlbedoRadiusExactRowsAndTheRecordedEnergy) {
   EXPECT_FALSE(std::filesystem::exists(test_cli::temp("refused.json")));
 }
 
+// An albedo-radius table serves one g: for a material whose channels' g differ it says which one it took.
+TEST(TableKinds, AlbedoRadiusSaysWhichGItTookFromAMaterial) {
+  const auto path = test_cli::temp("milk-albedo-radius.json");
+  const auto differing = test_cli::run("lut --kind albedo-radius --material \"Lowfat Milk\" -o " + path.string());
+  ASSERT_EQ(differing.status, 0) << differing.err;
+  EXPECT_NE(test_cli::slurp(path).find("\"bssrdf:g_choice\": \"g differs between the channels (0.859 to 0.932): the "
+                                       "table is for the first channel's g = 0.932"),
+            npos);
+  EXPECT_NE(differing.out.find("the first channel's g = 0.932"), npos) << differing.out;
+  ASSERT_EQ(test_cli::run("lut --kind albedo-radius --material Skin1 -o " + path.string()).status, 0);
+  EXPECT_EQ(test_cli::slurp(path).find("bssrdf:g_choice"), npos);
+}
+
 TEST(TableKinds, TransmissionSaysWhichSolverMadeIt) {
   TransmissionTableOptions options;
   options.model = "adding-doubling";

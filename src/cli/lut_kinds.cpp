@@ -2,6 +2,7 @@
 // (lut/table_kinds.hpp) and calls the library's entry point for the kind.
 #include "lut_kinds.hpp"
 
+#include <algorithm>
 #include <array>
 #include <tuple>
 
@@ -100,11 +101,18 @@ BuiltTable build_albedo_radius(const LutOptions& o) {
                 "its rows are over every albedo for one (g, eta) in no colour: a renderer looks up each channel's "
                 "row by its own albedo; give no --colour");
   AlbedoRadiusKindOptions options;
+  std::string g_choice;
   if (!o.medium.material.empty() || !o.medium.sigma_a.empty()) {
     const auto resolved = o.medium.resolve();
-    options.g = resolved.medium.g[0];
+    const auto& g = resolved.medium.g;
+    options.g = g[0];
     options.eta = resolved.medium.eta;
     options.material = resolved.material;
+    const auto [g_min, g_max] = std::minmax_element(g.begin(), g.end());
+    if (*g_min != *g_max)  // one table serves one g: say which, not silently
+      g_choice = "g differs between the channels (" + format_number(*g_min) + " to " + format_number(*g_max) +
+                 "): the table is for the first channel's g = " + format_number(g[0]) +
+                 " (--g G without a medium makes one for another g)";
   } else {
     if (!o.medium.g.empty()) options.g = parse_number(o.medium.g, "--g");
     if (!o.medium.eta.empty()) options.eta = parse_number(o.medium.eta, "--eta");
@@ -141,6 +149,10 @@ BuiltTable build_albedo_radius(const LutOptions& o) {
   }
   BuiltTable built = tabulate_albedo_radius(options);
   if (!note.empty()) built.summary = note + "\n" + built.summary;
+  if (!g_choice.empty()) {
+    built.summary = g_choice + "\n" + built.summary;
+    built.table.set("bssrdf:g_choice", g_choice);
+  }
   return built;
 }
 
