@@ -108,6 +108,25 @@ void double_layer(Square<N>& R, Square<N>& T) {
 template <int N>
 bool double_symmetric(Square<N>& R, Square<N>& T) {
   const Eigen::Index n = R.rows();
+  if constexpr (N == Eigen::Dynamic) {
+    // Other angle counts (32 and more for tight tolerances): Eigen's blocked factorisation, triangular solve and
+    // rank update, which at these sizes beat the column loops below (and stay fast in unoptimised builds).
+    MatrixXd sum = R, difference = R;  // lower triangles of R2 + T2 and R2 - T2
+    for (const double sign : {1.0, -1.0}) {
+      MatrixXd A = -sign * R;
+      A.diagonal().array() += 1;
+      const Eigen::LLT<MatrixXd> cholesky(A);
+      if (cholesky.info() != Eigen::Success) return false;
+      const MatrixXd W = cholesky.matrixL().solve(T);
+      (sign > 0 ? sum : difference).selfadjointView<Eigen::Lower>().rankUpdate(W.transpose(), sign);
+    }
+    for (Eigen::Index j = 0; j < n; ++j)
+      for (Eigen::Index i = j; i < n; ++i) {
+        R(i, j) = R(j, i) = (sum(i, j) + difference(i, j)) / 2;
+        T(i, j) = T(j, i) = (sum(i, j) - difference(i, j)) / 2;
+      }
+    return true;
+  }
   Square<N> sum(n, n), difference(n, n);  // R2 + T2 and R2 - T2
   Square<N> A(n, n), L(n, n), V(n, n);
   for (const double sign : {1.0, -1.0}) {
