@@ -21,7 +21,8 @@ Estimate combine(const std::vector<const Estimate*>& x, const std::vector<double
   return out;
 }
 
-// Per bin: sum_i w_i v_i (values) or sqrt(sum_i w_i^2 e_i^2) (standard errors).
+}  // namespace
+
 std::vector<double> combine_bins(const std::vector<const std::vector<double>*>& v, const std::vector<double>& w,
                                  bool errors) {
   std::vector<double> out(v.front()->size(), 0.0);
@@ -32,8 +33,6 @@ std::vector<double> combine_bins(const std::vector<const std::vector<double>*>& 
     for (double& e : out) e = std::sqrt(e);
   return out;
 }
-
-}  // namespace
 
 MonteCarloResult colour_reference(const MonteCarloResult& result, const std::vector<double>& wavelength_nm,
                                   const ColourSettings& settings) {

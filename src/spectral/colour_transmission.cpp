@@ -5,6 +5,7 @@
 #include "bssrdf/check.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/spectral/colour_medium.hpp"
+#include "bssrdf/spectral/colour_reference.hpp"
 
 namespace bssrdf::spectral {
 
@@ -13,18 +14,19 @@ TransmissionTable colour_transmission(const TransmissionTable& table, const Colo
   BSSRDF_CHECK(table.channel_names.size() == w.size() && table.transmittance.size() == w.size());
   TransmissionTable out = table;
   out.channel_names = {"R", "G", "B"};
-  out.transmittance.assign(3, std::vector<double>(table.size(), 0.0));
-  out.standard_error.assign(3, std::vector<double>(table.size(), 0.0));
-  for (std::size_t j = 0; j < table.size(); ++j)
-    for (std::size_t c = 0; c < 3; ++c) {
-      double sum = 0, variance = 0;
-      for (std::size_t i = 0; i < w.size(); ++i) {
-        sum += w[i][c] * table.transmittance[i][j];
-        variance += w[i][c] * w[i][c] * table.standard_error[i][j] * table.standard_error[i][j];
-      }
-      out.transmittance[c][j] = sum;
-      out.standard_error[c][j] = std::sqrt(variance);
-    }
+  out.transmittance.clear();
+  out.standard_error.clear();
+  std::vector<const std::vector<double>*> values, errors;
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    values.push_back(&table.transmittance[i]);
+    errors.push_back(&table.standard_error[i]);
+  }
+  for (std::size_t c = 0; c < 3; ++c) {
+    std::vector<double> weight;
+    for (const auto& wi : w) weight.push_back(wi[c]);
+    out.transmittance.push_back(combine_bins(values, weight, false));
+    out.standard_error.push_back(combine_bins(errors, weight, true));
+  }
   // Validity: every wavelength's notes once, the first wavelength that has each named.
   std::string notes;
   for (std::size_t i = 0; i < table.validity.size(); ++i) {

@@ -13,6 +13,11 @@
 
 namespace bssrdf::spectral {
 
+// One colour channel of per-wavelength rows v_i (w: that channel's weight of each wavelength): per entry k,
+// sum_i w_i v_i[k], or with `errors` (v_i standard errors of independent estimates) sqrt(sum_i w_i^2 v_i[k]^2).
+std::vector<double> combine_bins(const std::vector<const std::vector<double>*>& v, const std::vector<double>& w,
+                                 bool errors);
+
 // `result`'s channels are the wavelengths `wavelength_nm` (InvalidInput naming "wavelengths" otherwise); returns R, G,
 // B channels in settings.space. The stack and run options stay the spectral ones (the report lists the coefficients
 // per wavelength).
