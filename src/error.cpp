@@ -35,6 +35,20 @@ std::string short_number(double value) {
   return buffer;
 }
 
+std::string printable(const std::string& message) {
+  std::string out;
+  for (const unsigned char c : message) {
+    if (c >= 0x20 && c != 0x7f) {
+      out += static_cast<char>(c);
+    } else {
+      char hex[5];
+      std::snprintf(hex, sizeof hex, "\\x%02x", c);
+      out += hex;
+    }
+  }
+  return out;
+}
+
 void check_failed(const char* condition, const char* file, int line) {
   throw InternalError(std::string("internal check failed: ") + condition + " (" + file + ":" + std::to_string(line) +
                       "); please report this as a bug");

@@ -42,5 +42,8 @@ class FileError : public InvalidInput {
 std::string format_number(double value);
 // Four significant digits, for the summary lines people read (files keep full precision).
 std::string short_number(double value);
+// A message for a terminal or an exception: control bytes from input (a CR in a CSV field, an escape
+// sequence, a newline in a name) are shown as \xHH instead of acting, so an error stays one visible line.
+std::string printable(const std::string& message);
 
 }  // namespace bssrdf

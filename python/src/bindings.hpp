@@ -35,6 +35,12 @@ MediumHandle to_medium(const py::handle& object, const std::string& db = "");
 // The unit of outputs: `unit` when given, else the medium's.
 LengthUnit output_unit(const std::optional<std::string>& unit, const MediumHandle& medium);
 
+// An argument as a message shows it: its repr on one line (numpy prints arrays on several), at most
+// 80 characters.
+std::string short_repr(const py::handle& object);
+// A number, or a string passed on as the command line would take it (lut's `range`); `field` names it.
+std::string number_or_text(const py::handle& object, const std::string& field);
+
 // A 1-D float64 array from a scalar or any sequence; `field` names it in errors.
 std::vector<double> to_vector(const py::handle& object, const std::string& field);
 Array to_array(const std::vector<double>& values);

@@ -14,6 +14,25 @@
 
 namespace bssrdf::python {
 
+std::string short_repr(const py::handle& object) {
+  std::string out;
+  for (const char c : std::string(py::str(py::repr(object)))) {
+    const bool space = c == ' ' || c == '\n' || c == '\r' || c == '\t';
+    if (!space || (!out.empty() && out.back() != ' ')) out += space ? ' ' : c;
+  }
+  return out.size() > 80 ? out.substr(0, 77) + "..." : out;
+}
+
+std::string number_or_text(const py::handle& object, const std::string& field) {
+  if (py::isinstance<py::str>(object)) return object.cast<std::string>();
+  if (PyNumber_Check(object.ptr()) && !py::isinstance<py::bool_>(object)) {
+    const double value = PyFloat_AsDouble(object.ptr());
+    if (!(value == -1 && PyErr_Occurred())) return format_number(value);
+    PyErr_Clear();
+  }
+  throw InvalidInput(field, short_repr(object), "a number or a string");
+}
+
 std::vector<double> to_vector(const py::handle& object, const std::string& field) {
   if (object.is_none()) throw InvalidInput(field + ": a number or a sequence of numbers is required, not None");
   Array array;
@@ -21,7 +40,7 @@ std::vector<double> to_vector(const py::handle& object, const std::string& field
     array = Array::ensure(object);
   } catch (const py::error_already_set&) {
   }
-  if (!array) throw InvalidInput(field, std::string(py::str(py::repr(object))), "a number or a sequence of numbers");
+  if (!array) throw InvalidInput(field, short_repr(object), "a number or a sequence of numbers");
   if (array.ndim() > 1)
     throw InvalidInput(field + ": a number or a 1-D sequence, not an array of " + std::to_string(array.ndim()) +
                        " dimensions");
@@ -67,7 +86,7 @@ MediumHandle to_medium(const py::handle& object, const std::string& db) {
     const auto material = load_database(db).find(object.cast<std::string>());
     return {material.medium, LengthUnit::millimetre, material};
   }
-  throw InvalidInput("medium", std::string(py::str(py::repr(object))),
+  throw InvalidInput("medium", short_repr(object),
                      "a bssrdf.Medium, a bssrdf.Material or a material's name");
 }
 

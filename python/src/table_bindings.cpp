@@ -468,7 +468,7 @@ t["R"] -> the channel as a height x width array (1-D tables: width); t.attribute
         o.taps = taps.value_or(0);
         o.taps_given = taps.has_value();
         if (!range.is_none()) {
-          o.range = py::isinstance<py::str>(range) ? range.cast<std::string>() : format_number(range.cast<double>());
+          o.range = number_or_text(range, "range");
           o.range_given = true;
         }
         o.band = number_text(band);

@@ -49,6 +49,28 @@ def test_bad_media_raise_value_error_naming_the_field(kwargs, message):
     assert "\n" not in str(error.value)
 
 
+# What tools/fuzz_python.py found: messages over several lines (numpy's repr of a 2-D array, a newline in a
+# material's name) and a RuntimeError from a cast pybind11 could not make.
+@pytest.mark.parametrize(
+    "call, field",
+    [
+        (lambda: bssrdf.validity(np.array([[1.0, 2.0], [3.0, 4.0]])), "medium = array([[1., 2.], [3., 4.]])"),
+        (lambda: bssrdf.materials.get("Skin\n1"), "Skin\\x0a1"),
+        (lambda: bssrdf.lut("Skin1", kind="separable", range=[[1.0]]), "range = [[1.0]]"),
+        (lambda: bssrdf.lut("Skin1", kind="separable", range=np.zeros(3)), "range = array([0., 0., 0.])"),
+    ],
+)
+def test_hostile_arguments_give_one_line_value_errors(call, field):
+    with pytest.raises(ValueError) as error:
+        call()
+    assert field in str(error.value) and "\n" not in str(error.value)
+
+
+def test_lut_range_takes_a_number_or_the_cli_word(cli):
+    assert bssrdf.lut("Skin1", kind="separable", range=np.float32(2.5)).attributes["bssrdf:range"] == \
+        bssrdf.lut("Skin1", kind="separable", range="2.5").attributes["bssrdf:range"]
+
+
 def test_the_cli_refuses_the_same_medium_with_the_same_message(cli):
     with pytest.raises(ValueError) as error:
         bssrdf.Medium(sigma_a=[0.1, -1, 0.1], sigma_s=[1, 1, 1])

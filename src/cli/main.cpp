@@ -20,21 +20,7 @@
 
 namespace {
 
-// A message for the terminal: control bytes from input files (a CR in a CSV field, an escape
-// sequence) are shown as \xHH instead of acting on the terminal, so errors stay one visible line.
-std::string printable(const std::string& message) {
-  std::string out;
-  for (const unsigned char c : message) {
-    if (c >= 0x20 && c != 0x7f) {
-      out += static_cast<char>(c);
-    } else {
-      char hex[5];
-      std::snprintf(hex, sizeof hex, "\\x%02x", c);
-      out += hex;
-    }
-  }
-  return out;
-}
+using bssrdf::printable;
 
 // Enum-like values (models, formats, units, kinds, targets) are case-insensitive on every command:
 // lower-cased here, once, before any command sees them. File names and material names are left alone.
