@@ -189,6 +189,7 @@ def call(bs, name, kwargs):
 def worker(seed, start, count):
     import bssrdf as bs
     with tempfile.TemporaryDirectory() as scratch:
+        os.chdir(scratch)  # a hostile output name ("-1", " mm") is a relative path: it lands here
         directory = os.path.join(scratch, "directory")
         os.mkdir(directory)
         for i in range(start, start + count):
