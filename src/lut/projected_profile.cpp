@@ -148,6 +148,10 @@ double ProjectedProfile::line(double x, double ln_abs_x) const {
   return v <= kNegligible ? 0 : std::exp(v);
 }
 
+void ProjectedProfile::lines(const double* x, const double* ln_x, double* out, std::size_t n) const {
+  for (std::size_t k = 0; k < n; ++k) out[k] = line(x[k], ln_x[k]);
+}
+
 double ProjectedProfile::half_plane(double x) const {
   if (x < 0) return total_ - half_plane(-x);
   if (x <= r_min()) return half_plane_0_ - x * std::exp(log_line_.front());
@@ -164,6 +168,10 @@ double ProjectedProfile::half_plane_integral(double x, double ln_x) const {
   if (x <= r_min()) return x * 0.5 * (half_plane_0_ + half_plane(x));
   if (x >= r_max()) return half_plane_integral_.back();  // half_plane is 0 beyond
   return cubic(half_plane_integral_, ln_x);
+}
+
+void ProjectedProfile::half_plane_integrals(const double* x, const double* ln_x, double* out, std::size_t n) const {
+  for (std::size_t k = 0; k < n; ++k) out[k] = half_plane_integral(x[k], ln_x[k]);
 }
 
 double ProjectedProfile::radius_for_fraction(double fraction) const {
