@@ -3,6 +3,7 @@
 // weights), each channel normalised by int r R^2 dr so that all channels count alike.
 #include <ceres/ceres.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -44,11 +45,13 @@ class GaussianResidual : public ceres::CostFunction {
   bool Evaluate(double const* const* parameters, double* residual, double** jacobians) const override {
     const double* log_variance = parameters[0];
     const double* w = parameters[1];  // bounded below by 0: weights may vanish exactly
+    std::array<double, 32> variance{};  // count <= 32 (fit_gaussians): once per evaluation, not per radius
+    for (int k = 0; k < count_; ++k) variance[k] = std::exp(log_variance[k]);
     for (std::size_t i = 0; i < profile_->size(); ++i) {
       const double r = profile_->radius[i];
       double sum = 0;
       for (int k = 0; k < count_; ++k) {
-        const double v = std::exp(log_variance[k]), g = quantized_diffusion::gaussian_2d(v, r);
+        const double v = variance[k], g = quantized_diffusion::gaussian_2d(v, r);
         sum += w[k] * g;
         if (jacobians && jacobians[0]) jacobians[0][i * count_ + k] = weight_[i] * w[k] * g * (r * r / (2 * v) - 1);
         if (jacobians && jacobians[1]) jacobians[1][i * count_ + k] = weight_[i] * g;
