@@ -180,7 +180,11 @@ FitReport fit_gaussians(const std::vector<NamedProfile>& channels, int count, Le
     problem.SetParameterUpperBound(log_variance.data(), k, std::log(0.5 * 1e6 * r_hi * r_hi));
   }
   ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
+  // Up to 8 Gaussians the normal equations (a 4 count x 4 count Cholesky for three channels) instead of QR of the
+  // whole Jacobian: 28 % fewer instructions for the 47 materials' tables at 6, every fit's relative L2 error within
+  // 2.3e-13 (6) and 1e-8 (8) of QR's, relative. With more, neighbouring Gaussians' columns grow alike and squaring
+  // the condition number shows (24 Gaussians, Marble: L2 0.0098 with QR, 0.0105 with the normal equations).
+  options.linear_solver_type = count <= 8 ? ceres::DENSE_NORMAL_CHOLESKY : ceres::DENSE_QR;
   options.max_num_iterations = 2000;
   options.function_tolerance = 1e-12;
   // Weights pinned at their bound 0 make monotone Levenberg-Marquardt creep (Ketchup, soy and
