@@ -21,15 +21,25 @@ double safe_log(double v) { return v > 0 ? std::log(v) : kNegligible; }
 [[gnu::always_inline]] inline double grid_cubic(const std::vector<double>& f, double u0, double h, double u) {
   const double t = (u - u0) / h;
   const auto n = static_cast<std::ptrdiff_t>(f.size());
-  auto i = static_cast<std::ptrdiff_t>(std::floor(t));
+  // floor(t) where it matters: truncation differs only for t < 0, which the clamp sends to node 0 either way (and it
+  // is an instruction, where std::floor is a library call without SSE4.1).
+  auto i = static_cast<std::ptrdiff_t>(t);
   i = std::clamp<std::ptrdiff_t>(i, 0, n - 2);
   const double x = t - static_cast<double>(i);
-  const auto at = [&](std::ptrdiff_t k) {
-    return f[static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(k, 0, n - 1))];
-  };
-  const double p0 = at(i - 1), p1 = at(i), p2 = at(i + 1), p3 = at(i + 2);
-  const double m1 = i > 0 ? 0.5 * (p2 - p0) : p2 - p1;
-  const double m2 = i + 2 < n ? 0.5 * (p3 - p1) : p2 - p1;
+  double p0, p1, p2, p3, m1, m2;
+  if (i > 0 && i + 2 < n) {  // inside: all four nodes, central slopes
+    p0 = f[static_cast<std::size_t>(i - 1)], p1 = f[static_cast<std::size_t>(i)];
+    p2 = f[static_cast<std::size_t>(i + 1)], p3 = f[static_cast<std::size_t>(i + 2)];
+    m1 = 0.5 * (p2 - p0);
+    m2 = 0.5 * (p3 - p1);
+  } else {  // at an end: one-sided (linear) where a neighbour is missing
+    const auto at = [&](std::ptrdiff_t k) {
+      return f[static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(k, 0, n - 1))];
+    };
+    p0 = at(i - 1), p1 = at(i), p2 = at(i + 1), p3 = at(i + 2);
+    m1 = i > 0 ? 0.5 * (p2 - p0) : p2 - p1;
+    m2 = i + 2 < n ? 0.5 * (p3 - p1) : p2 - p1;
+  }
   const double x2 = x * x, x3 = x2 * x;
   return (2 * x3 - 3 * x2 + 1) * p1 + (x3 - 2 * x2 + x) * m1 + (-2 * x3 + 3 * x2) * p2 + (x3 - x2) * m2;
 }
