@@ -155,6 +155,60 @@ TEST(PenumbraTable, MatchesTheDirectConvolutionAndItsLimits) {
   for (std::size_t i = 0; i < o.width; ++i) EXPECT_EQ(coke.value[2][3 * o.width + i], coke.shadow[i]);
 }
 
+// The batch evaluations the tables use give the single evaluations' values, bitwise.
+TEST(ProjectedProfile, BatchEvaluationsEqualSingleOnes) {
+  const auto model = make_model("exact");
+  const ProjectedProfile p(*model, material("Skin1").reduced(0));
+  std::vector<double> x, ln_x;
+  for (double v = 0.1 * p.r_min(); v < 10 * p.r_max(); v *= 1.37) {
+    x.push_back(v);
+    ln_x.push_back(std::log(v));
+  }
+  std::vector<double> line(x.size()), integral(x.size());
+  p.lines(x.data(), ln_x.data(), line.data(), x.size());
+  p.half_plane_integrals(x.data(), ln_x.data(), integral.data(), x.size());
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    EXPECT_EQ(line[k], p.line(x[k], ln_x[k])) << x[k];
+    EXPECT_EQ(integral[k], p.half_plane_integral(x[k], ln_x[k])) << x[k];
+  }
+}
+
+// Penner's ring integral evaluated directly at a few texels (a fine trapezoid over x in (-pi, pi) with the clamp
+// applied pointwise): the table's prefix sums over node ranges must give the same D.
+TEST(PreintegratedTable, MatchesTheDirectRingIntegral) {
+  const auto model = make_model("exact");
+  const auto& skin = material("Skin1");
+  PreintegratedOptions o;
+  o.width = 64;
+  o.height = 16;
+  const auto t = build_preintegrated_table(skin, *model, o);
+  for (std::size_t c = 0; c < 3; ++c) {
+    const ProjectedProfile p(*model, skin.reduced(c));
+    for (std::size_t j : {0u, 7u, 15u}) {
+      const double radius = 1 / t.curvature[j];
+      for (std::size_t i : {3u, 20u, 31u, 32u, 45u, 63u}) {
+        const double theta = std::acos(t.n_dot_l[i]);
+        // Symmetric in x: integrate over (0, pi) with both clamps, geometric steps near 0 where the profile varies.
+        double sum = 0, norm = 0;
+        const auto add = [&](double x, double dx) {
+          const double w = dx * p.line(2 * radius * std::sin(0.5 * x));
+          sum += w * (std::max(0.0, std::cos(theta + x)) + std::max(0.0, std::cos(theta - x)));
+          norm += 2 * w;
+        };
+        add(0.5e-9, 1e-9);
+        for (double x = 1e-9; x < 0.05;) {  // midpoints of geometric cells up to 0.05, then uniform ones
+          const double next = std::min(1.005 * x, 0.05);
+          add(0.5 * (x + next), next - x);
+          x = next;
+        }
+        const int n = 50000;
+        for (int k = 0; k < n; ++k) add(0.05 + (std::numbers::pi - 0.05) * (k + 0.5) / n, (std::numbers::pi - 0.05) / n);
+        EXPECT_NEAR(t.value[c][j * o.width + i], sum / norm, 1e-4) << c << ' ' << i << ' ' << j;
+      }
+    }
+  }
+}
+
 // The ring integral's default quadrature against one 4x finer in both parts of x.
 TEST(PreintegratedTable, QuadratureIsConverged) {
   const auto model = make_model("pbd");

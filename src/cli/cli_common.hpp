@@ -64,6 +64,9 @@ CLI::Option* add_count_option(CLI::App& app, const std::string& names, Integer& 
 // and --db: the one parser of a medium on the command line.
 struct MediumOptions {
   std::string material, sigma_a, sigma_s, sigma_s_prime, g, eta, unit = "mm", channels, db, wavelengths;
+  // The bundled database plus --db, when the caller has loaded it already (lut --all: once for every material, not
+  // once per material and kind); null: resolve() loads it.
+  const MaterialDatabase* loaded = nullptr;
 
   void add_to(CLI::App& app);
   // Only the inline coefficients (--sigma-a, --sigma-s, --sigma-s-prime, --g, --channels, --eta), for

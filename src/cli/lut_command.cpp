@@ -77,7 +77,7 @@ void tabulate_all(const LutOptions& o, const TableKind& kind) {
   // With --db, every material of that database (without it, the bundled ones). Each is then looked
   // up as every command looks up a name, in the bundled database plus --db: a name clash between
   // the two is one error here, before any work, not one skipped table per material.
-  if (!o.medium.db.empty()) MaterialDatabase::load_with_user(o.medium.db);
+  const auto lookup = MaterialDatabase::load_with_user(o.medium.db);  // every material's, loaded once
   const auto database =
       MaterialDatabase::load(o.medium.db.empty() ? default_materials_dir() : std::filesystem::path(o.medium.db));
   const auto& materials = database.all();
@@ -90,6 +90,7 @@ void tabulate_all(const LutOptions& o, const TableKind& kind) {
   parallel_for(materials.size(), o.threads, [&](std::size_t i) {
     LutOptions one = o;
     one.medium.material = materials[i].name;
+    one.medium.loaded = &lookup;
     one.threads = 1;
     try {
       encoded[i] = encode(kind.build(one), format, o.half);

@@ -52,7 +52,8 @@ MediumOptions::Resolved MediumOptions::resolve() const {
   Resolved out;
   out.unit = parse_length_unit(unit, "--unit");
   if (!material.empty()) {
-    const auto database = MaterialDatabase::load_with_user(db);
+    std::optional<MaterialDatabase> own;
+    const MaterialDatabase& database = loaded ? *loaded : own.emplace(MaterialDatabase::load_with_user(db));
     out.material = database.find(material);
     out.medium = out.material->medium;
     if (!wavelengths.empty())

@@ -3,6 +3,7 @@
 // weights), each channel normalised by int r R^2 dr so that all channels count alike.
 #include <ceres/ceres.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -44,11 +45,13 @@ class GaussianResidual : public ceres::CostFunction {
   bool Evaluate(double const* const* parameters, double* residual, double** jacobians) const override {
     const double* log_variance = parameters[0];
     const double* w = parameters[1];  // bounded below by 0: weights may vanish exactly
+    std::array<double, 32> variance{};  // count <= 32 (fit_gaussians): once per evaluation, not per radius
+    for (int k = 0; k < count_; ++k) variance[k] = std::exp(log_variance[k]);
     for (std::size_t i = 0; i < profile_->size(); ++i) {
       const double r = profile_->radius[i];
       double sum = 0;
       for (int k = 0; k < count_; ++k) {
-        const double v = std::exp(log_variance[k]), g = quantized_diffusion::gaussian_2d(v, r);
+        const double v = variance[k], g = quantized_diffusion::gaussian_2d(v, r);
         sum += w[k] * g;
         if (jacobians && jacobians[0]) jacobians[0][i * count_ + k] = weight_[i] * w[k] * g * (r * r / (2 * v) - 1);
         if (jacobians && jacobians[1]) jacobians[1][i * count_ + k] = weight_[i] * g;
@@ -177,7 +180,11 @@ FitReport fit_gaussians(const std::vector<NamedProfile>& channels, int count, Le
     problem.SetParameterUpperBound(log_variance.data(), k, std::log(0.5 * 1e6 * r_hi * r_hi));
   }
   ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
+  // Up to 8 Gaussians the normal equations (a 4 count x 4 count Cholesky for three channels) instead of QR of the
+  // whole Jacobian: 28 % fewer instructions for the 47 materials' tables at 6, every fit's relative L2 error within
+  // 2.3e-13 (6) and 1e-8 (8) of QR's, relative. With more, neighbouring Gaussians' columns grow alike and squaring
+  // the condition number shows (24 Gaussians, Marble: L2 0.0098 with QR, 0.0105 with the normal equations).
+  options.linear_solver_type = count <= 8 ? ceres::DENSE_NORMAL_CHOLESKY : ceres::DENSE_QR;
   options.max_num_iterations = 2000;
   options.function_tolerance = 1e-12;
   // Weights pinned at their bound 0 make monotone Levenberg-Marquardt creep (Ketchup, soy and

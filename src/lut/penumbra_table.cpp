@@ -43,14 +43,18 @@ PenumbraTable build_penumbra_table(const Medium& medium, const Model& model, con
   for (std::size_t i = 0; i < W; ++i) ln_shadow[i] = std::log(t.shadow[i]);
   parallel_for(H, options.threads, [&](std::size_t j) {
     const double w = t.penumbra_width[j], ln_w = std::log(w);
-    std::vector<double> integral(W);
+    std::vector<double> integral(W), x(W), ln_x(W);  // the columns' s_i w and their logarithms, shared by the channels
+    for (std::size_t i = 0; i < W; ++i) {
+      x[i] = t.shadow[i] * w;
+      ln_x[i] = ln_shadow[i] + ln_w;
+    }
     for (std::size_t c = 0; c < channels; ++c) {
       const auto& p = profiles[c];
       if (!p) {
         for (std::size_t i = 0; i < W; ++i) t.value[c][j * W + i] = t.shadow[i];
         continue;
       }
-      for (std::size_t i = 0; i < W; ++i) integral[i] = p->half_plane_integral(t.shadow[i] * w, ln_shadow[i] + ln_w);
+      p->half_plane_integrals(x.data(), ln_x.data(), integral.data(), W);
       const double total = p->total();
       for (std::size_t i = 0; i < W; ++i) {
         const std::size_t m = W - 1 - i;

@@ -11,6 +11,26 @@
 #include "bssrdf/parallel.hpp"
 
 namespace bssrdf {
+namespace {
+
+// For each bound b_i (monotone in i, either way): the number of the ascending nodes x below it (x < b_i), or with
+// `inclusive` at or below it (x <= b_i), as std::lower_bound / std::upper_bound would count, by one sweep.
+std::vector<std::size_t> sweep_counts(const std::vector<double>& x, const std::vector<double>& bound, bool inclusive) {
+  const std::size_t n = bound.size();
+  std::vector<std::size_t> count(n);
+  const bool rising = n < 2 || bound.front() <= bound.back();
+  std::size_t m = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = rising ? k : n - 1 - k;  // in increasing bound
+    const auto below = [&](std::size_t node) { return inclusive ? x[node] <= bound[i] : x[node] < bound[i]; };
+    while (m > 0 && !below(m - 1)) --m;  // a bound out of order by rounding: step back
+    while (m < x.size() && below(m)) ++m;
+    count[i] = m;
+  }
+  return count;
+}
+
+}  // namespace
 
 void PreintegratedOptions::validate() const {
   if (width < 2 || width > 8192) throw InvalidInput("size", std::to_string(width) + " columns", "2 to 8192");
@@ -56,64 +76,81 @@ PreintegratedTable build_preintegrated_table(const Medium& medium,
 
   std::vector<double> theta(W);
   for (std::size_t i = 0; i < W; ++i) theta[i] = std::acos(std::clamp(t.n_dot_l[i], -1.0, 1.0));
+  // Nodes in x in (0, pi]: geometric from the profile's smallest scale (chord r x) to 0.1 (per row), then uniform
+  // (the same in every row: their sines and cosines are computed once).
+  const double h = std::log(10.0) / options.ring_nodes_per_decade, ratio = std::exp(h);
+  const double step = options.ring_step, pi = std::numbers::pi;
+  const auto n_uniform = static_cast<std::size_t>(std::ceil((pi - 0.1) / step));
+  std::vector<double> uniform_x, uniform_cos, uniform_sin, uniform_half_sin;
+  for (std::size_t k = 0; k <= n_uniform; ++k) {
+    const double x = 0.1 + (pi - 0.1) * static_cast<double>(k) / static_cast<double>(n_uniform);
+    uniform_x.push_back(x);
+    uniform_cos.push_back(std::cos(x));
+    uniform_sin.push_back(std::sin(x));
+    uniform_half_sin.push_back(std::sin(0.5 * x));
+  }
+  // The clamps' ranges (below) are bounded by theta_i -+ pi/2 and 3pi/2 - theta_i; theta falls as i grows.
+  std::vector<double> below_lit(W), lit_again(W), facing_lo(W), facing_hi(W);
+  for (std::size_t i = 0; i < W; ++i) {
+    below_lit[i] = pi / 2 - theta[i];
+    lit_again[i] = 3 * pi / 2 - theta[i];
+    facing_lo[i] = theta[i] - pi / 2;
+    facing_hi[i] = theta[i] + pi / 2;
+  }
   parallel_for(H, options.threads, [&](std::size_t j) {
     const double radius = 1 / t.curvature[j];
-    // Nodes in x in (0, pi]: geometric from the profile's smallest scale (chord r x) to 0.1, then uniform.
-    std::vector<double> x;
-    const double x_lo = std::min(1e-3, r_min / radius), h = std::log(10.0) / options.ring_nodes_per_decade;
-    for (double v = x_lo; v < 0.1; v *= std::exp(h)) x.push_back(v);
-    const double step = options.ring_step;
-    const auto n_uniform = static_cast<std::size_t>(std::ceil((std::numbers::pi - 0.1) / step));
-    for (std::size_t k = 0; k <= n_uniform; ++k)
-      x.push_back(0.1 + (std::numbers::pi - 0.1) * static_cast<double>(k) / static_cast<double>(n_uniform));
+    const double x_lo = std::min(1e-3, r_min / radius);
+    thread_local std::vector<double> x, quad, cos_x, sin_x, chord, ln_chord, line, prefix_cos, prefix_sin;
+    x.clear();
+    for (double v = x_lo; v < 0.1; v *= ratio) x.push_back(v);
+    const std::size_t G = x.size();  // geometric nodes
+    x.insert(x.end(), uniform_x.begin(), uniform_x.end());
     const std::size_t K = x.size();
-    std::vector<double> quad(K), cos_x(K), sin_x(K), chord(K), ln_chord(K);
+    for (auto* v : {&quad, &cos_x, &sin_x, &chord, &ln_chord, &line}) v->resize(K);
     for (std::size_t k = 0; k < K; ++k) {
       // Trapezoid weight; the first node also covers (0, x_0] (the integrand taken constant there).
       quad[k] = k == 0       ? x[0] + 0.5 * (x[1] - x[0])
                 : k + 1 == K ? 0.5 * (x[k] - x[k - 1])
                              : 0.5 * (x[k + 1] - x[k - 1]);
-      cos_x[k] = std::cos(x[k]);
-      sin_x[k] = std::sin(x[k]);
-      chord[k] = 2 * radius * std::sin(0.5 * x[k]);
+      const bool geometric = k < G;
+      cos_x[k] = geometric ? std::cos(x[k]) : uniform_cos[k - G];
+      sin_x[k] = geometric ? std::sin(x[k]) : uniform_sin[k - G];
+      chord[k] = 2 * radius * (geometric ? std::sin(0.5 * x[k]) : uniform_half_sin[k - G]);
       ln_chord[k] = std::log(chord[k]);  // once for every channel's profile
     }
     // sum_k w_k [max(0, cos(theta + x_k)) + max(0, cos(theta - x_k))], theta = acos(N.L) in [0, pi],
     // x_k in (0, pi]: each clamp keeps a contiguous range of nodes (cos(theta + x) > 0 for
     // x < pi/2 - theta or x > 3pi/2 - theta; cos(theta - x) > 0 for |x - theta| < pi/2), so
     // prefix sums of w cos x and w sin x give every column in O(1) once the ranges (the same for
-    // every channel) are known.
-    const auto range = [&](double lo, double hi) {  // nodes with lo < x < hi as an index range
-      const auto a = static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), lo) - x.begin());
-      const auto b = static_cast<std::size_t>(std::lower_bound(x.begin(), x.end(), hi) - x.begin());
-      return std::pair{a, std::max(a, b)};
-    };
-    const double pi = std::numbers::pi;
-    std::vector<std::array<std::pair<std::size_t, std::size_t>, 3>> ranges(W);
-    for (std::size_t i = 0; i < W; ++i)
-      ranges[i] = {range(-1.0, pi / 2 - theta[i]), range(3 * pi / 2 - theta[i], 4.0),
-                   range(theta[i] - pi / 2, theta[i] + pi / 2)};
-    std::vector<double> prefix_cos(K + 1, 0.0), prefix_sin(K + 1, 0.0);
+    // every channel) are known. The ranges' ends move one way as theta falls: counted by a sweep.
+    const auto at_most = sweep_counts(x, below_lit, false);  // nodes < pi/2 - theta
+    const auto from = sweep_counts(x, lit_again, true);      // nodes <= 3pi/2 - theta
+    const auto lo = sweep_counts(x, facing_lo, true);        // nodes <= theta - pi/2
+    const auto hi = sweep_counts(x, facing_hi, false);       // nodes < theta + pi/2
+    prefix_cos.assign(K + 1, 0.0);
+    prefix_sin.assign(K + 1, 0.0);
     for (std::size_t c = 0; c < channels; ++c) {
       if (!profiles[c]) {
         for (std::size_t i = 0; i < W; ++i) t.value[c][j * W + i] = std::max(0.0, t.n_dot_l[i]);
         continue;
       }
+      profiles[c]->lines(chord.data(), ln_chord.data(), line.data(), K);
       double norm = 0;
       for (std::size_t k = 0; k < K; ++k) {
-        const double w = quad[k] * profiles[c]->line(chord[k], ln_chord[k]);
+        const double w = quad[k] * line[k];
         norm += w;
         prefix_cos[k + 1] = prefix_cos[k] + w * cos_x[k];
         prefix_sin[k + 1] = prefix_sin[k] + w * sin_x[k];
       }
-      const auto sums = [&](std::pair<std::size_t, std::size_t> r) {
-        return std::pair{prefix_cos[r.second] - prefix_cos[r.first], prefix_sin[r.second] - prefix_sin[r.first]};
+      const auto sums = [&](std::size_t a, std::size_t b) {
+        b = std::max(a, b);
+        return std::pair{prefix_cos[b] - prefix_cos[a], prefix_sin[b] - prefix_sin[a]};
       };
       for (std::size_t i = 0; i < W; ++i) {
         const double u = t.n_dot_l[i], s = std::sqrt(std::max(0.0, 1 - u * u));
-        const auto [c1, s1] = sums(ranges[i][0]);
-        const auto [c2, s2] = sums(ranges[i][1]);
-        const auto [c3, s3] = sums(ranges[i][2]);
+        const auto [c1, s1] = sums(0, at_most[i]);
+        const auto [c2, s2] = sums(from[i], K);
+        const auto [c3, s3] = sums(lo[i], hi[i]);
         const double sum = u * (c1 + c2) - s * (s1 + s2) + u * c3 + s * s3;
         t.value[c][j * W + i] = std::clamp(sum / (2 * norm), 0.0, 1.0);
       }

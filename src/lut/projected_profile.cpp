@@ -16,6 +16,34 @@ constexpr double kNegligible = -745.0;  // ln of the smallest double: R treated 
 
 double safe_log(double v) { return v > 0 ? std::log(v) : kNegligible; }
 
+// Catmull-Rom in u on the nodes u0 + j h of f; one-sided (linear) at the ends where a neighbour is missing. Always
+// inlined: the tables evaluate it millions of times in their loops (lines, half_plane_integrals).
+[[gnu::always_inline]] inline double grid_cubic(const std::vector<double>& f, double u0, double h, double u) {
+  const double t = (u - u0) / h;
+  const auto n = static_cast<std::ptrdiff_t>(f.size());
+  // floor(t) where it matters: truncation differs only for t < 0, which the clamp sends to node 0 either way (and it
+  // is an instruction, where std::floor is a library call without SSE4.1).
+  auto i = static_cast<std::ptrdiff_t>(t);
+  i = std::clamp<std::ptrdiff_t>(i, 0, n - 2);
+  const double x = t - static_cast<double>(i);
+  double p0, p1, p2, p3, m1, m2;
+  if (i > 0 && i + 2 < n) {  // inside: all four nodes, central slopes
+    p0 = f[static_cast<std::size_t>(i - 1)], p1 = f[static_cast<std::size_t>(i)];
+    p2 = f[static_cast<std::size_t>(i + 1)], p3 = f[static_cast<std::size_t>(i + 2)];
+    m1 = 0.5 * (p2 - p0);
+    m2 = 0.5 * (p3 - p1);
+  } else {  // at an end: one-sided (linear) where a neighbour is missing
+    const auto at = [&](std::ptrdiff_t k) {
+      return f[static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(k, 0, n - 1))];
+    };
+    p0 = at(i - 1), p1 = at(i), p2 = at(i + 1), p3 = at(i + 2);
+    m1 = i > 0 ? 0.5 * (p2 - p0) : p2 - p1;
+    m2 = i + 2 < n ? 0.5 * (p3 - p1) : p2 - p1;
+  }
+  const double x2 = x * x, x3 = x2 * x;
+  return (2 * x3 - 3 * x2 + 1) * p1 + (x3 - 2 * x2 + x) * m1 + (-2 * x3 + 3 * x2) * p2 + (x3 - x2) * m2;
+}
+
 }  // namespace
 
 ProjectedProfile::ProjectedProfile(const Model& model, const Reduced<double>& m) {
@@ -111,22 +139,7 @@ ProjectedProfile::ProjectedProfile(const Model& model, const Reduced<double>& m)
   }
 }
 
-double ProjectedProfile::cubic(const std::vector<double>& f, double u) const {
-  const double t = (u - u0_) / h_;
-  const auto n = static_cast<std::ptrdiff_t>(f.size());
-  auto i = static_cast<std::ptrdiff_t>(std::floor(t));
-  i = std::clamp<std::ptrdiff_t>(i, 0, n - 2);
-  const double x = t - static_cast<double>(i);
-  const auto at = [&](std::ptrdiff_t k) {
-    return f[static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(k, 0, n - 1))];
-  };
-  const double p0 = at(i - 1), p1 = at(i), p2 = at(i + 1), p3 = at(i + 2);
-  // Catmull-Rom; one-sided (linear) at the ends where a neighbour is missing.
-  const double m1 = i > 0 ? 0.5 * (p2 - p0) : p2 - p1;
-  const double m2 = i + 2 < n ? 0.5 * (p3 - p1) : p2 - p1;
-  const double x2 = x * x, x3 = x2 * x;
-  return (2 * x3 - 3 * x2 + 1) * p1 + (x3 - 2 * x2 + x) * m1 + (-2 * x3 + 3 * x2) * p2 + (x3 - x2) * m2;
-}
+double ProjectedProfile::cubic(const std::vector<double>& f, double u) const { return grid_cubic(f, u0_, h_, u); }
 
 double ProjectedProfile::reflectance(double r) const {
   if (r <= r_min()) return std::exp(log_R_.front());
@@ -141,11 +154,23 @@ double ProjectedProfile::line(double x) const {
 }
 
 double ProjectedProfile::line(double x, double ln_abs_x) const {
-  x = std::abs(x);
-  if (x <= r_min()) return std::exp(log_line_.front());
-  if (x >= r_max()) return 0;
-  const double v = cubic(log_line_, ln_abs_x);
-  return v <= kNegligible ? 0 : std::exp(v);
+  double out;
+  lines(&x, &ln_abs_x, &out, 1);
+  return out;
+}
+
+void ProjectedProfile::lines(const double* x, const double* ln_x, double* out, std::size_t n) const {
+  for (std::size_t k = 0; k < n; ++k) {
+    const double a = std::abs(x[k]);
+    if (a <= r_min()) {
+      out[k] = std::exp(log_line_.front());
+    } else if (a >= r_max()) {
+      out[k] = 0;
+    } else {
+      const double v = grid_cubic(log_line_, u0_, h_, ln_x[k]);
+      out[k] = v <= kNegligible ? 0 : std::exp(v);
+    }
+  }
 }
 
 double ProjectedProfile::half_plane(double x) const {
@@ -160,10 +185,22 @@ double ProjectedProfile::half_plane_integral(double x) const {
 }
 
 double ProjectedProfile::half_plane_integral(double x, double ln_x) const {
-  if (x <= 0) return 0;
-  if (x <= r_min()) return x * 0.5 * (half_plane_0_ + half_plane(x));
-  if (x >= r_max()) return half_plane_integral_.back();  // half_plane is 0 beyond
-  return cubic(half_plane_integral_, ln_x);
+  double out;
+  half_plane_integrals(&x, &ln_x, &out, 1);
+  return out;
+}
+
+void ProjectedProfile::half_plane_integrals(const double* x, const double* ln_x, double* out, std::size_t n) const {
+  for (std::size_t k = 0; k < n; ++k) {
+    if (x[k] <= 0)
+      out[k] = 0;
+    else if (x[k] <= r_min())
+      out[k] = x[k] * 0.5 * (half_plane_0_ + half_plane(x[k]));
+    else if (x[k] >= r_max())
+      out[k] = half_plane_integral_.back();  // half_plane is 0 beyond
+    else
+      out[k] = grid_cubic(half_plane_integral_, u0_, h_, ln_x[k]);
+  }
 }
 
 double ProjectedProfile::radius_for_fraction(double fraction) const {

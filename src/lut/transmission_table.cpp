@@ -60,10 +60,14 @@ TransmissionTable build_transmission_table(const Medium& medium, std::vector<dou
   const bool reference = options.reference || everywhere;
   const bool exact_everywhere = options.model == "adding-doubling" && !everywhere;
   // Adding-doubling: every thickness of a channel at once, sharing its angles, boundaries and phase function.
-  std::vector<std::vector<adding_doubling::Totals>> exact(exact_everywhere ? channels : 0);
+  // Every channel's slab first: one that cannot be solved (a channel without scattering) refuses the table before
+  // the other channels' solves, not after them.
+  std::vector<adding_doubling::Slab> slabs;
+  for (std::size_t c = 0; c < (exact_everywhere ? channels : 0); ++c)
+    slabs.push_back(adding_doubling::slab_of(LayerStack::slab(medium, thickness[0]), c));
+  std::vector<std::vector<adding_doubling::Totals>> exact(slabs.size());
   for (std::size_t c = 0; c < exact.size(); ++c)
-    exact[c] = adding_doubling::solve_thicknesses(adding_doubling::slab_of(LayerStack::slab(medium, thickness[0]), c),
-                                                  thickness, adding_doubling::Incidence::collimated);
+    exact[c] = adding_doubling::solve_thicknesses(slabs[c], thickness, adding_doubling::Incidence::collimated);
   for (std::size_t k = 0; k < thickness.size(); ++k) {
     const double d = thickness[k];
     const multipole::Model model(d);

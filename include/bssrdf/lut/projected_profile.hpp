@@ -36,11 +36,15 @@ class ProjectedProfile {
   double reflectance(double r) const;            // R(r); R(r_min) below the grid, 0 beyond it
   double line(double x) const;                   // even in x
   double line(double x, double ln_abs_x) const;  // the same given ln |x| (shared by several profiles)
+  // line(x[k], ln_x[k]) for every k into out[k] (x > 0): the same values, in one loop that inlines the interpolation.
+  void lines(const double* x, const double* ln_x, double* out, std::size_t n) const;
   double half_plane(double x) const;             // signed x: total - half_plane(-x) for x < 0
   double strip(double a, double b) const { return half_plane(a) - half_plane(b); }
   double half_plane_integral(double x) const;  // int_0^x half_plane, x >= 0
   // The same given ln x too (tables whose arguments are products s w add logarithms instead).
   double half_plane_integral(double x, double ln_x) const;
+  // half_plane_integral(x[k], ln_x[k]) for every k into out[k]: the same values, in one inlined loop.
+  void half_plane_integrals(const double* x, const double* ln_x, double* out, std::size_t n) const;
   // The radius holding `fraction` of total() (0 < fraction < 1).
   double radius_for_fraction(double fraction) const;
   // The distance x >= 0 at which 2 half_plane(x) / total falls to 1 - fraction: the half-width of
