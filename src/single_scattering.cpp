@@ -42,7 +42,8 @@ class KernelGrid {
   // The values of phase p from i = p + a m_first on.
   const double* phase(double h, std::ptrdiff_t a, std::ptrdiff_t i_low, std::ptrdiff_t i_high, std::ptrdiff_t p,
                       std::ptrdiff_t m_first) {
-    if (h != h_ || a != a_ || i_low < low_ || i_high > high_) fill(h, a, std::min(i_low, h == h_ && a == a_ ? low_ : i_low), i_high);
+    if (h != h_ || a != a_ || i_low < low_ || i_high > high_)
+      fill(h, a, std::min(i_low, h == h_ && a == a_ ? low_ : i_low), i_high);
     return values_.data() + p * per_phase_ + (m_first - m_low_);
   }
 
@@ -58,7 +59,8 @@ class KernelGrid {
     values_.assign(static_cast<std::size_t>(a * per_phase_), 1.0);
     for (std::ptrdiff_t p = 0; p < a; ++p)
       for (std::ptrdiff_t m = m_low_; m < m_low_ + per_phase_; ++m)
-        values_[static_cast<std::size_t>(p * per_phase_ + m - m_low_)] = std::exp(-std::exp(static_cast<double>(m * a + p) * h));
+        values_[static_cast<std::size_t>(p * per_phase_ + m - m_low_)] =
+            std::exp(-std::exp(static_cast<double>(m * a + p) * h));
   }
   double h_ = 0;
   std::ptrdiff_t a_ = 0, low_ = 0, high_ = -1, m_low_ = 0, per_phase_ = 0;

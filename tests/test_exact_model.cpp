@@ -317,8 +317,7 @@ TEST(ExactModel, BelowTheFirstAlbedoNodeTheLogGridChangesNothingAgainstThePerRad
   for (double ap : {1e-4, 5e-4, 3e-5})
     for (const auto& [g, eta] : {std::pair{0.92, 1.0}, std::pair{0.97, 1.12}, std::pair{0.999, 1.6},
                                  std::pair{0.3, 2.0}, std::pair{0.95, 1.45}}) {
-      const ExactProfile fast(table(), ap, g, eta),
-          baseline(table(), ap, g, eta, SingleScatteringRadii::per_radius);
+      const ExactProfile fast(table(), ap, g, eta), baseline(table(), ap, g, eta, SingleScatteringRadii::per_radius);
       EXPECT_EQ(fast.total(), baseline.total());
       for (double r = 2e-4; r < 50; r *= 1.13) {
         const double change = std::abs(fast.reflectance(r) / baseline.reflectance(r) - 1);

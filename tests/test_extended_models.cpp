@@ -135,11 +135,11 @@ TEST(SingleScattering, LogGridMatchesAnAdaptiveIntegralAtEveryRadius) {
     std::size_t radii;
   };
   const double decade = std::log(10.0);
-  for (const Case& c : {Case{4e-4, 0.93, 1.0, std::log(1e-3), decade / 12, 77},
-                        Case{2e-4, 0.96, 1.07, std::log(1e-3), decade / 12, 77},
-                        Case{8e-4, 0.998, 1.62, std::log(1e-3), decade / 12, 77},
-                        Case{1e-3, 0.9, 2.0, std::log(1e-3), decade / 12, 77}, Case{0.3, 0.6, 1.25, -4.0, 0.7, 16},
-                        Case{0.9, 0.0, 1.4, -6.0, 0.05, 200}, Case{0.5, 0.8, 0.8, -5.0, 0.25, 50}}) {
+  for (const Case& c :
+       {Case{4e-4, 0.93, 1.0, std::log(1e-3), decade / 12, 77}, Case{2e-4, 0.96, 1.07, std::log(1e-3), decade / 12, 77},
+        Case{8e-4, 0.998, 1.62, std::log(1e-3), decade / 12, 77}, Case{1e-3, 0.9, 2.0, std::log(1e-3), decade / 12, 77},
+        Case{0.3, 0.6, 1.25, -4.0, 0.7, 16}, Case{0.9, 0.0, 1.4, -6.0, 0.05, 200},
+        Case{0.5, 0.8, 0.8, -5.0, 0.25, 50}}) {
     const auto m = reduce(1 - c.albedo_prime, c.albedo_prime / (1 - c.g), c.g, c.eta);
     const double sigma_t = m.sigma_t(), mu_c = c.eta > 1 ? std::sqrt(1 - 1 / (c.eta * c.eta)) : 0.0;
     const double x_c = std::sqrt((1 + mu_c) / (1 - mu_c));

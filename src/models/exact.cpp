@@ -201,7 +201,8 @@ struct BelowFirstNode {
       // e^{slope d}, the shift's factor: where slope d is small (|d| < 1e-3: most radii) its series to
       // fifth order (error < 2e-15 below 0.01), an exponential less per radius.
       const double x = slope * d;
-      const double shift = std::abs(x) < 0.01 ? 1 + x * (1 + x / 2 * (1 + x / 3 * (1 + x / 4 * (1 + x / 5)))) : std::exp(x);
+      const double shift =
+          std::abs(x) < 0.01 ? 1 + x * (1 + x / 2 * (1 + x / 3 * (1 + x / 4 * (1 + x / 5)))) : std::exp(x);
       const double node_share = std::exp(ln_ss0[k] - ln_y[k]);  // of single scattering in the node's y
       const double f = node_share * factor * shift + ms_scale * (1 - node_share);
       // Not clamped at 0: where the node is all single scattering, its table value may fall a

@@ -105,8 +105,7 @@ int main(int argc, char** argv) {
   std::vector<double> log_grid_us, per_radius_us;
   for (int rep = 0; rep < repetitions; ++rep) {
     log_grid_us.push_back(1e3 * median_ms([&] { return low_albedo(SingleScatteringRadii::log_grid, 1000); }, 1));
-    per_radius_us.push_back(1e3 * median_ms([&] { return low_albedo(SingleScatteringRadii::per_radius, 20); }, 1) /
-                            20);
+    per_radius_us.push_back(1e3 * median_ms([&] { return low_albedo(SingleScatteringRadii::per_radius, 20); }, 1) / 20);
   }
   std::nth_element(log_grid_us.begin(), log_grid_us.begin() + repetitions / 2, log_grid_us.end());
   std::nth_element(per_radius_us.begin(), per_radius_us.begin() + repetitions / 2, per_radius_us.end());
