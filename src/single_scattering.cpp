@@ -1,5 +1,6 @@
 #include "bssrdf/single_scattering.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -19,6 +20,135 @@ double single_scattering_total(double albedo, double g, double eta) {
            span * s;
   };
   return albedo * integrate_adaptive(integrand, 0.0, 1.0, 1e-12).value;
+}
+
+namespace {
+
+// std::ceil and std::floor to an integer without the library call (no SSE4.1 in the baseline ISA).
+std::ptrdiff_t ceil_to_int(double x) {
+  const auto i = static_cast<std::ptrdiff_t>(x);
+  return i + (static_cast<double>(i) < x);
+}
+std::ptrdiff_t floor_to_int(double x) {
+  const auto i = static_cast<std::ptrdiff_t>(x);
+  return i - (static_cast<double>(i) > x);
+}
+
+// The kernel exp(-e^{i h}) at grid indices i = m a + p, each phase p < a stored contiguously in m
+// (a radius reads every a-th value), for the last grid seen on this thread: it does not depend on
+// the medium, and its exponentials would otherwise cost a third of a profile.
+class KernelGrid {
+ public:
+  // The values of phase p from i = p + a m_first on.
+  const double* phase(double h, std::ptrdiff_t a, std::ptrdiff_t i_low, std::ptrdiff_t i_high, std::ptrdiff_t p,
+                      std::ptrdiff_t m_first) {
+    if (h != h_ || a != a_ || i_low < low_ || i_high > high_)
+      fill(h, a, std::min(i_low, h == h_ && a == a_ ? low_ : i_low), i_high);
+    return values_.data() + p * per_phase_ + (m_first - m_low_);
+  }
+
+ private:
+  static std::ptrdiff_t floor_div(std::ptrdiff_t i, std::ptrdiff_t a) { return i >= 0 ? i / a : -((-i + a - 1) / a); }
+  void fill(double h, std::ptrdiff_t a, std::ptrdiff_t low, std::ptrdiff_t high) {
+    h_ = h;
+    a_ = a;
+    low_ = low - 32 * a;  // room for smaller radii than this call's
+    high_ = high;
+    m_low_ = floor_div(low_, a);
+    per_phase_ = floor_div(high_, a) - m_low_ + 1;
+    values_.assign(static_cast<std::size_t>(a * per_phase_), 1.0);
+    for (std::ptrdiff_t p = 0; p < a; ++p)
+      for (std::ptrdiff_t m = m_low_; m < m_low_ + per_phase_; ++m)
+        values_[static_cast<std::size_t>(p * per_phase_ + m - m_low_)] =
+            std::exp(-std::exp(static_cast<double>(m * a + p) * h));
+  }
+  double h_ = 0;
+  std::ptrdiff_t a_ = 0, low_ = 0, high_ = -1, m_low_ = 0, per_phase_ = 0;
+  std::vector<double> values_;
+};
+
+}  // namespace
+
+std::vector<double> single_scattering_ln_y(const Reduced<double>& m, double ln_r0, double d_ln_r, std::size_t radii) {
+  std::vector<double> ln_y(radii);
+  if (radii == 0) return ln_y;
+  // The trapezoid's step in tau: the largest a d_ln_r / b up to kStep, the grid spacing h = d_ln_r / b.
+  // Measured (g 0 to 0.999, eta 1 to 2, 12 radii a decade): relative error 8e-9 at step 0.38, 3e-7 at
+  // 0.48, 7e-6 at 0.58; the cost is about proportional to 1 / step.
+  constexpr double kStep = 0.5;
+  // The sum's ends in s = tau + ln rho. Above ln 40 the kernel is below e^{-40}. Below, the integrand
+  // falls as (rho e^tau)^{3/2} where rho e^tau << 1, to e^{-21} of J at s = -14 (rho >= 1); for rho < 1
+  // the lower end is tau = -14 itself, where J is within rho of its value at rho = 0.
+  constexpr double kLow = -14, kHigh = 3.7;
+  std::ptrdiff_t a = 0, b = 1;
+  for (std::ptrdiff_t sub = 1; sub <= 8; ++sub) {
+    const auto steps = static_cast<std::ptrdiff_t>(kStep * static_cast<double>(sub) / d_ln_r);
+    if (steps >= 1 && static_cast<double>(steps * b) > static_cast<double>(a * sub)) {  // a longer step
+      a = steps;
+      b = sub;
+    }
+  }
+  if (a == 0) {  // radii further apart than 8 steps: one node per grid point
+    a = 1;
+    b = static_cast<std::ptrdiff_t>(std::ceil(d_ln_r / kStep));
+  }
+  const double h = d_ln_r / static_cast<double>(b);
+  const double step = static_cast<double>(a) * h;
+  const double x_c = m.eta > 1 ? m.eta + std::sqrt(m.eta * m.eta - 1) : 1.0;
+  const double ln_rho0 = std::log(m.sigma_t()) + ln_r0;
+  // Node j sits at tau_j = j step - ln rho_0, radius k at ln rho_k = ln rho_0 + k b h, so that
+  // tau_j + ln rho_k = (j a + k b) h: the kernel's grid index i = j a + k b. Radius k sums nodes
+  // j_low(k) to j_high(k).
+  const std::ptrdiff_t i_high = floor_to_int(kHigh / h);
+  const auto j_low = [&](std::size_t k) {
+    const double ln_rho = ln_rho0 + static_cast<double>(k) * d_ln_r;
+    const double i_low = (kLow + std::min(0.0, ln_rho)) / h - static_cast<double>(static_cast<std::ptrdiff_t>(k) * b);
+    return ceil_to_int(i_low / static_cast<double>(a));
+  };
+  const auto j_high = [&](std::size_t k) {
+    return floor_to_int(static_cast<double>(i_high - static_cast<std::ptrdiff_t>(k) * b) / static_cast<double>(a));
+  };
+  // The lowest node and kernel index (the largest radius, or the smallest where rho < 1 throughout).
+  std::ptrdiff_t j_min = j_low(0), i_min = j_min * a;
+  for (std::size_t k = 1; k < radii; ++k) {
+    const std::ptrdiff_t j = j_low(k);
+    j_min = std::min(j_min, j);
+    i_min = std::min(i_min, j * a + static_cast<std::ptrdiff_t>(k) * b);
+  }
+  const std::ptrdiff_t j_max = j_high(0);
+  // The angular factor once per node, with the Jacobian dx / x = e^tau / (x_c + e^tau) dtau.
+  std::vector<double> node(static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, j_max - j_min + 1)));
+  const double growth = std::exp(step);
+  double t = std::exp(static_cast<double>(j_min) * step - ln_rho0);
+  for (double& w : node) {
+    const double x = x_c + t;
+    w = single_scattering_exit(m, x) * t / x;
+    t *= growth;
+  }
+  thread_local KernelGrid kernel;
+  const double ln_front = std::log(2 * std::numbers::pi * m.sigma_s * step);
+  const double rho_growth = std::exp(d_ln_r);
+  double rho = std::exp(ln_rho0);
+  for (std::size_t k = 0; k < radii; ++k, rho *= rho_growth) {
+    const std::ptrdiff_t low = j_low(k), count = j_high(k) - low + 1;
+    const double* w = node.data() + (low - j_min);
+    // Index i = (low + j) a + k b: phase k b mod a, m = low + j + (k b - phase) / a.
+    const std::ptrdiff_t kb = static_cast<std::ptrdiff_t>(k) * b, phase = kb % a;
+    const double* kern = kernel.phase(h, a, i_min, i_high, phase, low + (kb - phase) / a);
+    // Four partial sums: independent additions pipeline (in a fixed order: the result does not
+    // depend on the instruction set).
+    double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+    std::ptrdiff_t j = 0;
+    for (; j + 4 <= count; j += 4) {
+      s0 += kern[j] * w[j];
+      s1 += kern[j + 1] * w[j + 1];
+      s2 += kern[j + 2] * w[j + 2];
+      s3 += kern[j + 3] * w[j + 3];
+    }
+    for (; j < count; ++j) s0 += kern[j] * w[j];
+    ln_y[k] = ln_front + ln_r0 + static_cast<double>(k) * d_ln_r - rho * x_c + std::log((s0 + s1) + (s2 + s3));
+  }
+  return ln_y;
 }
 
 }  // namespace bssrdf

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <numbers>
 #include <numeric>
 
 #include "bssrdf/error.hpp"
@@ -118,6 +120,48 @@ TEST(SingleScattering, QuadratureConvergesWithSamples) {
     const double reference = integrate_adaptive(integrand, t_c, t_c + 60, 1e-13, 0, 20000, 64).value;
     EXPECT_NEAR(single_scattering_reflectance(m, r, 64) / reference, 1.0, 1e-8) << r;
     EXPECT_GT(std::abs(single_scattering_reflectance(m, r, 8) / reference - 1), 1e-8) << r;  // order matters
+  }
+}
+
+TEST(SingleScattering, LogGridMatchesAnAdaptiveIntegralAtEveryRadius) {
+  // single_scattering_ln_y (a trapezoidal rule in ln(x - x_c), shared across radii) against an
+  // adaptive integral of the raw integrand in depth t (Habel, Christensen & Jarosz 2013), t = t_c + u^2
+  // (the square-root onset), scaled by e^{sigma_t r x_c} so that it does not underflow far out. Media
+  // and grids other than those the rule's step and ends were chosen on (g 0 to 0.999, eta 1 to 2,
+  // alpha' 0.001, 12 radii a decade from 1e-3). Measured worst: 5.8e-7 on the exact table's grid (step
+  // 0.499), 3.5e-6 on the others (eta 0.8, step 0.5); bounds 1e-6 and 1e-5.
+  struct Case {
+    double albedo_prime, g, eta, ln_r0, d_ln_r;
+    std::size_t radii;
+  };
+  const double decade = std::log(10.0);
+  for (const Case& c :
+       {Case{4e-4, 0.93, 1.0, std::log(1e-3), decade / 12, 77}, Case{2e-4, 0.96, 1.07, std::log(1e-3), decade / 12, 77},
+        Case{8e-4, 0.998, 1.62, std::log(1e-3), decade / 12, 77}, Case{1e-3, 0.9, 2.0, std::log(1e-3), decade / 12, 77},
+        Case{0.3, 0.6, 1.25, -4.0, 0.7, 16}, Case{0.9, 0.0, 1.4, -6.0, 0.05, 200},
+        Case{0.5, 0.8, 0.8, -5.0, 0.25, 50}}) {
+    const auto m = reduce(1 - c.albedo_prime, c.albedo_prime / (1 - c.g), c.g, c.eta);
+    const double sigma_t = m.sigma_t(), mu_c = c.eta > 1 ? std::sqrt(1 - 1 / (c.eta * c.eta)) : 0.0;
+    const double x_c = std::sqrt((1 + mu_c) / (1 - mu_c));
+    const std::vector<double> ln_y = single_scattering_ln_y(m, c.ln_r0, c.d_ln_r, c.radii);
+    ASSERT_EQ(ln_y.size(), c.radii);
+    double worst = 0;
+    for (std::size_t k = 0; k < c.radii; ++k) {
+      const double r = std::exp(c.ln_r0 + c.d_ln_r * static_cast<double>(k));
+      const double t_c = r * mu_c / std::sqrt(1 - mu_c * mu_c);
+      const auto integrand = [&](double u) {
+        const double t = t_c + u * u, d = std::hypot(r, t), mu = t / d;
+        return m.sigma_s * std::exp(-sigma_t * (t + d - r * x_c)) * henyey_greenstein(-mu, m.g) *
+               (1 - fresnel_reflectance(mu, c.eta)) * mu / (d * d) * 2 * u;
+      };
+      const double scaled = integrate_adaptive(integrand, 0.0, std::sqrt(60 / sigma_t), 1e-13, 0, 20000, 64).value;
+      const double reference = std::log(2 * std::numbers::pi * r * r * scaled) - sigma_t * r * x_c;
+      worst = std::max(worst, std::abs(std::expm1(ln_y[k] - reference)));
+    }
+    const bool table_grid = c.d_ln_r == decade / 12;
+    EXPECT_LT(worst, table_grid ? 1e-6 : 1e-5) << c.albedo_prime << " " << c.g << " " << c.eta << " " << c.d_ln_r;
+    std::printf("alpha' %g g %g eta %g, %zu radii from %.3g, step %.3g: worst relative error %.2e\n", c.albedo_prime,
+                c.g, c.eta, c.radii, std::exp(c.ln_r0), c.d_ln_r, worst);
   }
 }
 

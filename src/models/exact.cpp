@@ -178,37 +178,66 @@ struct BelowFirstNode {
         node(reduce(1 - table.albedo_prime.front(), table.albedo_prime.front() / (1 - g), g, eta)),
         ms_scale(std::pow(medium.albedo() / node.albedo(), 2)) {}
   double total(double node_total) const {
-    const double ss = single_scattering_total(medium.albedo(), medium.g, medium.eta);
-    const double ss_node = single_scattering_total(node.albedo(), node.g, node.eta);
-    return ss + ms_scale * (node_total - ss_node);
+    // The medium and the node share g and eta: the single-scattering total per unit albedo once.
+    const double ss_per_albedo = single_scattering_total(1.0, medium.g, medium.eta);
+    return ss_per_albedo * medium.albedo() + ms_scale * (node_total - ss_per_albedo * node.albedo());
   }
   // ln y (y = 2 pi r^2 R) at each tabulated radius from the first node's, as ratios to the node's
   // y: far out both single-scattering terms underflow while the table's tail stays finite in ln y.
-  // The node's single scattering is integrated at each radius as the generator did (96 points);
-  // the medium's follows from it by similarity: R_ss = sigma_s / r I(sigma_t r), so
+  // The node's single scattering is integrated at every radius at once (node_ln_ss); the medium's
+  // follows from it by similarity: R_ss = sigma_s / r I(sigma_t r), so
   // y_ss(r) = (sigma_s sigma_t0 / (sigma_s0 sigma_t)) y_ss0(r e^d), d = ln(sigma_t / sigma_t0) < 1e-3,
   // a shift of a small fraction of a radius step (to first order in d: error ~1e-6).
-  void continue_profile(const ExactTable& table, std::vector<double>& ln_y) const {
+  void continue_profile(const ExactTable& table, std::vector<double>& ln_y, SingleScatteringRadii how) const {
     const std::size_t n = ln_y.size();
-    std::vector<double> ln_ss0(n);
-    for (std::size_t k = 0; k < n; ++k) {
-      const double r = table.radius(k);
-      ln_ss0[k] = std::log(2 * std::numbers::pi * r * r * single_scattering_reflectance(node, r, 96));
-    }
+    const std::vector<double> ln_ss0 = node_ln_ss(table, n, how);
     const double d = std::log(medium.sigma_t() / node.sigma_t());
-    const double ln_factor = std::log(medium.sigma_s * node.sigma_t() / (node.sigma_s * medium.sigma_t()));
+    const double factor = medium.sigma_s * node.sigma_t() / (node.sigma_s * medium.sigma_t());
     for (std::size_t k = 0; k < n; ++k) {
       const std::size_t lo = k > 0 ? k - 1 : k, hi = k + 1 < n ? k + 1 : k;
       const double slope = std::isfinite(ln_ss0[hi] - ln_ss0[lo])
                                ? (ln_ss0[hi] - ln_ss0[lo]) / (static_cast<double>(hi - lo) * table.d_ln_r)
                                : 0.0;
-      const double ln_ss = ln_factor + ln_ss0[k] + slope * d;
-      const double f = std::exp(ln_ss - ln_y[k]) + ms_scale * (1 - std::exp(ln_ss0[k] - ln_y[k]));
+      // e^{slope d}, the shift's factor: where slope d is small (|d| < 1e-3: most radii) its series to
+      // fifth order (error < 2e-15 below 0.01), an exponential less per radius.
+      const double x = slope * d;
+      const double shift =
+          std::abs(x) < 0.01 ? 1 + x * (1 + x / 2 * (1 + x / 3 * (1 + x / 4 * (1 + x / 5)))) : std::exp(x);
+      const double node_share = std::exp(ln_ss0[k] - ln_y[k]);  // of single scattering in the node's y
+      const double f = node_share * factor * shift + ms_scale * (1 - node_share);
       // Not clamped at 0: where the node is all single scattering, its table value may fall a
       // rounding below the integral, and the continuation must still meet the node exactly. f = 0
       // only where the node's y is single scattering alone and it underflowed: it scales as alpha.
       ln_y[k] += f > 0 ? std::log(f) : std::log(medium.albedo() / node.albedo());
     }
+  }
+  // ln y_ss of the node at the first n tabulated radii. -inf where the generator's integral (the
+  // 96-point rule in doubles) underflowed, R_ss below the smallest subnormal (sigma_t r x_c > ~745): the
+  // table's y holds no single scattering there, and the continuation must split it as the table does.
+  std::vector<double> node_ln_ss(const ExactTable& table, std::size_t n, SingleScatteringRadii how) const {
+    std::vector<double> ln_ss0(n);
+    if (how == SingleScatteringRadii::per_radius) {
+      for (std::size_t k = 0; k < n; ++k) {
+        const double r = table.radius(k);
+        ln_ss0[k] = std::log(2 * std::numbers::pi * r * r * single_scattering_reflectance(node, r, 96));
+      }
+      return ln_ss0;
+    }
+    // R_ss < sigma_s / r e^{-sigma_t r x_c}: the radii beyond that bound's underflow need no integral.
+    const double x_c = node.eta > 1 ? node.eta + std::sqrt(node.eta * node.eta - 1) : 1.0;
+    const double ln_smallest = std::log(std::numeric_limits<double>::denorm_min());
+    const auto ln_r = [&](std::size_t k) { return table.ln_r0 + table.d_ln_r * static_cast<double>(k); };
+    const double ln_sigma_s = std::log(node.sigma_s), growth = std::exp(table.d_ln_r);
+    std::size_t count = 0;
+    for (double r = table.radius(0); count < n && ln_sigma_s - ln_r(count) - node.sigma_t() * r * x_c >= ln_smallest;
+         r *= growth)
+      ++count;
+    ln_ss0 = single_scattering_ln_y(node, table.ln_r0, table.d_ln_r, count);
+    ln_ss0.resize(n, -std::numeric_limits<double>::infinity());
+    const double ln_two_pi = std::log(2 * std::numbers::pi);
+    for (std::size_t k = 0; k < count; ++k)
+      if (ln_ss0[k] - ln_two_pi - 2 * ln_r(k) < ln_smallest) ln_ss0[k] = -std::numeric_limits<double>::infinity();
+    return ln_ss0;
   }
 };
 
@@ -323,7 +352,8 @@ double exact_albedo_prime_from_total(const ExactTable& table, double total, doub
   return std::clamp(from(u), lo_a, hi_a);
 }
 
-ExactProfile::ExactProfile(const ExactTable& table, double albedo_prime, double g, double eta)
+ExactProfile::ExactProfile(const ExactTable& table, double albedo_prime, double g, double eta,
+                           SingleScatteringRadii single_scattering)
     : albedo_prime_(albedo_prime), g_(g), eta_(eta), ln_r0_(table.ln_r0), d_ln_r_(table.d_ln_r) {
   const NodeWeights w = weights_at(table, albedo_prime, g, eta);
   if (albedo_prime == 0) return;  // nothing scatters: R = 0, total() = 0
@@ -344,7 +374,7 @@ ExactProfile::ExactProfile(const ExactTable& table, double albedo_prime, double 
   std::optional<BelowFirstNode> below;
   if (albedo_prime < table.albedo_prime.front()) {
     below.emplace(table, albedo_prime, g, eta);
-    below->continue_profile(table, ln_y_);
+    below->continue_profile(table, ln_y_, single_scattering);
   }
   // Below the first radius single scattering dominates (y ~ r); beyond the last, an exponential
   // tail in r: both continue the curve with the slope of its end.

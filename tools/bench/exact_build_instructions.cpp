@@ -1,12 +1,14 @@
 // Instructions per exact profile build in each part of the domain, for callgrind, whose counts do
 // not depend on the machine's load (wall times on a shared machine do):
-//   for c in 0 1 2 3 4; do
+//   for c in 0 1 2 3 4 5; do
 //     valgrind --tool=callgrind --callgrind-out-file=/dev/null build/tools/bench/exact_build_instructions $c
 //     valgrind --tool=callgrind --callgrind-out-file=/dev/null build/tools/bench/exact_build_instructions $c 0
 //   done
 // (the difference of the two "Collected" counts over the builds' number is one build's cost).
 //   exact_build_instructions CASE [builds]   CASE 0 table, 1 alpha' > 0.9999, 2 g > 0.99, 3 eta near 2,
-//                                            4 alpha' < 0.001; builds: 200 (20 for case 4)
+//                                            4 alpha' < 0.001, 5 the same through the per-radius
+//                                            single-scattering path (the previous one);
+//                                            builds: 200 (20 for cases 4 and 5)
 #include <cstdio>
 #include <cstdlib>
 
@@ -18,11 +20,11 @@ volatile double sink;
 
 int main(int argc, char** argv) {
   const int which = argc > 1 ? std::atoi(argv[1]) : 0;
-  if (which < 0 || which > 4) {
-    std::fprintf(stderr, "exact_build_instructions: CASE = %s: accepted range is 0 to 4\n", argv[1]);
+  if (which < 0 || which > 5) {
+    std::fprintf(stderr, "exact_build_instructions: CASE = %s: accepted range is 0 to 5\n", argv[1]);
     return 2;
   }
-  const int n = argc > 2 ? std::atoi(argv[2]) : which == 4 ? 20 : 200;
+  const int n = argc > 2 ? std::atoi(argv[2]) : which >= 4 ? 20 : 200;
   const auto& table = bundled_exact_table();
   sink = ExactProfile(table, 0.5, 0.5, 1.3).total();  // the table's load, in both counts
   for (int k = 0; k < n; ++k) {
@@ -42,6 +44,9 @@ int main(int argc, char** argv) {
         break;
       case 4:
         sink = ExactProfile(table, 0.0009 * u, 0.5, 1.35).total();
+        break;
+      case 5:
+        sink = ExactProfile(table, 0.0009 * u, 0.5, 1.35, SingleScatteringRadii::per_radius).total();
         break;
     }
   }
