@@ -94,7 +94,7 @@ std::vector<double> single_scattering_ln_y(const Reduced<double>& m, double ln_r
   }
   const double h = d_ln_r / static_cast<double>(b);
   const double step = static_cast<double>(a) * h;
-  const double x_c = m.eta > 1 ? m.eta + std::sqrt(m.eta * m.eta - 1) : 1.0;
+  const double x_c = critical_exit_ratio(m.eta);
   const double ln_rho0 = std::log(m.sigma_t()) + ln_r0;
   // Node j sits at tau_j = j step - ln rho_0, radius k at ln rho_k = ln rho_0 + k b h, so that
   // tau_j + ln rho_k = (j a + k b) h: the kernel's grid index i = j a + k b. Radius k sums nodes

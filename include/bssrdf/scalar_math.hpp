@@ -17,13 +17,6 @@ T inverse_sinh(T x) {
   return log(x + sqrt(x * x + T(1)));
 }
 
-template <class T>
-T inverse_cosh(T x) {  // x >= 1
-  using std::log;
-  using std::sqrt;
-  return log(x + sqrt(x * x - T(1)));
-}
-
 // The scaled complementary error function e^{x^2} erfc(x) for x >= 0, without overflow: the
 // product directly where erfc is representable, the asymptotic series beyond (error < 1e-10).
 template <class T>

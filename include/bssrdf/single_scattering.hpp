@@ -41,6 +41,14 @@ T henyey_greenstein(T cos_theta, T g) {
 // Total single-scattering reflectance, semi-infinite medium.
 double single_scattering_total(double albedo, double g, double eta);
 
+// x_c = e^{v_c} = eta + sqrt(eta^2 - 1), v_c = acosh(eta): light from below leaves only where
+// x = (t + d) / r > x_c (total internal reflection under it); 1 when eta <= 1.
+template <class T>
+T critical_exit_ratio(T eta) {
+  using std::sqrt;
+  return eta > T(1) ? eta + sqrt(eta * eta - T(1)) : T(1);
+}
+
 // The angular factor f(x) per unit v at x = e^v = (t + d) / r, without a transcendental call: light
 // leaves with cosine mu = tanh v = (x^2 - 1) / (x^2 + 1) after one Henyey-Greenstein scattering through
 // pi - acos(mu), and sinh v / cosh^2 v = 2 x (x^2 - 1) / (x^2 + 1)^2.
@@ -59,7 +67,7 @@ T single_scattering_reflectance(const Reduced<T>& m, T r, int samples = 64) {
   using std::exp;
   using std::log;
   const T sigma_t = m.sigma_t();
-  const T v_c = m.eta > T(1) ? inverse_cosh(m.eta) : T(0);
+  const T v_c = log(critical_exit_ratio(m.eta));
   T v_max = log(T(40) / (sigma_t * r));
   if (v_max < v_c + T(4)) v_max = v_c + T(4);  // the integrand still decays as e^{-v} up there
   const T span = v_max - v_c;

@@ -47,7 +47,7 @@ class ExactModel final : public Model {
 
  private:
   // A few profiles per thread: table builders evaluate their channels interleaved on each thread,
-  // and a profile costs 5 to 10 us to build, the time of a hundred evaluations.
+  // and a profile costs 5 to 11 us to build, the time of a hundred evaluations.
   static const ExactProfile& profile(const Reduced<double>& m) {
     struct Cached {
       double albedo_prime = -1, g = -1, eta = -1;
