@@ -59,7 +59,8 @@ double exact_albedo_prime_from_total(const ExactTable& table, double total, doub
 // How a build below the first albedo node integrates the node's single scattering at the table's
 // radii: `log_grid` (single_scattering_ln_y, all radii at once: the whole build 10.7 us idle) or
 // `per_radius` (96-point Gauss-Legendre at each radius, as the table's generator did: 212 us; the
-// measured baseline of tools/bench/bench_exact and the tests). The profiles agree to 1e-6 relative (tests/test_exact_model.cpp).
+// measured baseline of tools/bench/bench_exact and the tests). The profiles agree to 1e-6 relative
+// (tests/test_exact_model.cpp).
 enum class SingleScatteringRadii { log_grid, per_radius };
 
 class ExactProfile {
