@@ -19,6 +19,11 @@ double single_scattering_total(double albedo, double g, double eta) {
     return 2 * std::numbers::pi * henyey_greenstein(-mu, g) * (1 - fresnel_reflectance(mu, eta)) * mu / (1 + mu) * 2 *
            span * s;
   };
+  // For g >= 0 the backward lobe it integrates is flat: 32 Gauss-Legendre points agree with the adaptive
+  // rule (tolerance 1e-12) to 9e-16 at g 0 to 0.999, eta 1 to 3, at a quarter of its evaluations (the
+  // exact model's build below its first albedo node computes this once). For g < 0 the lobe peaks
+  // at mu = 1 (32 points are 98 % off at g -0.999): adaptive.
+  if (g >= 0) return albedo * integrate_gauss_legendre(integrand, 0.0, 1.0, 32);
   return albedo * integrate_adaptive(integrand, 0.0, 1.0, 1e-12).value;
 }
 

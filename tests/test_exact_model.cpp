@@ -288,9 +288,10 @@ TEST(ExactModel, AgreesWithFreshMonteCarloOffTheGrid) {
 }
 
 TEST(ExactModel, BelowTheFirstAlbedoNodeContinuesExactly) {
-  // Below alpha' 0.001: exact single scattering plus the first node's multiple scattering scaled by
-  // (alpha / alpha_0)^2. Continuous at the node, zero without scattering, and equal to fresh Monte
-  // Carlo (cheap here: few scatterings per photon) within its noise.
+  // Below alpha' 0.001: exact single scattering plus multiple scattering from the first two nodes
+  // (read at the medium's rho = sigma_t r, ln(MS / alpha^2) linear in alpha). Continuous at the node,
+  // zero without scattering, and equal to fresh Monte Carlo (cheap here: few scatterings per photon)
+  // within its noise.
   const double a0 = table().albedo_prime.front();
   for (double g : {0.0, 0.7, 0.97}) {
     EXPECT_NEAR(exact_total(table(), a0 * (1 - 1e-9), g, 1.33) / exact_total(table(), a0, g, 1.33), 1.0, 1e-6);
@@ -308,11 +309,11 @@ TEST(ExactModel, BelowTheFirstAlbedoNodeContinuesExactly) {
 }
 
 TEST(ExactModel, BelowTheFirstAlbedoNodeTheLogGridChangesNothingAgainstThePerRadiusIntegral) {
-  // The node's single scattering at all radii at once (single_scattering_ln_y, relative error < 1e-6 on
-  // the table's grid) instead of 96-point Gauss-Legendre radius by radius (the generator's rule, ~1e-9
-  // where R_ss is not subnormal): the profile moves by no more than that bound (measured 4.8e-7), the
-  // total not at all. Points off the ones the rule was tuned on; radii out to 50 mfp (R_ss far from
-  // subnormal for eta <= 2).
+  // The medium's single scattering at all radii at once (single_scattering_ln_y, relative error < 1e-6
+  // on the table's grid) instead of 96-point Gauss-Legendre radius by radius (the generator's rule,
+  // ~1e-9 where R_ss is not subnormal): the profile moves by no more than that bound, the total not at
+  // all. Points off the ones the rule was tuned on; radii out to 50 mfp (R_ss far from subnormal for
+  // eta <= 2).
   double worst = 0;
   for (double ap : {1e-4, 5e-4, 3e-5})
     for (const auto& [g, eta] : {std::pair{0.92, 1.0}, std::pair{0.97, 1.12}, std::pair{0.999, 1.6},

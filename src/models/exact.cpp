@@ -166,80 +166,182 @@ bool inside(double v, std::pair<double, double> range) {
   return v >= range.first - slack && v <= range.second + slack;
 }
 
-// Below the first albedo node (0.001) the table continues exactly: single scattering is the exact
-// integral at any albedo, and multiple scattering, at most 0.1 % of the total there, is the first
-// node's scaled by (alpha / alpha_0)^2 (two scatterings dominate; the transport-mfp radius scale
-// 1 - alpha g changes by under 0.1 %). At alpha' = 0 nothing scatters: R = 0.
-struct BelowFirstNode {
-  Reduced<double> medium, node;  // transport units (sigma_t' = 1)
-  double ms_scale;               // (alpha / alpha_0)^2
-  BelowFirstNode(const ExactTable& table, double albedo_prime, double g, double eta)
-      : medium(reduce(1 - albedo_prime, albedo_prime / (1 - g), g, eta)),
-        node(reduce(1 - table.albedo_prime.front(), table.albedo_prime.front() / (1 - g), g, eta)),
-        ms_scale(std::pow(medium.albedo() / node.albedo(), 2)) {}
-  double total(double node_total) const {
-    // The medium and the node share g and eta: the single-scattering total per unit albedo once.
-    const double ss_per_albedo = single_scattering_total(1.0, medium.g, medium.eta);
-    return ss_per_albedo * medium.albedo() + ms_scale * (node_total - ss_per_albedo * node.albedo());
+Reduced<double> transport_medium(double albedo_prime, double g, double eta) {
+  return reduce(1 - albedo_prime, albedo_prime / (1 - g), g, eta);
+}
+
+// ln(e^a + e^b) without overflow or underflow (either may be -inf).
+double log_add(double a, double b) {
+  if (a < b) std::swap(a, b);
+  return b == -std::numeric_limits<double>::infinity() ? a : a + std::log1p(std::exp(b - a));
+}
+
+// Catmull-Rom on uniformly spaced values p[0..n), at p[i] + t (p[i+1] - p[i]), 0 <= t <= 1: slopes from
+// the neighbours, one-sided at the ends.
+double catmull_rom(const double* p, std::size_t n, std::size_t i, double t) {
+  const double p1 = p[i], p2 = p[i + 1];
+  const double m1 = i > 0 ? 0.5 * (p2 - p[i - 1]) : p2 - p1;
+  const double m2 = i + 2 < n ? 0.5 * (p[i + 2] - p1) : p2 - p1;
+  const double t2 = t * t, t3 = t2 * t;
+  return (2 * t3 - 3 * t2 + 1) * p1 + (t3 - 2 * t2 + t) * m1 + (-2 * t3 + 3 * t2) * p2 + (t3 - t2) * m2;
+}
+
+// ln y_ss of a medium (transport units) at the radii e^{ln_r0 + k d_ln_r}, k < n, by the log-grid
+// integral. -inf where R_ss is below the smallest double (sigma_t r x_c > ~745), as the table
+// generator's integral (the 96-point rule in doubles) had it: the table's y holds no single
+// scattering there.
+std::vector<double> single_scattering_normal(const Reduced<double>& m, double ln_r0, double d_ln_r, std::size_t n) {
+  // R_ss < sigma_s / r e^{-sigma_t r x_c}: the radii beyond that bound's underflow need no integral.
+  const double x_c = critical_exit_ratio(m.eta);
+  const double ln_smallest = std::log(std::numeric_limits<double>::denorm_min());
+  const auto ln_r = [&](std::size_t k) { return ln_r0 + d_ln_r * static_cast<double>(k); };
+  const double ln_sigma_s = std::log(m.sigma_s), growth = std::exp(d_ln_r);
+  std::size_t count = 0;
+  for (double r = std::exp(ln_r0); count < n && ln_sigma_s - ln_r(count) - m.sigma_t() * r * x_c >= ln_smallest;
+       r *= growth)
+    ++count;
+  std::vector<double> ln_ss = single_scattering_ln_y(m, ln_r0, d_ln_r, count);
+  ln_ss.resize(n, -std::numeric_limits<double>::infinity());
+  const double ln_two_pi = std::log(2 * std::numbers::pi);
+  for (std::size_t k = 0; k < count; ++k)
+    if (ln_ss[k] - ln_two_pi - 2 * ln_r(k) < ln_smallest) ln_ss[k] = -std::numeric_limits<double>::infinity();
+  return ln_ss;
+}
+
+// The same at the table's radii, by the log grid or (the generator's rule) radius by radius.
+std::vector<double> single_scattering_row(const ExactTable& table, const Reduced<double>& m,
+                                          SingleScatteringRadii how) {
+  if (how == SingleScatteringRadii::log_grid)
+    return single_scattering_normal(m, table.ln_r0, table.d_ln_r, table.radii);
+  std::vector<double> ln_ss(table.radii);
+  for (std::size_t k = 0; k < table.radii; ++k) {
+    const double r = table.radius(k);
+    ln_ss[k] = std::log(2 * std::numbers::pi * r * r * single_scattering_reflectance(m, r, 96));
   }
-  // ln y (y = 2 pi r^2 R) at each tabulated radius from the first node's, as ratios to the node's
-  // y: far out both single-scattering terms underflow while the table's tail stays finite in ln y.
-  // The node's single scattering is integrated at every radius at once (node_ln_ss); the medium's
-  // follows from it by similarity: R_ss = sigma_s / r I(sigma_t r), so
-  // y_ss(r) = (sigma_s sigma_t0 / (sigma_s0 sigma_t)) y_ss0(r e^d), d = ln(sigma_t / sigma_t0), taken to
-  // first order in d. |d| < 1e-3 (error ~1e-6) only where g is small: d grows as 1 / (1 - g), to -0.6 at
-  // g 0.999, alpha' 1e-4, and above g 0.995 the continuation misses fresh Monte Carlo by up to 2.9 % in
-  // total and 11 % in the far field (the registry's band "forward, below the first node" says so).
-  void continue_profile(const ExactTable& table, std::vector<double>& ln_y, SingleScatteringRadii how) const {
-    const std::size_t n = ln_y.size();
-    const std::vector<double> ln_ss0 = node_ln_ss(table, n, how);
-    const double d = std::log(medium.sigma_t() / node.sigma_t());
-    const double factor = medium.sigma_s * node.sigma_t() / (node.sigma_s * medium.sigma_t());
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t lo = k > 0 ? k - 1 : k, hi = k + 1 < n ? k + 1 : k;
-      const double slope = std::isfinite(ln_ss0[hi] - ln_ss0[lo])
-                               ? (ln_ss0[hi] - ln_ss0[lo]) / (static_cast<double>(hi - lo) * table.d_ln_r)
-                               : 0.0;
-      // e^{slope d}, the shift's factor: where slope d is small (below 0.01 at most radii unless g is
-      // near 1) its series to fifth order (error < 2e-15), an exponential less per radius.
-      const double x = slope * d;
-      const double shift =
-          std::abs(x) < 0.01 ? 1 + x * (1 + x / 2 * (1 + x / 3 * (1 + x / 4 * (1 + x / 5)))) : std::exp(x);
-      const double node_share = std::exp(ln_ss0[k] - ln_y[k]);  // of single scattering in the node's y
-      const double f = node_share * factor * shift + ms_scale * (1 - node_share);
-      // Not clamped at 0: where the node is all single scattering, its table value may fall a
-      // rounding below the integral, and the continuation must still meet the node exactly. f = 0
-      // only where the node's y is single scattering alone and it underflowed: it scales as alpha.
-      ln_y[k] += f > 0 ? std::log(f) : std::log(medium.albedo() / node.albedo());
-    }
-  }
-  // ln y_ss of the node at the first n tabulated radii. -inf where the generator's integral (the
-  // 96-point rule in doubles) underflowed, R_ss below the smallest subnormal (sigma_t r x_c > ~745): the
-  // table's y holds no single scattering there, and the continuation must split it as the table does.
-  std::vector<double> node_ln_ss(const ExactTable& table, std::size_t n, SingleScatteringRadii how) const {
-    std::vector<double> ln_ss0(n);
-    if (how == SingleScatteringRadii::per_radius) {
-      for (std::size_t k = 0; k < n; ++k) {
-        const double r = table.radius(k);
-        ln_ss0[k] = std::log(2 * std::numbers::pi * r * r * single_scattering_reflectance(node, r, 96));
+  return ln_ss;
+}
+
+// ln y interpolated: the sum over the weights' (eta, g, albedo) nodes of weight x the node's ln y, per
+// radius, into `out`.
+void interpolate_rows(const ExactTable& table, const Weights& we, const Weights& wg, const Weights& wa,
+                      std::vector<double>& out) {
+  out.assign(table.radii, 0.0);
+  for (int e = 0; e < we.count; ++e)
+    for (int gi = 0; gi < wg.count; ++gi)
+      for (int a = 0; a < wa.count; ++a) {
+        const double weight = we.w[e] * wg.w[gi] * wa.w[a];
+        const float* row = &table.ln_y[table.index(we.node[e], wg.node[gi], wa.node[a], 0)];
+        for (std::size_t k = 0; k < table.radii; ++k) out[k] += weight * row[k];
       }
-      return ln_ss0;
+}
+
+// A row of uniformly spaced values p[0..n) read at k + shift for k = 0, 1, ...: Catmull-Rom, linear
+// below the first value. The shift is the same for every k, so inside the row the cubic's four
+// weights are too: computed once.
+class ShiftedRow {
+ public:
+  ShiftedRow(const std::vector<double>& row, double shift)
+      : p_(row.data()),
+        n_(static_cast<std::ptrdiff_t>(row.size())),
+        shift_(shift),
+        base_(static_cast<std::ptrdiff_t>(std::floor(shift))) {
+    const double t = shift - static_cast<double>(base_), t2 = t * t, t3 = t2 * t;
+    const double h00 = 2 * t3 - 3 * t2 + 1, h10 = t3 - 2 * t2 + t, h01 = -2 * t3 + 3 * t2, h11 = t3 - t2;
+    w_ = {-0.5 * h10, h00 - 0.5 * h11, h01 + 0.5 * h10, 0.5 * h11};  // of p[i - 1 ... i + 2], the slopes' halves
+  }
+  double operator()(std::size_t k) const {
+    const std::ptrdiff_t i = static_cast<std::ptrdiff_t>(k) + base_;
+    if (i >= 1 && i + 2 < n_) return w_[0] * p_[i - 1] + w_[1] * p_[i] + w_[2] * p_[i + 1] + w_[3] * p_[i + 2];
+    const double x = static_cast<double>(k) + shift_;  // an end: one-sided slopes, or linear below
+    if (x <= 0) return p_[0] + (p_[1] - p_[0]) * x;
+    const std::size_t j = std::min(static_cast<std::size_t>(n_ - 2), static_cast<std::size_t>(x));
+    return catmull_rom(p_, static_cast<std::size_t>(n_), j, x - static_cast<double>(j));
+  }
+
+ private:
+  const double* p_;
+  std::ptrdiff_t n_;
+  double shift_;
+  std::ptrdiff_t base_;
+  std::array<double, 4> w_{};
+};
+
+// Below the first albedo node (0.001) down to alpha' = 0 (R = 0): single scattering is the exact
+// integral at the medium, and multiple scattering follows from the first two nodes by the
+// order-of-scattering series. In units of the medium's own mean free path (rho = sigma_t r) a medium
+// of albedo alpha has y(rho) = sum_k alpha^k Y_k(rho), Y_k depending on g and eta only, so at each rho
+// the multiple scattering over alpha^2 is a smooth function of alpha, Y_2 + alpha Y_3 + ...: read at
+// the nodes' own rho = sigma_t,j r and continued to the medium's alpha (extrapolate). (At g 0.998
+// the first node's alpha is 0.33 and its radius scale sigma_t 1.5: scaling the node's multiple
+// scattering by (alpha / alpha_0)^2 in place, the continuation before this one, missed fresh Monte
+// Carlo by 2.9 % in total and 11 % in the far field.)
+struct BelowFirstNode {
+  Reduced<double> medium;
+  std::array<Reduced<double>, 2> node;  // the first two albedo nodes at (g, eta)
+  double t;                             // (alpha - alpha_0) / (alpha_1 - alpha_0), negative
+  double ss_per_albedo;                 // single-scattering total per unit albedo (g, eta only)
+  BelowFirstNode(const ExactTable& table, double albedo_prime, double g, double eta)
+      : medium(transport_medium(albedo_prime, g, eta)),
+        node{transport_medium(table.albedo_prime[0], g, eta), transport_medium(table.albedo_prime[1], g, eta)},
+        t((medium.albedo() - node[0].albedo()) / (node[1].albedo() - node[0].albedo())),
+        ss_per_albedo(single_scattering_total(1.0, g, eta)) {}
+  // ln of the medium's multiple scattering over alpha^2 from the nodes' (ln_ms0, ln_ms1): linear in
+  // alpha through the two (the far field's decay rate is smooth in alpha, so a straight line in the
+  // logarithm, not in the value, continues it; near alpha = 0 both tend to ln Y_2). Where the second
+  // node's value is not positive (the near field's rounding) the first node's alone.
+  double extrapolate(double ln_ms0, double ln_ms1) const {
+    return std::isnan(ln_ms1) ? ln_ms0 : (1 - t) * ln_ms0 + t * ln_ms1;
+  }
+  double total(const ExactTable& table, NodeWeights w) const {
+    std::array<double, 2> ms{};
+    for (std::size_t j = 0; j < 2; ++j) {
+      w.a = {{j}, {1.0}, 1};
+      const double alpha_j = node[j].albedo();
+      ms[j] = std::log(std::exp(interpolated_ln_total(table, w)) - ss_per_albedo * alpha_j) - 2 * std::log(alpha_j);
     }
-    // R_ss < sigma_s / r e^{-sigma_t r x_c}: the radii beyond that bound's underflow need no integral.
-    const double x_c = critical_exit_ratio(node.eta);
-    const double ln_smallest = std::log(std::numeric_limits<double>::denorm_min());
-    const auto ln_r = [&](std::size_t k) { return table.ln_r0 + table.d_ln_r * static_cast<double>(k); };
-    const double ln_sigma_s = std::log(node.sigma_s), growth = std::exp(table.d_ln_r);
-    std::size_t count = 0;
-    for (double r = table.radius(0); count < n && ln_sigma_s - ln_r(count) - node.sigma_t() * r * x_c >= ln_smallest;
-         r *= growth)
-      ++count;
-    ln_ss0 = single_scattering_ln_y(node, table.ln_r0, table.d_ln_r, count);
-    ln_ss0.resize(n, -std::numeric_limits<double>::infinity());
-    const double ln_two_pi = std::log(2 * std::numbers::pi);
-    for (std::size_t k = 0; k < count; ++k)
-      if (ln_ss0[k] - ln_two_pi - 2 * ln_r(k) < ln_smallest) ln_ss0[k] = -std::numeric_limits<double>::infinity();
-    return ln_ss0;
+    return ss_per_albedo * medium.albedo() + std::exp(extrapolate(ms[0], ms[1])) * medium.albedo() * medium.albedo();
+  }
+  // ln y at the table's radii. At the medium's rho each node's y is read from its row (the table's y
+  // at (g, eta), beyond the last g node as that continuation has it), and its single scattering is alpha_j Y_1(rho) =
+  // (alpha_j / alpha) y_ss(r): the split is made in linear terms, so the table's y is met exactly at the first node
+  // even where it lies a rounding (or the generator's 96-point rule, ~1e-4 at r = 0.001) below the exact single
+  // scattering.
+  void profile(const ExactTable& table, const NodeWeights& w, SingleScatteringRadii how,
+               std::vector<double>& ln_y) const {
+    const std::size_t n = table.radii;
+    std::array<std::vector<double>, 2> rows;
+    for (std::size_t j = 0; j < 2; ++j) interpolate_rows(table, w.e, w.g, {{j}, {1.0}, 1}, rows[j]);
+    // Node j's rho = sigma_t,j r equals the medium's at r sigma_t / sigma_t,j: its row read there.
+    const auto read_at_medium_rho = [&](std::size_t j) {
+      return ShiftedRow(rows[j], std::log(medium.sigma_t() / node[j].sigma_t()) / table.d_ln_r);
+    };
+    const std::array<ShiftedRow, 2> node_y{read_at_medium_rho(0), read_at_medium_rho(1)};
+    const std::vector<double> ln_ss = single_scattering_row(table, medium, how);
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    const double alpha = medium.albedo(), ln_alpha = std::log(alpha);
+    const std::array<double, 2> ln_alpha_node{std::log(node[0].albedo()), std::log(node[1].albedo())};
+    ln_y.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      // ln of each node's multiple scattering over alpha_j^2 (NaN where it is not positive), in
+      // logarithms: far out the nodes' tails differ by more than a double's range.
+      std::array<double, 2> v{}, ms{};
+      for (std::size_t j = 0; j < 2; ++j) {
+        v[j] = node_y[j](k);
+        // Single scattering's share of it; none where it underflowed (the far field).
+        const double share = ln_ss[k] == -kInf ? 0.0 : std::exp(ln_ss[k] + ln_alpha_node[j] - ln_alpha - v[j]);
+        ms[j] = share == 0  ? v[j] - 2 * ln_alpha_node[j]
+                : share < 1 ? v[j] + std::log1p(-share) - 2 * ln_alpha_node[j]
+                            : std::numeric_limits<double>::quiet_NaN();
+      }
+      if (!std::isnan(ms[0])) {
+        ln_y[k] = log_add(extrapolate(ms[0], ms[1]) + 2 * ln_alpha, ln_ss[k]);
+      } else {
+        // The first node all single scattering within rounding (the near field): its y scaled,
+        // y = y_ss (1 - alpha / alpha_0) + (alpha / alpha_0)^2 y_0, which meets it at alpha_0.
+        const double ratio = alpha / node[0].albedo();
+        ln_y[k] = log_add(ln_ss[k] + std::log1p(-ratio), v[0] + 2 * std::log(ratio));
+      }
+    }
   }
 };
 
@@ -325,10 +427,9 @@ double exact_total(const ExactTable& table, double albedo_prime, double g, doubl
     const auto [t_last, t_before] = last_totals(table, w);
     return AboveLastNode(table, albedo_prime, g, eta).total(t_last, t_before);
   }
-  const double node_total = std::exp(interpolated_ln_total(table, w));
-  if (albedo_prime >= table.albedo_prime.front()) return node_total;
   if (albedo_prime == 0) return 0;
-  return BelowFirstNode(table, albedo_prime, g, eta).total(node_total);
+  if (albedo_prime < table.albedo_prime.front()) return BelowFirstNode(table, albedo_prime, g, eta).total(table, w);
+  return std::exp(interpolated_ln_total(table, w));
 }
 
 double exact_albedo_prime_from_total(const ExactTable& table, double total, double g, double eta) {
@@ -360,23 +461,17 @@ ExactProfile::ExactProfile(const ExactTable& table, double albedo_prime, double 
   const NodeWeights w = weights_at(table, albedo_prime, g, eta);
   if (albedo_prime == 0) return;  // nothing scatters: R = 0, total() = 0
   const std::size_t radii = table.radii;
-  ln_y_.assign(radii, 0.0);
-  for (int e = 0; e < w.e.count; ++e)
-    for (int gi = 0; gi < w.g.count; ++gi)
-      for (int a = 0; a < w.a.count; ++a) {
-        const double weight = w.e.w[e] * w.g.w[gi] * w.a.w[a];
-        const float* row = &table.ln_y[table.index(w.e.node[e], w.g.node[gi], w.a.node[a], 0)];
-        for (std::size_t k = 0; k < radii; ++k) ln_y_[k] += weight * row[k];
-      }
+  std::optional<BelowFirstNode> below;
+  if (albedo_prime < table.albedo_prime.front()) {
+    below.emplace(table, albedo_prime, g, eta);
+    below->profile(table, w, single_scattering, ln_y_);
+  } else {
+    interpolate_rows(table, w.e, w.g, w.a, ln_y_);
+  }
   std::optional<AboveLastNode> above;
   if (albedo_prime > table.albedo_prime.back()) {
     above.emplace(table, albedo_prime, g, eta);
     above->continue_profile(table, ln_y_);
-  }
-  std::optional<BelowFirstNode> below;
-  if (albedo_prime < table.albedo_prime.front()) {
-    below.emplace(table, albedo_prime, g, eta);
-    below->continue_profile(table, ln_y_, single_scattering);
   }
   // Below the first radius single scattering dominates (y ~ r); beyond the last, an exponential
   // tail in r: both continue the curve with the slope of its end.
@@ -388,20 +483,23 @@ ExactProfile::ExactProfile(const ExactTable& table, double albedo_prime, double 
   // Normalise to the interpolated adding-doubling total: integrate y over ln r (Simpson on four
   // sub-intervals per radius step, plus the head and tail in closed form).
   cumulative_.assign(radii, 0.0);
-  double sum = std::exp(ln_y_[0]) / head_slope_;
+  double y_left = std::exp(ln_y_[0]);
+  double sum = y_left / head_slope_;
   cumulative_[0] = sum;
+  const double h = d_ln_r_ / 4;
   for (std::size_t k = 0; k + 1 < radii; ++k) {
-    const double x0 = ln_r0_ + d_ln_r_ * static_cast<double>(k), h = d_ln_r_ / 4;
-    double s = std::exp(ln_y_[k]) + std::exp(ln_y_[k + 1]);
-    for (int j = 1; j < 4; ++j) s += (j % 2 ? 4 : 2) * std::exp(ln_y(x0 + h * j));
+    const double y_right = std::exp(ln_y_[k + 1]);
+    double s = y_left + y_right;
+    for (int j = 1; j < 4; ++j) s += (j % 2 ? 4 : 2) * std::exp(catmull_rom(ln_y_.data(), radii, k, 0.25 * j));
     sum += s * h / 3;
     cumulative_[k + 1] = sum;
+    y_left = y_right;
   }
   // Tail: int_{r_N}^inf y_N e^{b (r - r_N)} dr / r <= y_N / (|b| r_N); the table ends far out
   // (99.9 % of the energy inside), so the bound is the value.
   sum += std::exp(ln_y_[radii - 1]) / (-tail_slope_ * r_last);
   total_ = std::exp(interpolated_ln_total(table, w));
-  if (below) total_ = below->total(total_);
+  if (below) total_ = below->total(table, w);
   if (above) {
     const auto [t_last, t_before] = last_totals(table, w);
     total_ = above->total(t_last, t_before);
@@ -421,13 +519,7 @@ double ExactProfile::ln_y(double ln_r) const {
     return ln_y_[n - 1] + tail_slope_ * (std::exp(ln_r) - r_last);
   }
   const auto i = static_cast<std::size_t>(f);
-  const double t = f - static_cast<double>(i);
-  const double p1 = ln_y_[i], p2 = ln_y_[i + 1];
-  // Catmull-Rom slopes (uniform in ln r), one-sided at the ends.
-  const double m1 = i > 0 ? 0.5 * (p2 - ln_y_[i - 1]) : p2 - p1;
-  const double m2 = i + 2 < n ? 0.5 * (ln_y_[i + 2] - p1) : p2 - p1;
-  const double t2 = t * t, t3 = t2 * t;
-  return (2 * t3 - 3 * t2 + 1) * p1 + (t3 - 2 * t2 + t) * m1 + (-2 * t3 + 3 * t2) * p2 + (t3 - t2) * m2;
+  return catmull_rom(ln_y_.data(), n, i, f - static_cast<double>(i));
 }
 
 double ExactProfile::reflectance(double r) const {

@@ -195,8 +195,8 @@ int main(int argc, char** argv) {
   }
   if (low_points > 0) {
     std::printf(
-        "\n# below the table's first albedo node (alpha' 1e-5 to 0.001: exact single scattering + the node's "
-        "multiple scattering scaled), seed %u, up to 1e9 photons per point\n",
+        "\n# below the table's first albedo node (alpha' 1e-5 to 0.001: exact single scattering + the first two "
+        "nodes' multiple scattering continued in alpha at the medium's rho), seed %u, up to 1e9 photons per point\n",
         seed);
     section(draw(low_points, 1e-5, 0.001), 500, 1e9);  // few photons reflect: many are needed
   }

@@ -15,8 +15,9 @@
 // Domain: alpha' in [0, 1], g in [0, 0.999], eta over the table's nodes (1 to 2); outside it the
 // constructor throws InvalidInput naming the parameter. Beyond the table's nodes the model continues
 // where the continuation is measured to hold (tools/validation/exact_vs_montecarlo.txt):
-//  - below the first albedo node (0.001) single scattering is exact and multiple scattering (at most
-//    0.1 % of the total there) is the first node's scaled by (alpha / alpha_0)^2; at alpha' = 0, R = 0;
+//  - below the first albedo node (0.001) single scattering is exact and multiple scattering follows
+//    from the first two nodes' at the medium's own optical radius rho = sigma_t r, ln(MS / alpha^2)
+//    linear in alpha (the order-of-scattering series); at alpha' = 0, R = 0;
 //  - above the last albedo node (0.9999) the last node's profile times the classical dipole's ratio of
 //    the two albedos' profiles (diffusion's far field, exact there), its total from
 //    1 - T = c1 s + c2 s^2, s = sqrt(1 - alpha'), through the last two nodes to T(1) = 1;
@@ -56,11 +57,11 @@ double exact_total(const ExactTable& table, double albedo_prime, double g, doubl
 // monotone in alpha'. Throws InvalidInput when `total` is outside [total(0.001), total(0.9999)].
 double exact_albedo_prime_from_total(const ExactTable& table, double total, double g, double eta);
 
-// How a build below the first albedo node integrates the node's single scattering at the table's
-// radii: `log_grid` (single_scattering_ln_y, all radii at once: the whole build 10.7 us idle) or
-// `per_radius` (96-point Gauss-Legendre at each radius, as the table's generator did: 212 us; the
-// measured baseline of tools/bench/bench_exact and the tests). The profiles agree to 1e-6 relative
-// (tests/test_exact_model.cpp).
+// How a build below the first albedo node integrates the medium's single scattering at the table's
+// radii: `log_grid` (single_scattering_ln_y, all radii at once: the whole build 8.8 us on the
+// development machine, tools/bench/bench_exact) or `per_radius` (96-point Gauss-Legendre at each
+// radius, as the table's generator did: 188 us; the measured baseline of bench_exact and the tests).
+// The profiles agree to 1e-6 relative (tests/test_exact_model.cpp).
 enum class SingleScatteringRadii { log_grid, per_radius };
 
 class ExactProfile {
