@@ -73,22 +73,41 @@ ProjectedProfile::ProjectedProfile(const Model& model, const Reduced<double>& m)
   r_max_ = std::exp(u0_ + h_ * static_cast<double>(n - 1));
   log_R_.resize(n);
   for (std::size_t j = 0; j < n; ++j) log_R_[j] = safe_log(R[j]);
-  // line(x_j) = 2 int_0^inf R(x cosh s) x cosh s ds, trapezoid in s with step hs from s = 0 (half
-  // weight there): the integrand is even and smooth in s, so that is the trapezoid rule on the
-  // whole line, which converges geometrically. Every node's samples sit at the same offsets in ln r
-  // (ln(x_j cosh s) = u_j + ln cosh s), so each sample's Catmull-Rom stencil and weights in the
-  // (ln r, ln R) table are computed once, not once per node.
+  // line(x_j) = 2 int_0^inf R(x cosh s) x cosh s ds = 2 int_{u_j}^inf G(u) K(u - u_j) du with
+  // rho = e^u = x cosh s, G = R e^u and K(D) = 1 / sqrt(1 - e^{-2 D}). A smooth window w(D) (1 below
+  // D = 0.5, 0 above 1.5, infinitely differentiable between) splits it in two, each by a rule that is
+  // exponentially accurate for its part:
+  //  - near the line, w times the integrand in s: even and smooth in s, so the trapezoid with step
+  //    hs from s = 0 (half weight there) is the rule on the whole line; the integrable singularity of
+  //    K at D = 0 never appears. Every node's samples sit at the same offsets in ln r
+  //    (ln(x_j cosh s) = u_j + ln cosh s): each sample's Catmull-Rom stencil and weights in the
+  //    (ln r, ln R) table, and its window, are computed once, not once per node.
+  //  - the rest, (1 - w) G K, vanishes with every derivative where it starts, so the trapezoid in u on
+  //    the grid's own nodes needs no end correction, and its weights h K(m h) (1 - w(m h)) are the
+  //    same for every node: a sum of products, no exponential per sample (the rule in s alone
+  //    sampled all the way out, one exponential each: 90 % of a projection's cost).
+  // The split moves line() by at most 6e-7 relative against the rule in s alone, well inside either's
+  // difference from an adaptive integral of the model (up to 3e-4 at 8 materials).
+  constexpr double kWindowStart = 0.5, kWindowEnd = 1.5;
+  const auto far_share = [&](double d) {  // 1 - w(d): 0 up to the start, 1 from the end on
+    const double t = (d - kWindowStart) / (kWindowEnd - kWindowStart);
+    if (t <= 0) return 0.0;
+    if (t >= 1) return 1.0;
+    const double a = std::exp(-1 / t), b = std::exp(-1 / (1 - t));
+    return a / (a + b);
+  };
   struct Sample {
     double offset;                 // ln cosh s / h: grid positions beyond the node
     std::ptrdiff_t i;              // floor(offset)
     std::array<double, 4> weight;  // of log_R at j + i - 1 .. j + i + 2
     double cosh_s;
+    double window;  // w(ln cosh s)
   };
   std::vector<Sample> samples;
   const double hs = h_;
   for (int k = 1;; ++k) {
-    const double cosh_s = std::cosh(k * hs), offset = std::log(cosh_s) / h_;
-    if (offset > static_cast<double>(n)) break;
+    const double cosh_s = std::cosh(k * hs), d = std::log(cosh_s), offset = d / h_;
+    if (d >= kWindowEnd || offset > static_cast<double>(n)) break;
     const auto i = static_cast<std::ptrdiff_t>(std::floor(offset));
     const double f = offset - static_cast<double>(i), f2 = f * f, f3 = f2 * f;
     // Catmull-Rom (as cubic()) written as weights of the four nodes around the interval.
@@ -96,8 +115,15 @@ ProjectedProfile::ProjectedProfile(const Model& model, const Reduced<double>& m)
                        i,
                        {-0.5 * (f3 - 2 * f2 + f), 2 * f3 - 3 * f2 + 1 - 0.5 * (f3 - f2),
                         -2 * f3 + 3 * f2 + 0.5 * (f3 - 2 * f2 + f), 0.5 * (f3 - f2)},
-                       cosh_s});
+                       cosh_s,
+                       1 - far_share(d)});
   }
+  std::vector<double> far_weight(n, 0.0), G(n);  // by node distance m; R e^u at each node
+  for (std::size_t m = 1; m < n; ++m) {
+    const double d = h_ * static_cast<double>(m), share = far_share(d);
+    if (share > 0) far_weight[m] = h_ * share / std::sqrt(-std::expm1(-2 * d));
+  }
+  for (std::size_t j = 0; j < n; ++j) G[j] = std::max(R[j], 0.0) * std::exp(u0_ + h_ * static_cast<double>(j));
   std::vector<double> line(n);
   const auto last = static_cast<std::ptrdiff_t>(n) - 1;
   for (std::size_t j = 0; j < n; ++j) {
@@ -109,15 +135,17 @@ ProjectedProfile::ProjectedProfile(const Model& model, const Reduced<double>& m)
       const double rho = x * sample.cosh_s;
       const std::ptrdiff_t first = jj + sample.i - 1;
       if (first < 0 || first + 3 > last) {  // a one-sided stencil at either end of the table
-        sum += reflectance(rho) * rho;
+        sum += sample.window * reflectance(rho) * rho;
         continue;
       }
       const double* f = log_R_.data() + first;
       const double v =
           sample.weight[0] * f[0] + sample.weight[1] * f[1] + sample.weight[2] * f[2] + sample.weight[3] * f[3];
-      sum += (v <= kNegligible ? 0 : std::exp(v)) * rho;
+      sum += sample.window * (v <= kNegligible ? 0 : std::exp(v)) * rho;
     }
-    line[j] = 2 * hs * sum;
+    double far = 0;
+    for (std::size_t m = 1; j + m < n; ++m) far += far_weight[m] * G[j + m];
+    line[j] = 2 * hs * sum + 2 * far;
   }
   log_line_.resize(n);
   for (std::size_t j = 0; j < n; ++j) log_line_[j] = safe_log(line[j]);
