@@ -37,11 +37,19 @@ struct PhaseBlocks {
 };
 PhaseBlocks phase_blocks(const Angles& angles, double g);
 
+// The single-scattering albedo after delta-M truncation to 2N Legendre terms (N = points).
+double delta_m_albedo(double albedo, double g, std::size_t points);
+
+struct LayerModes;
+
 // A homogeneous Henyey-Greenstein layer of single-scattering albedo `albedo` and optical thickness
 // `optical_thickness` (may be infinite: the semi-infinite medium). Delta-M with 2N Legendre terms;
-// `phase`, when given, is phase_blocks(angles, g) computed once for several layers.
+// `phase`, when given, is phase_blocks(angles, g) computed once for several layers. Finite layers
+// at more than 16 angles come from the medium's modes (layer_modes.hpp; `modes`, when given, is
+// layer_modes(angles, delta_m_albedo(...), phase) computed once for several thicknesses), the others
+// from a thin start doubled to the thickness.
 LayerOperator homogeneous_layer(const Angles& angles, double albedo, double g, double optical_thickness,
-                                const PhaseBlocks* phase = nullptr);
+                                const PhaseBlocks* phase = nullptr, const LayerModes* modes = nullptr);
 
 // `upper` on top of `lower`.
 LayerOperator add(const LayerOperator& upper, const LayerOperator& lower);

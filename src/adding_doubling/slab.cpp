@@ -9,6 +9,7 @@
 #include "angles.hpp"
 #include "boundary.hpp"
 #include "bssrdf/error.hpp"
+#include "layer_modes.hpp"
 #include "layer_operator.hpp"
 
 namespace bssrdf::adding_doubling {
@@ -79,7 +80,15 @@ struct Geometry {
   std::size_t beam = 0;  // the collimated beam's angle
   Boundary top, bottom;
   std::vector<PhaseBlocks> phase;  // per scattering layer
+  // Per scattering layer when its medium is shared too (solve_thicknesses at more than 16 angles); else
+  // empty, and homogeneous_layer finds the modes itself.
+  std::vector<LayerModes> modes;
 };
+
+double albedo_of(const ScatteringLayer& l) {
+  const double sigma_t = l.sigma_a + l.sigma_s;
+  return sigma_t > 0 ? l.sigma_s / sigma_t : 0.0;
+}
 
 Geometry make_geometry(const Slab& slab, int points, double incidence_cosine) {
   Geometry geo;
@@ -204,7 +213,8 @@ std::vector<Totals> solve_with(const Slab& slab, const std::vector<Incidence>& i
     const auto& l = slab.layers[k];
     const double sigma_t = l.sigma_a + l.sigma_s;
     const double tau = std::isinf(l.thickness) ? INFINITY : sigma_t * l.thickness;
-    const auto layer = homogeneous_layer(geo.angles, sigma_t > 0 ? l.sigma_s / sigma_t : 0.0, l.g, tau, &geo.phase[k]);
+    const auto layer = homogeneous_layer(geo.angles, albedo_of(l), l.g, tau, &geo.phase[k],
+                                         k < geo.modes.size() ? &geo.modes[k] : nullptr);
     S = k == 0 ? layer : add(S, layer);
     optical_depth += tau;
   }
@@ -282,8 +292,15 @@ std::vector<Totals> solve_thicknesses(const Slab& slab, const std::vector<double
   std::map<int, Geometry> geometries;  // by number of angles, shared by every thickness
   const auto geometry = [&](int points) -> const Geometry& {
     auto it = geometries.find(points);
-    if (it == geometries.end())
-      it = geometries.emplace(points, make_geometry(slab, points, options.incidence_cosine)).first;
+    if (it == geometries.end()) {
+      Geometry geo = make_geometry(slab, points, options.incidence_cosine);
+      // The medium's modes too, where homogeneous_layer takes them: one eigen-decomposition for every thickness.
+      const auto& l = slab.layers[0];
+      if (geo.angles.size() > 16)
+        geo.modes.push_back(
+            layer_modes(geo.angles, delta_m_albedo(albedo_of(l), l.g, geo.angles.size()), geo.phase[0]));
+      it = geometries.emplace(points, std::move(geo)).first;
+    }
     return it->second;
   };
   std::vector<Totals> out;
