@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/io/bitmap_text.hpp"
@@ -14,12 +13,6 @@ namespace {
 
 constexpr int kTextScale = 2;
 constexpr int kCaptionHeight = 7 * kTextScale + 10;
-
-std::string number(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", v);
-  return buffer;
-}
 
 }  // namespace
 
@@ -95,7 +88,7 @@ Preview render_material_preview(const Medium& medium, const Model& model, const 
       for (int x = 0; x < o.width; ++x)
         for (int c = 0; c < 3; ++c) out.image.at(x, y)[c] = 32;
     const std::array<std::uint8_t, 3> white{230, 230, 230};
-    const std::string scale = "ticks " + number(out.tick / unit) + " " + std::string(symbol(o.unit));
+    const std::string scale = "ticks " + short_number(out.tick / unit) + " " + std::string(symbol(o.unit));
     const int y = top + (kCaptionHeight - text_height(kTextScale)) / 2;
     draw_text(out.image, o.width - 6 - text_width(scale, kTextScale), y, scale, white, kTextScale);
     const int room = (o.width - 18 - text_width(scale, kTextScale)) / (6 * kTextScale);
