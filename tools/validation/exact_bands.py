@@ -19,7 +19,8 @@ REGIONS = [
     ("low albedo", 0, 0.05, 0, 0.99, 1, 1.6),
     ("milk-like", 0.99, 0.998, 0.9, 0.95, 1, 1.6),
     ("near conservative", 0.9999, 1, 0, 0.9, 1, 1.6),
-    ("forward, below the first node", 0, 0.001, 0.995, 0.999, 1, 1.6),
+    ("forward, below the first node", 0, 0.001, 0.995, 0.998, 1, 1.6),
+    ("forward, below the first node, g 0.999", 0, 0.001, 0.998, 0.999, 1, 1.6),
     ("forward, low albedo", 0, 0.05, 0.99, 0.999, 1, 1.6),
     ("strongly forward", 0.05, 1, 0.99, 0.999, 1, 1.6),
     ("forward, high albedo", 0.99, 0.9999, 0.9, 0.99, 1, 1.6),
@@ -60,13 +61,13 @@ def main():
         return 2
     pts = points(sys.argv[1:])
     rows = [(name, [p for p in pts if region(p) == name]) for name, *_ in REGIONS] + [("domain", pts)]
-    print(f"{'region':22s} {'points':>6s} {'total %':>8s} {'near %':>7s} {'far %':>7s}   worst profile at")
+    print(f"{'region':40s} {'points':>6s} {'total %':>8s} {'near %':>7s} {'far %':>7s}   worst profile at")
     for name, group in rows:
         if not group:
-            print(f"{name:22s} {0:6d}")
+            print(f"{name:40s} {0:6d}")
             continue
         worst = max(group, key=lambda p: max(p["near"], p["far"]))
-        print(f"{name:22s} {len(group):6d} {max(p['total'] for p in group):8.3f} "
+        print(f"{name:40s} {len(group):6d} {max(p['total'] for p in group):8.3f} "
               f"{max(p['near'] for p in group):7.3f} {max(p['far'] for p in group):7.3f}   "
               f"alpha' {worst['a']:.6g}, g {worst['g']:.3f}, eta {worst['eta']:.3f}")
     return 0
