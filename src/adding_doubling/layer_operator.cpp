@@ -212,20 +212,24 @@ LayerOperator homogeneous_layer(const Angles& angles, double albedo, double g, d
   }
   const PhaseBlocks computed = phase ? PhaseBlocks{} : truncated_phase_blocks(angles, g, f);
   const PhaseBlocks& blocks = phase ? *phase : computed;
-  const double start_max = kStartThicknessPerMu * angles.mu.front();
-  const bool infinite = std::isinf(tau);
-  if (n > 16 && !infinite) {
-    // 32 angles and more: the modes, exact for the discrete equations at any thickness, where a thin start
-    // doubled ~log2(tau / start) times costs most of a table's solves and carries the diamond scheme's error
-    // at the grazing angles (~1e-5 of the totals at 32 angles). Near conservative scattering they lose
+  if (!std::isinf(tau)) {
+    // The modes, exact for the discrete equations at any thickness, where a thin start doubled
+    // ~log2(tau / start) times costs most of a table's solves and carries the diamond scheme's error at
+    // the grazing angles (~1e-5 of the totals at 32 angles). Near conservative scattering they lose
     // precision: doubling then.
-    const LayerModes computed = modes ? LayerModes{} : layer_modes(angles, albedo_m, blocks);
-    const LayerModes& m = modes ? *modes : computed;
+    const LayerModes computed_modes = modes ? LayerModes{} : layer_modes(angles, albedo_m, blocks);
+    const LayerModes& m = modes ? *modes : computed_modes;
     if (modes_well_conditioned(m)) return layer_from_modes(m, tau);
   }
+  return doubled_layer(angles, albedo_m, blocks, tau);
+}
+
+LayerOperator doubled_layer(const Angles& angles, double albedo_m, const PhaseBlocks& blocks, double tau) {
+  const double start_max = kStartThicknessPerMu * angles.mu.front();
+  const bool infinite = std::isinf(tau);
   const int doublings = infinite ? 0 : std::max(0, static_cast<int>(std::ceil(std::log2(tau / start_max))));
   const double start = infinite ? start_max : std::ldexp(tau, -doublings);
-  switch (n) {
+  switch (angles.size()) {
     case 8:
       return scattering_layer<8>(angles, albedo_m, blocks, start, doublings, infinite);
     case 12:

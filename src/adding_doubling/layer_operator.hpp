@@ -45,11 +45,16 @@ struct LayerModes;
 // A homogeneous Henyey-Greenstein layer of single-scattering albedo `albedo` and optical thickness
 // `optical_thickness` (may be infinite: the semi-infinite medium). Delta-M with 2N Legendre terms;
 // `phase`, when given, is phase_blocks(angles, g) computed once for several layers. Finite layers
-// at more than 16 angles come from the medium's modes (layer_modes.hpp; `modes`, when given, is
-// layer_modes(angles, delta_m_albedo(...), phase) computed once for several thicknesses), the others
-// from a thin start doubled to the thickness.
+// come from the medium's modes (layer_modes.hpp; `modes`, when given, is
+// layer_modes(angles, delta_m_albedo(...), phase) computed once for several thicknesses); the
+// semi-infinite one, and finite ones near conservative scattering (where the modes lose precision),
+// from doubled_layer.
 LayerOperator homogeneous_layer(const Angles& angles, double albedo, double g, double optical_thickness,
                                 const PhaseBlocks* phase = nullptr, const LayerModes* modes = nullptr);
+
+// The same by doubling a thin start (the diamond scheme) ~log2(tau / start) times, or until it stops
+// changing for tau infinite; albedo_m and tau delta-M scaled, `phase` as phase_blocks.
+LayerOperator doubled_layer(const Angles& angles, double albedo_m, const PhaseBlocks& phase, double tau);
 
 // `upper` on top of `lower`.
 LayerOperator add(const LayerOperator& upper, const LayerOperator& lower);

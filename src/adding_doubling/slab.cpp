@@ -80,8 +80,8 @@ struct Geometry {
   std::size_t beam = 0;  // the collimated beam's angle
   Boundary top, bottom;
   std::vector<PhaseBlocks> phase;  // per scattering layer
-  // Per scattering layer when its medium is shared too (solve_thicknesses at more than 16 angles); else
-  // empty, and homogeneous_layer finds the modes itself.
+  // Per scattering layer when its medium is shared too (solve_thicknesses); else empty, and
+  // homogeneous_layer finds the modes itself.
   std::vector<LayerModes> modes;
 };
 
@@ -296,9 +296,7 @@ std::vector<Totals> solve_thicknesses(const Slab& slab, const std::vector<double
       Geometry geo = make_geometry(slab, points, options.incidence_cosine);
       // The medium's modes too, where homogeneous_layer takes them: one eigen-decomposition for every thickness.
       const auto& l = slab.layers[0];
-      if (geo.angles.size() > 16)
-        geo.modes.push_back(
-            layer_modes(geo.angles, delta_m_albedo(albedo_of(l), l.g, geo.angles.size()), geo.phase[0]));
+      geo.modes.push_back(layer_modes(geo.angles, delta_m_albedo(albedo_of(l), l.g, geo.angles.size()), geo.phase[0]));
       it = geometries.emplace(points, std::move(geo)).first;
     }
     return it->second;
