@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "bssrdf/cubic_hermite.hpp"
 #include "bssrdf/error.hpp"
 
 namespace bssrdf {
@@ -45,8 +46,8 @@ double hermite_partial_integral(double h, double y0, double y1, double d0, doubl
 }
 
 double hermite_value(double h, double y0, double y1, double d0, double d1, double t) {
-  const double t2 = t * t, t3 = t2 * t;
-  return (2 * t3 - 3 * t2 + 1) * y0 + (t3 - 2 * t2 + t) * h * d0 + (-2 * t3 + 3 * t2) * y1 + (t3 - t2) * h * d1;
+  const auto [h00, h10, h01, h11] = hermite_basis(t);
+  return h00 * y0 + h10 * h * d0 + h01 * y1 + h11 * h * d1;
 }
 
 struct Integrand {

@@ -186,22 +186,25 @@ LayerOperator scattering_layer(const Angles& angles, double albedo_m, const Phas
   return {R_flux, R_flux, T_flux, T_flux};
 }
 
+// Delta-M's forward peak: the fraction g^{2N} of the phase function beyond its first 2N Legendre
+// terms (N = points), which becomes unscattered light.
+double delta_m_peak(double g, std::size_t points) { return std::pow(g, 2 * static_cast<int>(points)); }
+
 }  // namespace
 
 PhaseBlocks phase_blocks(const Angles& angles, double g) {
-  return truncated_phase_blocks(angles, g, std::pow(g, 2 * static_cast<int>(angles.size())));
+  return truncated_phase_blocks(angles, g, delta_m_peak(g, angles.size()));
 }
 
 double delta_m_albedo(double albedo, double g, std::size_t points) {
-  const double f = std::pow(g, 2 * static_cast<int>(points));
+  const double f = delta_m_peak(g, points);
   return albedo * (1 - f) / (1 - albedo * f);
 }
 
 LayerOperator homogeneous_layer(const Angles& angles, double albedo, double g, double optical_thickness,
                                 const PhaseBlocks* phase, const LayerModes* modes) {
   const int n = static_cast<int>(angles.size());
-  // Delta-M: the forward peak f becomes unscattered light.
-  const double f = std::pow(g, 2 * n);
+  const double f = delta_m_peak(g, angles.size());
   const double albedo_m = delta_m_albedo(albedo, g, angles.size());
   const double tau = optical_thickness * (1 - albedo * f);
   if (albedo_m == 0 || tau == 0) {  // pure absorber (or nothing): straight lines

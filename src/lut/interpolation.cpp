@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "bssrdf/cubic_hermite.hpp"
 #include "bssrdf/error.hpp"
 
 namespace bssrdf {
@@ -28,9 +29,8 @@ NodeWeights catmull_rom_weights(std::span<const double> nodes, double x) {
   const int i =
       std::clamp(static_cast<int>(std::upper_bound(nodes.begin(), nodes.end(), x) - nodes.begin()) - 1, 0, n - 2);
   const double x0 = nodes[i], x1 = nodes[i + 1], h = x1 - x0;
-  const double t = (x - x0) / h, t2 = t * t, t3 = t2 * t;
   // Hermite basis: values at x0, x1 and slopes (times h) at x0, x1.
-  const double h00 = 2 * t3 - 3 * t2 + 1, h01 = -2 * t3 + 3 * t2, h10 = t3 - 2 * t2 + t, h11 = t3 - t2;
+  const auto [h00, h10, h01, h11] = hermite_basis((x - x0) / h);
   out.offset = i - 1;
   auto& w = out.weight;  // nodes i-1, i, i+1, i+2
   w = {0, h00, h01, 0};

@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 
+#include "bssrdf/cubic_hermite.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/scalar_math.hpp"
 
@@ -25,23 +26,7 @@ double safe_log(double v) { return v > 0 ? std::log(v) : kNegligible; }
   // is an instruction, where std::floor is a library call without SSE4.1).
   auto i = static_cast<std::ptrdiff_t>(t);
   i = std::clamp<std::ptrdiff_t>(i, 0, n - 2);
-  const double x = t - static_cast<double>(i);
-  double p0, p1, p2, p3, m1, m2;
-  if (i > 0 && i + 2 < n) {  // inside: all four nodes, central slopes
-    p0 = f[static_cast<std::size_t>(i - 1)], p1 = f[static_cast<std::size_t>(i)];
-    p2 = f[static_cast<std::size_t>(i + 1)], p3 = f[static_cast<std::size_t>(i + 2)];
-    m1 = 0.5 * (p2 - p0);
-    m2 = 0.5 * (p3 - p1);
-  } else {  // at an end: one-sided (linear) where a neighbour is missing
-    const auto at = [&](std::ptrdiff_t k) {
-      return f[static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(k, 0, n - 1))];
-    };
-    p0 = at(i - 1), p1 = at(i), p2 = at(i + 1), p3 = at(i + 2);
-    m1 = i > 0 ? 0.5 * (p2 - p0) : p2 - p1;
-    m2 = i + 2 < n ? 0.5 * (p3 - p1) : p2 - p1;
-  }
-  const double x2 = x * x, x3 = x2 * x;
-  return (2 * x3 - 3 * x2 + 1) * p1 + (x3 - 2 * x2 + x) * m1 + (-2 * x3 + 3 * x2) * p2 + (x3 - x2) * m2;
+  return catmull_rom(f.data(), f.size(), static_cast<std::size_t>(i), t - static_cast<double>(i));
 }
 
 }  // namespace
@@ -109,14 +94,8 @@ ProjectedProfile::ProjectedProfile(const Model& model, const Reduced<double>& m)
     const double cosh_s = std::cosh(k * hs), d = std::log(cosh_s), offset = d / h_;
     if (d >= kWindowEnd || offset > static_cast<double>(n)) break;
     const auto i = static_cast<std::ptrdiff_t>(std::floor(offset));
-    const double f = offset - static_cast<double>(i), f2 = f * f, f3 = f2 * f;
     // Catmull-Rom (as cubic()) written as weights of the four nodes around the interval.
-    samples.push_back({offset,
-                       i,
-                       {-0.5 * (f3 - 2 * f2 + f), 2 * f3 - 3 * f2 + 1 - 0.5 * (f3 - f2),
-                        -2 * f3 + 3 * f2 + 0.5 * (f3 - 2 * f2 + f), 0.5 * (f3 - f2)},
-                       cosh_s,
-                       1 - far_share(d)});
+    samples.push_back({offset, i, catmull_rom_weights(offset - static_cast<double>(i)), cosh_s, 1 - far_share(d)});
   }
   std::vector<double> far_weight(n, 0.0), G(n);  // by node distance m; R e^u at each node
   for (std::size_t m = 1; m < n; ++m) {

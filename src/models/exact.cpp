@@ -2,11 +2,13 @@
 #include "bssrdf/models/exact.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <optional>
 
+#include "bssrdf/cubic_hermite.hpp"
 #include "bssrdf/error.hpp"
 #include "bssrdf/models/dipole.hpp"
 #include "bssrdf/root_finding.hpp"
@@ -166,6 +168,7 @@ bool inside(double v, std::pair<double, double> range) {
   return v >= range.first - slack && v <= range.second + slack;
 }
 
+// The medium of reduced albedo alpha' in transport units (sigma_t' = 1).
 Reduced<double> transport_medium(double albedo_prime, double g, double eta) {
   return reduce(1 - albedo_prime, albedo_prime / (1 - g), g, eta);
 }
@@ -174,16 +177,6 @@ Reduced<double> transport_medium(double albedo_prime, double g, double eta) {
 double log_add(double a, double b) {
   if (a < b) std::swap(a, b);
   return b == -std::numeric_limits<double>::infinity() ? a : a + std::log1p(std::exp(b - a));
-}
-
-// Catmull-Rom on uniformly spaced values p[0..n), at p[i] + t (p[i+1] - p[i]), 0 <= t <= 1: slopes from
-// the neighbours, one-sided at the ends.
-double catmull_rom(const double* p, std::size_t n, std::size_t i, double t) {
-  const double p1 = p[i], p2 = p[i + 1];
-  const double m1 = i > 0 ? 0.5 * (p2 - p[i - 1]) : p2 - p1;
-  const double m2 = i + 2 < n ? 0.5 * (p[i + 2] - p1) : p2 - p1;
-  const double t2 = t * t, t3 = t2 * t;
-  return (2 * t3 - 3 * t2 + 1) * p1 + (t3 - 2 * t2 + t) * m1 + (-2 * t3 + 3 * t2) * p2 + (t3 - t2) * m2;
 }
 
 // ln y_ss of a medium (transport units) at the radii e^{ln_r0 + k d_ln_r}, k < n, by the log-grid
@@ -244,11 +237,8 @@ class ShiftedRow {
       : p_(row.data()),
         n_(static_cast<std::ptrdiff_t>(row.size())),
         shift_(shift),
-        base_(static_cast<std::ptrdiff_t>(std::floor(shift))) {
-    const double t = shift - static_cast<double>(base_), t2 = t * t, t3 = t2 * t;
-    const double h00 = 2 * t3 - 3 * t2 + 1, h10 = t3 - 2 * t2 + t, h01 = -2 * t3 + 3 * t2, h11 = t3 - t2;
-    w_ = {-0.5 * h10, h00 - 0.5 * h11, h01 + 0.5 * h10, 0.5 * h11};  // of p[i - 1 ... i + 2], the slopes' halves
-  }
+        base_(static_cast<std::ptrdiff_t>(std::floor(shift))),
+        w_(catmull_rom_weights(shift - static_cast<double>(base_))) {}
   double operator()(std::size_t k) const {
     const std::ptrdiff_t i = static_cast<std::ptrdiff_t>(k) + base_;
     if (i >= 1 && i + 2 < n_) return w_[0] * p_[i - 1] + w_[1] * p_[i] + w_[2] * p_[i + 1] + w_[3] * p_[i + 2];
@@ -263,7 +253,7 @@ class ShiftedRow {
   std::ptrdiff_t n_;
   double shift_;
   std::ptrdiff_t base_;
-  std::array<double, 4> w_{};
+  std::array<double, 4> w_;  // of p[i - 1 .. i + 2]
 };
 
 // Below the first albedo node (0.001) down to alpha' = 0 (R = 0): single scattering is the exact
@@ -357,8 +347,8 @@ struct AboveLastNode {
   Reduced<double> medium, node;  // transport units
   double s, s_last, s_before;    // sqrt(1 - alpha') of the medium, the last node and the one before it
   AboveLastNode(const ExactTable& table, double albedo_prime, double g, double eta)
-      : medium(reduce(1 - albedo_prime, albedo_prime / (1 - g), g, eta)),
-        node(reduce(1 - table.albedo_prime.back(), table.albedo_prime.back() / (1 - g), g, eta)),
+      : medium(transport_medium(albedo_prime, g, eta)),
+        node(transport_medium(table.albedo_prime.back(), g, eta)),
         s(std::sqrt(std::max(0.0, 1 - albedo_prime))),
         s_last(std::sqrt(1 - table.albedo_prime.back())),
         s_before(std::sqrt(1 - table.albedo_prime[table.albedo_prime.size() - 2])) {}
