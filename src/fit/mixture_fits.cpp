@@ -3,9 +3,11 @@
 // weights), each channel normalised by int r R^2 dr so that all channels count alike.
 #include <ceres/ceres.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <numbers>
 
 #include "bssrdf/error.hpp"
@@ -32,26 +34,57 @@ std::vector<double> root_weights(const SampledProfile& p) {
   return w;
 }
 
+// The Gaussians G2(v_k, r_i) at one set of radii, for the variances of the last evaluation: every
+// channel sampled at the same radii (a medium's table) reads them from here, so each evaluation
+// takes one exponential per radius and Gaussian, not one per channel too. Ceres evaluates the
+// residual blocks one after another (one thread), so the blocks may share it.
+class GaussianBasis {
+ public:
+  GaussianBasis(const std::vector<double>& radius, int count) : radius_(radius), count_(count) {}
+  bool serves(const std::vector<double>& radius) const { return radius == radius_; }
+  // G2 at every radius (row) and Gaussian (column) for these log variances, computed once per set.
+  const double* at(const double* log_variance) {
+    if (!values_.empty() && std::equal(log_variance, log_variance + count_, log_variance_.begin())) return values_.data();
+    log_variance_.assign(log_variance, log_variance + count_);
+    values_.resize(radius_.size() * static_cast<std::size_t>(count_));
+    for (int k = 0; k < count_; ++k) variance_[k] = std::exp(log_variance[k]);
+    for (std::size_t i = 0; i < radius_.size(); ++i) {
+      const double r = radius_[i];
+      for (int k = 0; k < count_; ++k) {
+        const double v = variance_[k];
+        // exp underflows to 0 below -745.2: skip its slow path (the same value, 0).
+        values_[i * count_ + k] = r * r / (2 * v) > 746 ? 0.0 : quantized_diffusion::gaussian_2d(v, r);
+      }
+    }
+    return values_.data();
+  }
+  double variance(int k) const { return variance_[k]; }
+
+ private:
+  std::vector<double> radius_;
+  int count_;
+  std::vector<double> log_variance_, values_;
+  std::array<double, 32> variance_{};  // count <= 32 (fit_gaussians)
+};
+
 // Residuals sqrt(w_i) (sum_k W_k G2(v_k, r_i) - R_i) with analytic derivatives (dG2/d ln v =
-// G2 (r^2 / 2v - 1)): one exponential per term, where automatic differentiation took a pass per
-// four parameters.
+// G2 (r^2 / 2v - 1)), the Gaussians from the channel's basis.
 class GaussianResidual : public ceres::CostFunction {
  public:
-  GaussianResidual(const SampledProfile* profile, std::vector<double> weight, int count)
-      : profile_(profile), weight_(std::move(weight)), count_(count) {
+  GaussianResidual(const SampledProfile* profile, std::vector<double> weight, int count,
+                   std::shared_ptr<GaussianBasis> basis)
+      : profile_(profile), weight_(std::move(weight)), count_(count), basis_(std::move(basis)) {
     mutable_parameter_block_sizes()->assign({count, count});
     set_num_residuals(static_cast<int>(profile->size()));
   }
   bool Evaluate(double const* const* parameters, double* residual, double** jacobians) const override {
-    const double* log_variance = parameters[0];
+    const double* gaussians = basis_->at(parameters[0]);
     const double* w = parameters[1];  // bounded below by 0: weights may vanish exactly
-    std::array<double, 32> variance{};  // count <= 32 (fit_gaussians): once per evaluation, not per radius
-    for (int k = 0; k < count_; ++k) variance[k] = std::exp(log_variance[k]);
     for (std::size_t i = 0; i < profile_->size(); ++i) {
       const double r = profile_->radius[i];
       double sum = 0;
       for (int k = 0; k < count_; ++k) {
-        const double v = variance[k], g = quantized_diffusion::gaussian_2d(v, r);
+        const double v = basis_->variance(k), g = gaussians[i * count_ + k];
         sum += w[k] * g;
         if (jacobians && jacobians[0]) jacobians[0][i * count_ + k] = weight_[i] * w[k] * g * (r * r / (2 * v) - 1);
         if (jacobians && jacobians[1]) jacobians[1][i * count_ + k] = weight_[i] * g;
@@ -65,6 +98,7 @@ class GaussianResidual : public ceres::CostFunction {
   const SampledProfile* profile_;
   std::vector<double> weight_;
   int count_;
+  std::shared_ptr<GaussianBasis> basis_;
 };
 
 // Parameters: [ln d, ln A]; A is fitted too, since a sampled profile's integral misses what lies
@@ -160,10 +194,14 @@ FitReport fit_gaussians(const std::vector<NamedProfile>& channels, int count, Le
   }
   std::vector<std::vector<double>> weight(channels.size());
   ceres::Problem problem;
+  std::vector<std::shared_ptr<GaussianBasis>> bases;  // one per distinct set of radii
   for (std::size_t c = 0; c < channels.size(); ++c) {
     const double total = channels[c].profile.integrate();
     weight[c].assign(count, std::max(total, 1e-12) / count);
-    auto* cost = new GaussianResidual(&channels[c].profile, root_weights(channels[c].profile), count);
+    const auto& radius = channels[c].profile.radius;
+    auto basis = std::find_if(bases.begin(), bases.end(), [&](const auto& b) { return b->serves(radius); });
+    if (basis == bases.end()) basis = bases.insert(bases.end(), std::make_shared<GaussianBasis>(radius, count));
+    auto* cost = new GaussianResidual(&channels[c].profile, root_weights(channels[c].profile), count, *basis);
     problem.AddResidualBlock(cost, nullptr, log_variance.data(), weight[c].data());
     for (int k = 0; k < count; ++k) problem.SetParameterLowerBound(weight[c].data(), k, 0.0);
     if (!totals.empty()) {
