@@ -2,7 +2,10 @@
 """Compares two directories of `bssrdf lut --all -f json` outputs of one kind, file by file: the
 largest difference of any table value relative to the largest magnitude of its channel, and how many
 files differ at all. It measures whether a change to a table kind moved its values (accuracy kept:
-differences at the level of rounding, 1e-15, or none).
+differences at the level of rounding, 1e-15, or none). Where the kind records its own error measures
+in the header (`bssrdf:*_error*` attributes: radial's max_error against the model, gaussians'
+relative_l2_error and conservation_error), it also prints the worst |value| over every file and
+channel, baseline -> new.
 
     lut_compare.py BASELINE_DIR NEW_DIR      (prints one line)
 """
@@ -14,6 +17,18 @@ import sys
 def numbers(doc):
     for channel in doc["channels"]:
         yield channel.get("name", "?"), channel["values"]
+
+
+def recorded_errors(directory):
+    """Worst |value| of each `bssrdf:*_error` attribute (per channel: `name.C`) over the directory."""
+    worst = {}
+    for path in sorted(directory.glob("*.json")):
+        for key, value in json.loads(path.read_text())["attributes"].items():
+            measure = key.split(".")[0]
+            if not measure.endswith("_error") or not isinstance(value, (int, float)):
+                continue
+            worst[measure] = max(worst.get(measure, 0.0), abs(value))
+    return worst
 
 
 def main():
@@ -45,6 +60,11 @@ def main():
         differing += changed
     print(f"{files} files: {identical_bytes} byte-identical, {differing} with a changed value; "
           f"largest change {worst:.2g} of the channel's largest value{' (' + worst_where + ')' if worst_where else ''}")
+    old_errors, new_errors = recorded_errors(old_dir), recorded_errors(new_dir)
+    for measure in sorted(set(old_errors) | set(new_errors)):
+        old, new = old_errors.get(measure), new_errors.get(measure)
+        text = lambda v: "absent" if v is None else f"{v:.4g}"
+        print(f"    own error measure {measure.removeprefix('bssrdf:')}: worst {text(old)} -> {text(new)}")
 
 
 main()
