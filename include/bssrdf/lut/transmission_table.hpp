@@ -50,6 +50,9 @@ struct TransmissionTable {
   std::vector<double> omitted_thickness;            // mm: invalid under the multipole, no reference
   std::vector<std::string> omitted_reason;          // "thin_slab (G, B)"
   std::vector<std::string> validity;                // [channel]: the multipole's other warnings
+  // [channel]: with adding-doubling, its largest error estimate over the thicknesses (the change of T
+  // from half the angles, per entered flux); empty otherwise.
+  std::vector<double> adding_doubling_error;
   double monte_carlo_seconds = 0;
 
   std::size_t size() const { return thickness.size(); }
