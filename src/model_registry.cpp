@@ -140,8 +140,9 @@ std::vector<ModelEntry> build() {
           Region{"strongly forward", 0.05, 1, 0.99, 0.999, 1, 1.6, 0.002, 0.048},
           // Forward, nearly non-absorbing, inside the first table: 11 points.
           Region{"forward, high albedo", 0.99, 0.9999, 0.9, 0.99, 1, 1.6, 0.001, 0.036},
-          // The eta 1.8 and 2.0 nodes and everything above 1.6: 21 points.
-          Region{"high index", 0, 1, 0, 0.999, 1.6, 2.0, 0.007, 0.056},
+          // The eta 1.8 and 2.0 nodes and everything above 1.6: 21 points; the far field misses
+          // 7.6 % at alpha' 0.003, g 0.998, eta 1.9 (2e9 photons).
+          Region{"high index", 0, 1, 0, 0.999, 1.6, 2.0, 0.005, 0.077},
       }};
 
   table.push_back(dipole);
