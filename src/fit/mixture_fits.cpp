@@ -225,6 +225,7 @@ FitReport fit_gaussians(const std::vector<NamedProfile>& channels, int count, Le
   options.linear_solver_type = count <= 8 ? ceres::DENSE_NORMAL_CHOLESKY : ceres::DENSE_QR;
   options.max_num_iterations = 2000;
   options.function_tolerance = 1e-12;
+  options.num_threads = 1;  // the residual blocks share their GaussianBasis: evaluated one after another
   // Weights pinned at their bound 0 make monotone Levenberg-Marquardt creep (Ketchup, soy and
   // chocolate milk ran out of 2000 iterations); non-monotone steps converge in tens to hundreds.
   options.use_nonmonotonic_steps = true;
