@@ -135,11 +135,12 @@ std::vector<ModelEntry> build() {
           // Beyond the last g node, clear and absorbing (Strawberry Shampoo's blue):
           // 7 points, 2 of them again with 10^10 photons.
           Region{"forward, low albedo", 0, 0.05, 0.99, 0.999, 1, 1.6, 0.004, 0.018},
-          // Beyond the last g node, scattering: 6 points; the near field misses 3 %
-          // at g 0.998 (the g continuation's single scattering).
+          // Beyond the last g node, scattering: 6 points; the near field misses by 4.8 %
+          // at g 0.998, alpha' 0.995 (the g continuation; confirmed with 4x the photons).
           Region{"strongly forward", 0.05, 1, 0.99, 0.999, 1, 1.6, 0.002, 0.048},
-          // Forward, nearly non-absorbing, inside the first table: 11 points.
-          Region{"forward, high albedo", 0.99, 0.9999, 0.9, 0.99, 1, 1.6, 0.001, 0.036},
+          // Forward, nearly non-absorbing, inside the first table: 11 points; the near field
+          // misses by 3.2 % at g 0.988, eta 1.6 (the table's noise; 16x the photons confirmed it).
+          Region{"forward, high albedo", 0.99, 0.9999, 0.9, 0.99, 1, 1.6, 0.001, 0.033},
           // The eta 1.8 and 2.0 nodes and everything above 1.6: 21 points; the far field misses
           // 7.6 % at alpha' 0.003, g 0.998, eta 1.9 (2e9 photons).
           Region{"high index", 0, 1, 0, 0.999, 1.6, 2.0, 0.005, 0.077},
