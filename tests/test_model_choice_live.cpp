@@ -4,6 +4,7 @@
 // materials; every material inside the domain is served at any accuracy >= exact's band; fast.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -92,15 +93,29 @@ TEST(ModelChoiceLive, InsideTheDomainEstimatesAreLiveAndExactIsACandidate) {
     EXPECT_GT(e.profile_error, 0) << e.model;  // no approximation is the transport solution
   }
   EXPECT_TRUE(exact_seen);
-  // Beyond every region (alpha' 0.99998 with g 0.95: near conservative ends at g 0.9, forward high
-  // albedo at alpha' 0.9999; no validation point lies there) exact carries the domain-wide band.
+  // Above the last albedo node with g 0.95 (alpha' 0.99998): validated there too (runs R, S), so its
+  // own band, tighter than the domain's.
   const auto white = estimate_model_errors(reduce(0.000001, 1.0, 0.95, 1.4));
   ASSERT_TRUE(white);
   for (const auto& e : *white)
     if (e.model == "exact") {
-      EXPECT_EQ(e.total_error, model_entry("exact").reference_accuracy->total);
-      EXPECT_EQ(e.profile_error, model_entry("exact").reference_accuracy->profile);
+      const auto& accuracy = *model_entry("exact").reference_accuracy;
+      EXPECT_EQ(e.total_error, accuracy.at(reduce(0.000001, 1.0, 0.95, 1.4)).total);
+      EXPECT_LT(e.profile_error, accuracy.profile);
     }
+  // Every medium of the domain lies in a region with validation points of its own: none falls
+  // through to the domain-wide band (a grid over alpha' 0-1, g 0-0.999, eta 1-2).
+  const auto& regions = model_entry("exact").reference_accuracy->regions;
+  for (double ap : {0.0, 1e-5, 0.0005, 0.001, 0.01, 0.05, 0.3, 0.9, 0.99, 0.995, 0.999, 0.99995, 1.0})
+    for (double g : {0.0, 0.5, 0.9, 0.93, 0.97, 0.99, 0.995, 0.998, 0.999})
+      for (double eta : {1.0, 1.3, 1.6, 1.8, 2.0}) {
+        Reduced<double> m{};
+        m.albedo_prime = ap;
+        m.g = g;
+        m.eta = eta;
+        EXPECT_TRUE(std::any_of(regions.begin(), regions.end(), [&](const auto& r) { return r.holds(m); }))
+            << "alpha' " << ap << " g " << g << " eta " << eta;
+      }
   // alpha' 0.99995 is inside the exact domain now (continued above its last node): every estimate
   // is live there, and the Monte Carlo table (which it covers) is what a caller may still ask for.
   const auto near_one = reduce(0.00005, 1.0, 0.0, 1.3);

@@ -19,6 +19,7 @@ REGIONS = [
     ("low albedo", 0, 0.05, 0, 0.99, 1, 1.6),
     ("milk-like", 0.99, 0.998, 0.9, 0.95, 1, 1.6),
     ("near conservative", 0.9999, 1, 0, 0.9, 1, 1.6),
+    ("forward, near conservative", 0.9999, 1, 0.9, 0.99, 1, 1.6),
     ("forward, below the first node", 0, 0.001, 0.995, 0.998, 1, 1.6),
     ("forward, below the first node, g 0.999", 0, 0.001, 0.998, 0.999, 1, 1.6),
     ("forward, low albedo", 0, 0.05, 0.99, 0.999, 1, 1.6),
