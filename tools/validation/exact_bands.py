@@ -15,7 +15,8 @@ import sys
 REGIONS = [
     ("no scattering", 0, 0, 0, 1, 0, 10),
     ("tissue", 0.05, 0.9999, 0, 0.9, 1, 1.6),
-    ("forward, mid albedo", 0.05, 0.99, 0.9, 0.99, 1, 1.6),
+    ("forward, mid albedo", 0.05, 0.99, 0.9, 0.98, 1, 1.6),
+    ("forward, mid albedo, g 0.98-0.99", 0.05, 0.99, 0.98, 0.99, 1, 1.6),
     ("low albedo", 0, 0.05, 0, 0.99, 1, 1.6),
     ("milk-like", 0.99, 0.998, 0.9, 0.95, 1, 1.6),
     ("near conservative", 0.9999, 1, 0, 0.9, 1, 1.6),
