@@ -4,9 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "bssrdf/adding_doubling/slab.hpp"
+#include "bssrdf/layers.hpp"
 #include "bssrdf/lut/transmission_table.hpp"
 #include "bssrdf/materials.hpp"
 #include "cli_runner.hpp"
@@ -59,6 +65,36 @@ TEST(TransmissionTable, ReferenceFillsInvalidThicknesses) {
     EXPECT_GT(t.standard_error[c][0], 0);
     EXPECT_LT(t.standard_error[c][0], 0.2 * t.transmittance[c][0]);
   }
+}
+
+// With adding-doubling the table records the solver's own accuracy per channel (the change of T when
+// the angles are halved, largest over the thicknesses), and it bounds the actual error against a
+// solve with far more angles; the multipole's table records none.
+TEST(TransmissionTable, AddingDoublingRecordsItsOwnAccuracy) {
+  const auto medium = skin();
+  const std::vector<double> d{0.2, 1.0, 5.0};
+  TransmissionTableOptions o;
+  o.model = "adding-doubling";
+  const auto t = build_transmission_table(medium, d, o);
+  ASSERT_EQ(t.adding_doubling_error.size(), medium.channels());
+  for (std::size_t c = 0; c < medium.channels(); ++c) {
+    const double estimate = t.adding_doubling_error[c];
+    EXPECT_GT(estimate, 0) << c;
+    EXPECT_LT(estimate, 2e-4) << c;  // the solver's tolerance, 1e-4 of the incident flux
+    adding_doubling::Options fine;
+    fine.points = 128;
+    double worst = 0;
+    for (std::size_t j = 0; j < d.size(); ++j) {
+      const auto a = adding_doubling::solve(adding_doubling::slab_of(LayerStack::slab(medium, d[j]), c),
+                                            adding_doubling::Incidence::collimated, fine);
+      const double reference = (a.total_transmittance - a.unscattered_transmittance) * a.entered_scale();
+      worst = std::max(worst, std::abs(t.transmittance[c][j] - reference));
+    }
+    std::printf("  channel %zu: estimate %.3g, actual error against 128 angles %.3g\n", c, estimate, worst);
+    EXPECT_LE(worst, estimate) << c;
+  }
+  o.model = "multipole";
+  EXPECT_TRUE(build_transmission_table(medium, {3.0, 6.0}, o).adding_doubling_error.empty());
 }
 
 TEST(TransmissionTable, ExrJsonCsvCarryValuesAndAttributes) {

@@ -3,11 +3,11 @@
 largest difference of any table value relative to the largest magnitude of its channel, and how many
 files differ at all. It measures whether a change to a table kind moved its values (accuracy kept:
 differences at the level of rounding, 1e-15, or none). Where the kind records its own error measures
-in the header (`bssrdf:*_error*` attributes: radial's max_error against the model, gaussians'
-relative_l2_error and conservation_error), it also prints the worst |value| over every file and
-channel, baseline -> new.
+in the header (`bssrdf:*_error` attributes, per channel `*_error.C`: radial's max_error against the
+model, gaussians' relative_l2_error and conservation_error, transmission's adding_doubling_error), it
+also prints the worst |value| over every file and channel, baseline -> new, one line each.
 
-    lut_compare.py BASELINE_DIR NEW_DIR      (prints one line)
+    lut_compare.py BASELINE_DIR NEW_DIR      (prints a summary line, then one per recorded measure)
 """
 import json
 import pathlib
@@ -29,6 +29,10 @@ def recorded_errors(directory):
                 continue
             worst[measure] = max(worst.get(measure, 0.0), abs(value))
     return worst
+
+
+def shown(value):
+    return "absent" if value is None else f"{value:.4g}"
 
 
 def main():
@@ -62,9 +66,8 @@ def main():
           f"largest change {worst:.2g} of the channel's largest value{' (' + worst_where + ')' if worst_where else ''}")
     old_errors, new_errors = recorded_errors(old_dir), recorded_errors(new_dir)
     for measure in sorted(set(old_errors) | set(new_errors)):
-        old, new = old_errors.get(measure), new_errors.get(measure)
-        text = lambda v: "absent" if v is None else f"{v:.4g}"
-        print(f"    own error measure {measure.removeprefix('bssrdf:')}: worst {text(old)} -> {text(new)}")
+        old, new = shown(old_errors.get(measure)), shown(new_errors.get(measure))
+        print(f"    own error measure {measure.removeprefix('bssrdf:')}: worst {old} -> {new}")
 
 
 main()
