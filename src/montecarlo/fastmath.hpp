@@ -14,32 +14,22 @@
 #endif
 
 // Passing d2 by value to inline functions: the ABI note is irrelevant (nothing crosses a library).
+// The kernels are always inlined: in the AVX2+FMA kernel they must compile with its instruction set
+// (an out-of-line copy would be generic code, with a library call per fused operation).
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace bssrdf::mc {
 
 // Two or four doubles (or 64-bit integers) as one value, one SSE2 or AVX register: GCC/Clang
-// vector extensions. Every operation is the IEEE operation of each element (no contraction into
-// FMA: ISO C++ mode), so the results do not depend on the instruction set or the vector width.
+// vector extensions. Every operation is the IEEE operation of each element (the compiler contracts
+// nothing, -ffp-contract=off; the fused operations are written out, fma_of), so the results do not
+// depend on the vector width.
 using d2 = double __attribute__((vector_size(16)));
 using u2 = std::uint64_t __attribute__((vector_size(16)));
 using i2 = std::int64_t __attribute__((vector_size(16)));
 using d4 = double __attribute__((vector_size(32)));
 using u4 = std::uint64_t __attribute__((vector_size(32)));
 using i4 = std::int64_t __attribute__((vector_size(32)));
-
-struct Sse2 {  // 2 lanes per register
-  using D = d2;
-  using U = u2;
-  using I = i2;
-  static constexpr int width = 2;
-};
-struct Avx2 {  // 4 lanes per register; only in functions compiled with target("avx2")
-  using D = d4;
-  using U = u4;
-  using I = i4;
-  static constexpr int width = 4;
-};
 
 inline d2 load2(const double* p) {
   d2 v;
@@ -76,6 +66,68 @@ inline d2 sqrt_of(d2 x) {
 
 // Element by element (the compiler packs it into one vsqrtpd where AVX is enabled).
 inline d4 sqrt_of(d4 x) { return d4{std::sqrt(x[0]), std::sqrt(x[1]), std::sqrt(x[2]), std::sqrt(x[3])}; }
+
+// a b + c rounded once (IEEE fusedMultiplyAdd), element by element: one instruction in a kernel
+// compiled with FMA, the C library's exactly rounded fma elsewhere (tests only).
+inline double fma_of(double a, double b, double c) { return std::fma(a, b, c); }
+[[gnu::always_inline]] inline d2 fma_of(d2 a, d2 b, d2 c) {
+  return d2{__builtin_fma(a[0], b[0], c[0]), __builtin_fma(a[1], b[1], c[1])};
+}
+[[gnu::always_inline]] inline d4 fma_of(d4 a, d4 b, d4 c) {
+  return d4{__builtin_fma(a[0], b[0], c[0]), __builtin_fma(a[1], b[1], c[1]), __builtin_fma(a[2], b[2], c[2]),
+            __builtin_fma(a[3], b[3], c[3])};
+}
+// With constants: a constant stands for the vector of it.
+template <class D>
+[[gnu::always_inline]] inline D fma_of(D a, double b, D c) {
+  return fma_of(a, D{} + b, c);
+}
+template <class D>
+[[gnu::always_inline]] inline D fma_of(D a, D b, double c) {
+  return fma_of(a, b, D{} + c);
+}
+template <class D>
+[[gnu::always_inline]] inline D fma_of(D a, double b, double c) {
+  return fma_of(a, D{} + b, D{} + c);
+}
+
+// How a kernel computes a b + c. Fused (one rounding): a polynomial step or a move is one operation
+// instead of two, on every x86-64 processor with FMA; these kernels give the same bits on all of
+// them. Unfused (two roundings): processors without FMA (and other architectures), where an exactly
+// rounded fma is a library routine some 30 times slower than the whole step; the same arithmetic
+// otherwise, so the same photons to a tiny fraction of their paths and the same statistics.
+struct Fused {
+  template <class D, class B, class C>
+  [[gnu::always_inline]] static D madd(D a, B b, C c) {
+    return fma_of(a, b, c);
+  }
+};
+struct Unfused {
+  template <class D, class B, class C>
+  [[gnu::always_inline]] static D madd(D a, B b, C c) {
+    return a * b + c;
+  }
+};
+
+// A kernel's vectors and its a b + c: SSE2 without FMA (every x86-64), SSE2 with FMA (only in
+// functions compiled with target("fma")) and AVX2 (target("avx2,fma")).
+struct Sse2 {  // 2 lanes per register
+  using D = d2;
+  using U = u2;
+  using I = i2;
+  using Madd = Unfused;
+  static constexpr int width = 2;
+};
+struct Sse2Fma : Sse2 {
+  using Madd = Fused;
+};
+struct Avx2 {  // 4 lanes per register
+  using D = d4;
+  using U = u4;
+  using I = i4;
+  using Madd = Fused;
+  static constexpr int width = 4;
+};
 
 // Integer type of the same shape as D and back: std::uint64_t for double, u2 for d2, u4 for d4.
 template <class D>
@@ -116,7 +168,7 @@ struct LogReduced {
   D f, dk;
 };
 template <class D>
-inline LogReduced<D> log_reduce(D x) {
+[[gnu::always_inline]] inline LogReduced<D> log_reduce(D x) {
   using U = bits_t<D>;
   U ix = std::bit_cast<U>(x);
   ix += 0x3ff0000000000000ull - 0x3fe6a09e00000000ull;  // m's threshold sqrt(1/2) moved to 1
@@ -125,8 +177,8 @@ inline LogReduced<D> log_reduce(D x) {
   ix = (ix & 0x000fffffffffffffull) + 0x3fe6a09e00000000ull;
   return {std::bit_cast<D>(ix) - 1.0, dk};
 }
-template <class D>
-inline D log_finish(LogReduced<D> p, D s) {
+template <class M = Fused, class D>
+[[gnu::always_inline]] inline D log_finish(LogReduced<D> p, D s) {
   constexpr double ln2_hi = 6.93147180369123816490e-01, ln2_lo = 1.90821492927058770002e-10;
   constexpr double Lg1 = 6.666666666666735130e-01, Lg2 = 3.999999999940941908e-01, Lg3 = 2.857142874366239149e-01,
                    Lg4 = 2.222219843214978396e-01, Lg5 = 1.818357216161805012e-01, Lg6 = 1.531383769920937332e-01,
@@ -134,10 +186,11 @@ inline D log_finish(LogReduced<D> p, D s) {
   const D f = p.f, dk = p.dk;
   const D hfsq = 0.5 * f * f;
   const D z = s * s, w = z * z;
-  const D t1 = w * (Lg2 + w * (Lg4 + w * Lg6));
-  const D t2 = z * (Lg1 + w * (Lg3 + w * (Lg5 + w * Lg7)));
+  const D t1 = w * M::madd(w, M::madd(w, Lg6, Lg4), Lg2);
+  const D t2 = z * M::madd(w, M::madd(w, M::madd(w, Lg7, Lg5), Lg3), Lg1);
   const D r = t2 + t1;
-  return s * (hfsq + r) + dk * ln2_lo - hfsq + f + dk * ln2_hi;
+  // dk ln2_hi is exact (ln2_hi's low bits are zero), so fusing it changes nothing there.
+  return M::madd(dk, ln2_hi, M::madd(s, hfsq + r, dk * ln2_lo) - hfsq + f);
 }
 
 // ln(x) for a positive normal finite x (no checks: the tracer only passes uniforms in (0, 1]).
@@ -145,7 +198,7 @@ inline D log_finish(LogReduced<D> p, D s) {
 // log m = 2 atanh s with a minimax polynomial of error < 2^-58.45) on its more accurate branch for
 // every x: error below 1 ulp.
 template <class D>
-inline D log_normal(D x) {
+[[gnu::always_inline]] inline D log_normal(D x) {
   const LogReduced<D> p = log_reduce(x);
   return log_finish(p, p.f / (2.0 + p.f));
 }
@@ -153,7 +206,7 @@ inline D log_normal(D x) {
 // Uniform in (0, 1] with the 52 top bits of r: 2 - [1, 2), exact, step 2^-52 (for -log u: free
 // paths up to 36 optical depths; the tail beyond, e^-36 = 2e-16, is below double rounding).
 template <class U>
-inline auto uniform_open0_52(U r) {
+[[gnu::always_inline]] inline auto uniform_open0_52(U r) {
   using D = double_t_of<U>;
   return 2.0 - std::bit_cast<D>((r >> 12) | 0x3ff0000000000000ull);
 }
@@ -162,7 +215,7 @@ inline auto uniform_open0_52(U r) {
 // cells. Any smooth function of it has the mean of the continuous uniform to O(2^-64 f'') (the
 // midpoint rule), far below double rounding of the results: no bias at any photon count.
 template <class U>
-inline auto uniform_mid32(U v) {
+[[gnu::always_inline]] inline auto uniform_mid32(U v) {
   using D = double_t_of<U>;
   return (std::bit_cast<D>((v & 0xffffffffull) | 0x4330000000000000ull) - 0x1p52 + 0.5) * 0x1p-32;
 }
@@ -172,8 +225,8 @@ inline auto uniform_mid32(U v) {
 // phi = q pi/2 + pi/4 + x, x in (-pi/4, pi/4). cos x and sin x by fdlibm's kernels
 // (k_cos, k_sin: minimax, error < 2^-58 on [-pi/4, pi/4]), then the rotations by pi/4 and q pi/2,
 // branch-free (a swap and sign flips on the bits). Error ~2e-16.
-template <class U, class D>
-inline void azimuth_cos_sin(U v, D& cos_phi, D& sin_phi) {
+template <class M = Fused, class U, class D>
+[[gnu::always_inline]] inline void azimuth_cos_sin(U v, D& cos_phi, D& sin_phi) {
   constexpr double S1 = -1.66666666666666324348e-01, S2 = 8.33333333332248946124e-03, S3 = -1.98412698298579493134e-04,
                    S4 = 2.75573137070700676789e-06, S5 = -2.50507602534068634195e-08, S6 = 1.58969099521155010221e-10;
   constexpr double C1 = 4.16666666666666019037e-02, C2 = -1.38888888888741095749e-03, C3 = 2.48015872894767294178e-05,
@@ -183,8 +236,9 @@ inline void azimuth_cos_sin(U v, D& cos_phi, D& sin_phi) {
   const D f = (std::bit_cast<D>(cell | 0x4330000000000000ull) - 0x1p52 + 0.5) * 0x1p-30;  // (0, 1)
   const D x = (f - 0.5) * kHalfPi;
   const D z = x * x;
-  const D sin_x = x + x * z * (S1 + z * (S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)))));
-  const D cos_x = 1.0 - 0.5 * z + z * z * (C1 + z * (C2 + z * (C3 + z * (C4 + z * (C5 + z * C6)))));
+  const D sin_x = M::madd(x * z, M::madd(z, M::madd(z, M::madd(z, M::madd(z, M::madd(z, S6, S5), S4), S3), S2), S1), x);
+  const D cos_x =
+      M::madd(z * z, M::madd(z, M::madd(z, M::madd(z, M::madd(z, M::madd(z, C6, C5), C4), C3), C2), C1), 1.0 - 0.5 * z);
   const D c = (cos_x - sin_x) * kSqrtHalf;  // cos(pi/4 + x), > 0
   const D s = (cos_x + sin_x) * kSqrtHalf;  // sin(pi/4 + x), > 0
   // Quadrant q: (c, s), (-s, c), (-c, -s), (s, -c).

@@ -163,6 +163,7 @@ struct LaneTracer {
   using D = typename V::D;
   using U = typename V::U;
   using I = typename V::I;
+  using Madd = typename V::Madd;
   static constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
   const ChannelGeometry& geo;
@@ -367,17 +368,17 @@ struct LaneTracer {
       const D hg_2g = load<D>(L.hg_2g + g);
       const LogReduced<D> reduced = log_reduce(uniform_open0_52(rp));
       const D den_log = 2.0 + reduced.f;
-      const D den_hg = load<D>(L.hg_c + g) + hg_2g * xi;
+      const D den_hg = Madd::madd(hg_2g, xi, load<D>(L.hg_c + g));
       const D reciprocal = 1.0 / (den_log * den_hg);
-      store(drawn_tau + g, -log_finish(reduced, reduced.f * (den_hg * reciprocal)));
+      store(drawn_tau + g, -log_finish<Madd>(reduced, reduced.f * (den_hg * reciprocal)));
       const D t = load<D>(L.hg_b + g) * (den_log * reciprocal);
-      D ct = (load<D>(L.hg_a + g) - t * t) * load<D>(L.hg_inv_2g + g);
+      D ct = Madd::madd(-t, t, load<D>(L.hg_a + g)) * load<D>(L.hg_inv_2g + g);
       ct = ct < -1.0 ? -1.0 : ct;
       ct = ct > 1.0 ? 1.0 : ct;
       ct = hg_2g == 0 ? 2 * xi - 1 : ct;
       store(cos_theta + g, ct);
       D cp, sp;
-      azimuth_cos_sin(ra, cp, sp);
+      azimuth_cos_sin<Madd>(ra, cp, sp);
       store(cos_phi + g, cp);
       store(sin_phi + g, sp);
     }
@@ -394,20 +395,21 @@ struct LaneTracer {
       const D z = load<D>(L.z + g);
       const D tau = tau_in > 0 ? tau_in : load<D>(drawn_tau + g);
       const D s = tau * load<D>(L.inv_sigma_t + g);  // infinite in a clear layer
-      const D z_end = z + s * uz;
+      const D z_end = Madd::madd(s, uz, z);
       const I inside = (z_end < load<D>(L.z_bottom + g)) & (z_end > load<D>(L.z_top + g));
       const D ct = load<D>(cos_theta + g), cp = load<D>(cos_phi + g), sp = load<D>(sin_phi + g);
       // MCML's rotation; along the z axis the frame is (x, y, z) itself. k = sin(theta)/sqrt(1-uz^2).
-      const D one_minus_uz2 = 1 - uz * uz;
+      const D one_minus_uz2 = Madd::madd(-uz, uz, 1.0);
       const I pole = one_minus_uz2 < 1e-12;
-      const D k = sqrt_of((1 - ct * ct) / (pole ? 1.0 : one_minus_uz2));
-      const D nux = pole ? k * cp : k * (ux * uz * cp - uy * sp) + ux * ct;
-      const D nuy = pole ? k * sp : k * (uy * uz * cp + ux * sp) + uy * ct;
-      const D nuz = pole ? (uz > 0 ? ct : -ct) : -k * one_minus_uz2 * cp + uz * ct;
+      const D k = sqrt_of(Madd::madd(-ct, ct, 1.0) / (pole ? 1.0 : one_minus_uz2));
+      const D nux = pole ? k * cp : Madd::madd(k, Madd::madd(ux * uz, cp, -(uy * sp)), ux * ct);
+      const D nuy = pole ? k * sp : Madd::madd(k, Madd::madd(uy * uz, cp, ux * sp), uy * ct);
+      const D nuz = pole ? (uz > 0 ? ct : -ct) : Madd::madd(-k * one_minus_uz2, cp, uz * ct);
       const D w = load<D>(L.w + g);
       const D dw = inside ? w * load<D>(L.absorb + g) : 0.0;
-      store(L.x + g, inside ? load<D>(L.x + g) + s * ux : load<D>(L.x + g));
-      store(L.y + g, inside ? load<D>(L.y + g) + s * uy : load<D>(L.y + g));
+      const D x = load<D>(L.x + g), y = load<D>(L.y + g);
+      store(L.x + g, inside ? Madd::madd(s, ux, x) : x);
+      store(L.y + g, inside ? Madd::madd(s, uy, y) : y);
       store(L.z + g, inside ? z_end : z);
       store(L.tau + g, inside ? 0.0 : tau);
       store(L.ux + g, inside ? nux : ux);
@@ -490,9 +492,10 @@ template <bool kAnalog, class V>
 
 namespace {
 
-// The same kernel compiled twice: for SSE2 (every x86-64) and for AVX2, chosen at run time. Both
-// do the same IEEE operations on every lane (the vector width changes nothing but the speed), so
-// the results are bitwise identical on every machine.
+// The same kernel compiled three times: SSE2 with separate multiply and add (every x86-64), SSE2
+// with FMA and AVX2 with FMA, chosen at run time. The two fused kernels do the same IEEE operations
+// on every lane (the vector width changes nothing but the speed), so their results are bitwise
+// identical on every machine with FMA; the unfused one rounds each a b + c twice.
 template <bool kAnalog>
 void trace_sse2(const ChannelGeometry& geo, const TraceSettings& settings, Rng& rng, std::uint64_t photons,
                 BatchTally& tally) {
@@ -500,22 +503,43 @@ void trace_sse2(const ChannelGeometry& geo, const TraceSettings& settings, Rng& 
 }
 #if defined(__x86_64__) || defined(__i386__)
 template <bool kAnalog>
-__attribute__((target("avx2"))) void trace_avx2(const ChannelGeometry& geo, const TraceSettings& settings, Rng& rng,
-                                                std::uint64_t photons, BatchTally& tally) {
+__attribute__((target("fma"))) void trace_sse2_fma(const ChannelGeometry& geo, const TraceSettings& settings,
+                                                   Rng& rng, std::uint64_t photons, BatchTally& tally) {
+  trace_lanes<kAnalog, Sse2Fma>(geo, settings, rng, photons, tally);
+}
+template <bool kAnalog>
+__attribute__((target("avx2,fma"))) void trace_avx2(const ChannelGeometry& geo, const TraceSettings& settings,
+                                                    Rng& rng, std::uint64_t photons, BatchTally& tally) {
   trace_lanes<kAnalog, Avx2>(geo, settings, rng, photons, tally);
+}
+
+// The level BSSRDF_MC_SIMD asks for (to measure a path, or to reproduce a machine without FMA).
+SimdLevel simd_from_environment() {
+  static const SimdLevel level = [] {
+    const char* forced = std::getenv("BSSRDF_MC_SIMD");
+    if (forced && std::string_view(forced) == "sse2") return SimdLevel::sse2;
+    if (forced && std::string_view(forced) == "nofma") return SimdLevel::unfused;
+    return SimdLevel::best;
+  }();
+  return level;
 }
 #endif
 
 }  // namespace
 
+bool fma_available() {
+#if defined(__x86_64__) || defined(__i386__)
+  static const bool available = __builtin_cpu_supports("fma") && simd_from_environment() != SimdLevel::unfused;
+  return available;
+#else
+  return false;
+#endif
+}
+
 bool avx2_available() {
 #if defined(__x86_64__) || defined(__i386__)
-  // BSSRDF_MC_SIMD=sse2 in the environment turns AVX2 off (to measure the SSE2 path; the results
-  // are the same either way).
-  static const bool available = [] {
-    const char* forced = std::getenv("BSSRDF_MC_SIMD");
-    return __builtin_cpu_supports("avx2") && !(forced && std::string_view(forced) == "sse2");
-  }();
+  static const bool available =
+      __builtin_cpu_supports("avx2") && fma_available() && simd_from_environment() == SimdLevel::best;
   return available;
 #else
   return false;
@@ -526,11 +550,19 @@ void trace_batch(const ChannelGeometry& geo, const TraceSettings& settings, Rng&
                  BatchTally& tally) {
   const bool analog = settings.absorption == AbsorptionEstimator::analog;
 #if defined(__x86_64__) || defined(__i386__)
-  if (settings.simd != SimdLevel::sse2 && avx2_available()) {
+  if (settings.simd == SimdLevel::best && avx2_available()) {
     if (analog) {
       trace_avx2<true>(geo, settings, rng, photons, tally);
     } else {
       trace_avx2<false>(geo, settings, rng, photons, tally);
+    }
+    return;
+  }
+  if (settings.simd != SimdLevel::unfused && fma_available()) {
+    if (analog) {
+      trace_sse2_fma<true>(geo, settings, rng, photons, tally);
+    } else {
+      trace_sse2_fma<false>(geo, settings, rng, photons, tally);
     }
     return;
   }

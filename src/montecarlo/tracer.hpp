@@ -102,10 +102,14 @@ struct BatchTally {
   void reset(std::size_t radial_bins, bool transmission, std::size_t depth_bins);
 };
 
-// Instruction set of the tracer's vector pass: the best available (AVX2 where the processor has
-// it, else SSE2), or SSE2 forced (tests: both give bitwise identical results).
-enum class SimdLevel { best, sse2 };
+// Instruction set of the tracer's vector pass. best: AVX2 with FMA where the processor has both,
+// else SSE2 (with FMA where it has it); sse2: SSE2 forced, with FMA where available (bitwise the same
+// results as best); unfused: SSE2 without FMA, as on processors that lack it (the same statistics,
+// other bits: each a b + c rounded twice). BSSRDF_MC_SIMD=sse2 or =nofma in the environment forces
+// the same for a whole run.
+enum class SimdLevel { best, sse2, unfused };
 bool avx2_available();
+bool fma_available();
 
 struct TraceSettings {
   const RadialBinning* binning = nullptr;
