@@ -102,14 +102,15 @@ struct BatchTally {
   void reset(std::size_t radial_bins, bool transmission, std::size_t depth_bins);
 };
 
-// Instruction set of the tracer's vector pass. best: AVX2 with FMA where the processor has both,
-// else SSE2 (with FMA where it has it); sse2: SSE2 forced, with FMA where available (bitwise the same
-// results as best); unfused: SSE2 without FMA, as on processors that lack it (the same statistics,
-// other bits: each a b + c rounded twice). BSSRDF_MC_SIMD=sse2 or =nofma in the environment forces
-// the same for a whole run.
-enum class SimdLevel { best, sse2, unfused };
-bool avx2_available();
-bool fma_available();
+// Instruction set of the tracer's vector pass, from the fastest: best (AVX2 with FMA, in AVX-512VL's
+// encodings where the processor has them), avx2 (AVX2 with FMA), sse2 (SSE2, with FMA where the
+// processor has it), unfused (SSE2 without FMA, as on processors that lack it). A level asks for at
+// most that kernel; the processor and BSSRDF_MC_SIMD=avx2|sse2|nofma in the environment may restrict
+// it further. The fused kernels give bitwise identical results; the unfused one the same statistics,
+// other bits (each a b + c rounded twice).
+enum class SimdLevel { best, avx2, sse2, unfused };
+// The kernel trace_batch runs for `requested` on this processor and in this environment.
+SimdLevel kernel_for(SimdLevel requested);
 
 struct TraceSettings {
   const RadialBinning* binning = nullptr;

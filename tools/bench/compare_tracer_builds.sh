@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Two builds of the Monte Carlo tracer side by side, for a change that must not change a result:
 # fixed-seed `bssrdf reference` runs (implicit capture and analog absorption, half-space, slab, layer
-# stack, depth bins, MCML's roulette; every BSSRDF_MC_SIMD path: default, sse2, nofma, where a build
+# stack, depth bins, MCML's roulette; every BSSRDF_MC_SIMD path: default, avx2, sse2, nofma, where a build
 # that does not know a value takes its default) must be bitwise identical in every number but the
 # timings; then one-thread CPU time of both, alternating, median of RUNS each and the ratio after/before.
 #
@@ -29,7 +29,7 @@ def strip(o):
     return o
 print(json.dumps(strip(json.load(open(sys.argv[1]))), sort_keys=True))' "$1"; }
 differ=0
-for simd in default sse2 nofma; do
+for simd in default avx2 sse2 nofma; do
   for c in "${cases[@]}"; do
     for side in before after; do
       bin=$before; [ $side = after ] && bin=$after
@@ -42,7 +42,7 @@ for simd in default sse2 nofma; do
     fi
   done
 done
-[ $differ = 0 ] && echo "identical: ${#cases[@]} cases x 3 SIMD paths"
+[ $differ = 0 ] && echo "identical: ${#cases[@]} cases x 4 SIMD paths"
 
 cpu_seconds() {  # user CPU seconds of one run on one thread (robust on a shared machine)
   local TIMEFORMAT=%U
