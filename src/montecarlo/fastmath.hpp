@@ -14,8 +14,6 @@
 #endif
 
 // Passing d2 by value to inline functions: the ABI note is irrelevant (nothing crosses a library).
-// The kernels are always inlined: in the AVX2+FMA kernel they must compile with its instruction set
-// (an out-of-line copy would be generic code, with a library call per fused operation).
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace bssrdf::mc {
@@ -69,6 +67,8 @@ inline d4 sqrt_of(d4 x) { return d4{std::sqrt(x[0]), std::sqrt(x[1]), std::sqrt(
 
 // a b + c rounded once (IEEE fusedMultiplyAdd), element by element: one instruction in a kernel
 // compiled with FMA, the C library's exactly rounded fma elsewhere (tests only).
+// These and the kernels below are always inlined: in a kernel compiled with FMA they must take its
+// instruction set (an out-of-line copy would be generic code, a library call per fused operation).
 inline double fma_of(double a, double b, double c) { return std::fma(a, b, c); }
 [[gnu::always_inline]] inline d2 fma_of(d2 a, d2 b, d2 c) {
   return d2{__builtin_fma(a[0], b[0], c[0]), __builtin_fma(a[1], b[1], c[1])};
@@ -77,18 +77,13 @@ inline double fma_of(double a, double b, double c) { return std::fma(a, b, c); }
   return d4{__builtin_fma(a[0], b[0], c[0]), __builtin_fma(a[1], b[1], c[1]), __builtin_fma(a[2], b[2], c[2]),
             __builtin_fma(a[3], b[3], c[3])};
 }
-// With constants: a constant stands for the vector of it.
-template <class D>
-[[gnu::always_inline]] inline D fma_of(D a, double b, D c) {
-  return fma_of(a, D{} + b, c);
-}
-template <class D>
-[[gnu::always_inline]] inline D fma_of(D a, D b, double c) {
-  return fma_of(a, b, D{} + c);
-}
-template <class D>
-[[gnu::always_inline]] inline D fma_of(D a, double b, double c) {
-  return fma_of(a, D{} + b, D{} + c);
+// A constant stands for the vector of it; a vector for itself.
+template <class D, class T>
+[[gnu::always_inline]] inline D broadcast(T x) {
+  if constexpr (std::is_same_v<T, D>)
+    return x;
+  else
+    return D{} + x;
 }
 
 // How a kernel computes a b + c. Fused (one rounding): a polynomial step or a move is one operation
@@ -99,7 +94,7 @@ template <class D>
 struct Fused {
   template <class D, class B, class C>
   [[gnu::always_inline]] static D madd(D a, B b, C c) {
-    return fma_of(a, b, c);
+    return fma_of(a, broadcast<D>(b), broadcast<D>(c));
   }
 };
 struct Unfused {

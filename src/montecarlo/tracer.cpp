@@ -524,7 +524,8 @@ __attribute__((target("avx2,fma,avx512f,avx512vl,avx512dq"))) void trace_avx2_ev
 // The level BSSRDF_MC_SIMD asks for (to measure a path, or to reproduce a machine without FMA).
 SimdLevel simd_from_environment() {
   static const SimdLevel level = [] {
-    const std::string_view forced = std::getenv("BSSRDF_MC_SIMD") ? std::getenv("BSSRDF_MC_SIMD") : "";
+    const char* value = std::getenv("BSSRDF_MC_SIMD");
+    const std::string_view forced = value ? value : "";
     return forced == "avx2"    ? SimdLevel::avx2
            : forced == "sse2"  ? SimdLevel::sse2
            : forced == "nofma" ? SimdLevel::unfused
