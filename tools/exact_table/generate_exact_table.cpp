@@ -6,8 +6,8 @@
 //                              [--runs 0.01,1] [--g-min G] [--g-max G] [--eta-min E] [--eta-max E]
 //                              (top up only those runs)
 //   generate_exact_table build --state DIR --out data/exact/exact_profile.bin
-//                              [--base TABLE]   (the eta nodes TABLE holds are copied from it, the
-//                              others built from DIR: how a table grows new eta nodes)
+//                              [--base TABLE]   (the (g, eta) nodes TABLE holds are copied from it,
+//                              the others built from DIR: how a table grows new eta or g nodes)
 //
 // Each part is exact or validated:
 //  - multiple scattering (two or more scatterings): the project's Monte Carlo (run_monte_carlo,
@@ -68,17 +68,18 @@ namespace {
 
 using namespace bssrdf;
 
-constexpr int kGeneratorVersion = 5;
+constexpr int kGeneratorVersion = 6;
 constexpr int kSmoothingHalf = 3;  // radial smoothing window (smooth_radially): 7 bins, 0.58 decades
 constexpr int kSmoothingWide = 5;  // where a bin's error exceeds 3 %: 11 bins
 
 // ---- the grid ---------------------------------------------------------------------------------
 // alpha': uniform in logit(alpha') from 0.001 to 0.9999 (41 nodes, step 0.40): the profile's
 // shape changes with ln(1 - alpha') near 1 (sigma_tr ~ sqrt(1 - alpha')) and with ln alpha' near 0.
-// g: denser towards 1, where the near field changes fastest; eta: every 0.15 to 1.6, with one more
-// node at 1.05 where the boundary's effect on the near field changes fastest, then every 0.2 to 2
-// (generator version 4: glass, gems; the profile's shape changes slowly there; the Monte Carlo cost
-// is per (g, eta) node, so eta nodes are few).
+// g: denser towards 1, where the near field changes fastest (version 6: 0.995 and 0.999, whose runs
+// are in data/exact/state/, not yet in the shipped table: data/exact/README.md); eta: every 0.15 to
+// 1.6, with one more node at 1.05 where the boundary's effect on the near field changes fastest,
+// then every 0.2 to 2 (generator version 4: glass, gems; the profile's shape changes slowly there;
+// the Monte Carlo cost is per (g, eta) node, so eta nodes are few).
 // Radii: 12 per decade from 1e-3 transport mfp to 2154 (beyond the radius that holds 99.9 % of the
 // energy at alpha' = 0.9999, eta = 1.6: checked by `build`).
 struct Grid {
@@ -93,7 +94,7 @@ struct Grid {
       const double u = lo + (hi - lo) * i / (n - 1);
       albedo_prime.push_back(i == 0 ? 0.001 : i == n - 1 ? 0.9999 : 1 / (1 + std::exp(-u)));
     }
-    g = {0.0, 0.2, 0.4, 0.55, 0.7, 0.8, 0.87, 0.92, 0.95, 0.97, 0.98, 0.99};
+    g = {0.0, 0.2, 0.4, 0.55, 0.7, 0.8, 0.87, 0.92, 0.95, 0.97, 0.98, 0.99, 0.995, 0.999};
     eta = {1.0, 1.05, 1.15, 1.3, 1.45, 1.6, 1.8, 2.0};
     // The totals' eta axis (adding-doubling only, cheap): the total bends sharply within a few
     // hundredths above 1, where total internal reflection sets in.
@@ -274,7 +275,7 @@ void run_chunk(const Grid& grid, std::size_t gi, std::size_t ei, std::size_t run
 
 std::string describe_node(const Grid& grid, std::size_t gi, std::size_t ei) {
   char text[64];
-  std::snprintf(text, sizeof text, "g %.2f eta %.2f", grid.g[gi], grid.eta[ei]);
+  std::snprintf(text, sizeof text, "g %.3f eta %.2f", grid.g[gi], grid.eta[ei]);
   return text;
 }
 
@@ -506,17 +507,28 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   const auto out_dir = std::filesystem::absolute(out_path).parent_path();
   if (!std::filesystem::is_directory(out_dir))
     throw std::runtime_error("--out " + out_path + ": the folder " + out_dir.string() + " does not exist");
-  // --base: a table whose eta nodes are copied (its axes must be this grid's but for fewer eta nodes).
+  // --base: a table whose (g, eta) nodes are copied (its alpha' and radius axes must be this grid's;
+  // its g and eta nodes a subset of this grid's: how a table grows new eta nodes (version 5) and new
+  // g nodes (version 6)).
   std::optional<ExactTable> base;
-  std::vector<std::optional<std::size_t>> base_eta(grid.eta.size());
+  struct BaseNode {
+    std::size_t g, eta;
+  };
+  std::vector<std::optional<BaseNode>> base_node(grid.g.size() * grid.eta.size());
+  const auto from_base = [&](std::size_t gi, std::size_t ei) -> const std::optional<BaseNode>& {
+    return base_node[ei * grid.g.size() + gi];
+  };
   if (!base_path.empty()) {
     base = read_exact_table(base_path);
-    if (base->albedo_prime != grid.albedo_prime || base->g != grid.g || base->radii != grid.radii ||
-        base->ln_r0 != grid.ln_r0 || base->d_ln_r != grid.d_ln_r)
-      throw std::runtime_error(base_path + ": its alpha', g or radius axis is not this grid's");
+    if (base->albedo_prime != grid.albedo_prime || base->radii != grid.radii || base->ln_r0 != grid.ln_r0 ||
+        base->d_ln_r != grid.d_ln_r)
+      throw std::runtime_error(base_path + ": its alpha' or radius axis is not this grid's");
     for (std::size_t ei = 0; ei < grid.eta.size(); ++ei)
-      for (std::size_t be = 0; be < base->eta.size(); ++be)
-        if (base->eta[be] == grid.eta[ei]) base_eta[ei] = be;
+      for (std::size_t gi = 0; gi < grid.g.size(); ++gi)
+        for (std::size_t be = 0; be < base->eta.size(); ++be)
+          for (std::size_t bg = 0; bg < base->g.size(); ++bg)
+            if (base->eta[be] == grid.eta[ei] && base->g[bg] == grid.g[gi])
+              base_node[ei * grid.g.size() + gi] = BaseNode{bg, be};
   }
   const std::size_t albedos = grid.albedo_prime.size(), bins = grid.bins(), radii = grid.radii;
   ExactTable table;
@@ -543,9 +555,9 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   nlohmann::json scale_check = nlohmann::json::array();
   for (std::size_t ei = 0; ei < grid.eta.size(); ++ei) {
     for (std::size_t gi = 0; gi < grid.g.size(); ++gi) {
-      if (base_eta[ei]) {  // copied from --base: its profiles, errors and totals stand
+      if (const auto& copy = from_base(gi, ei)) {  // copied from --base: its profiles, errors and totals stand
         for (std::size_t a = 0; a < albedos; ++a) {
-          const std::size_t from = base->node(*base_eta[ei], gi, a), to = table.node(ei, gi, a);
+          const std::size_t from = base->node(copy->eta, copy->g, a), to = table.node(ei, gi, a);
           coarse_ad[to] = adding_doubling_total(grid.albedo_prime[a], grid.g[gi], grid.eta[ei]);
           table.total[to] = base->total[from];
           for (std::size_t k = 0; k < radii; ++k) {
@@ -601,7 +613,7 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
         const double total = ss_total + ms_exact;
         const double scale = ms_mc > 0 ? ms_exact / ms_mc : 0.0;
         char where[96];
-        std::snprintf(where, sizeof where, "alpha' %.6g, g %.2f, eta %.2f", ap, g, eta);
+        std::snprintf(where, sizeof where, "alpha' %.6g, g %.3f, eta %.2f", ap, g, eta);
         if (ad_used && ms_se > 0) {
           const double scale_sigma = (ms_mc - ms_exact) / ms_se;
           if (std::abs(scale_sigma) > std::abs(worst_scale_sigma)) {
@@ -792,13 +804,14 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
             << smoothing_chi2 / std::max(1.0, smoothing_bins) << " (" << wide_chi2 / std::max(1.0, smoothing_bins)
             << ") over " << smoothing_bins << " bins\n";
   if (base) {
-    std::vector<double> copied;
+    nlohmann::json copied = nlohmann::json::array();
     for (std::size_t ei = 0; ei < grid.eta.size(); ++ei)
-      if (base_eta[ei]) copied.push_back(grid.eta[ei]);
-    p["base_table"] = {{"eta_nodes_copied", copied},
+      for (std::size_t gi = 0; gi < grid.g.size(); ++gi)
+        if (from_base(gi, ei)) copied.push_back({grid.g[gi], grid.eta[ei]});
+    p["base_table"] = {{"g_eta_nodes_copied", copied},
                        {"note",
-                        "the Monte Carlo figures above are this build's state only (the other eta nodes); the base "
-                        "table's provenance follows"},
+                        "the Monte Carlo figures above are this build's state only (the other (g, eta) nodes); the "
+                        "base table's provenance follows"},
                        {"provenance", nlohmann::json::parse(base->provenance)}};
   }
   table.provenance = p.dump();
