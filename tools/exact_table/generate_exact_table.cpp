@@ -520,15 +520,20 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   };
   if (!base_path.empty()) {
     base = read_exact_table(base_path);
+    const auto subset = [](const std::vector<double>& part, const std::vector<double>& whole) {
+      return std::all_of(part.begin(), part.end(),
+                         [&](double v) { return std::find(whole.begin(), whole.end(), v) != whole.end(); });
+    };
     if (base->albedo_prime != grid.albedo_prime || base->radii != grid.radii || base->ln_r0 != grid.ln_r0 ||
-        base->d_ln_r != grid.d_ln_r)
-      throw std::runtime_error(base_path + ": its alpha' or radius axis is not this grid's");
-    for (std::size_t ei = 0; ei < grid.eta.size(); ++ei)
-      for (std::size_t gi = 0; gi < grid.g.size(); ++gi)
-        for (std::size_t be = 0; be < base->eta.size(); ++be)
-          for (std::size_t bg = 0; bg < base->g.size(); ++bg)
-            if (base->eta[be] == grid.eta[ei] && base->g[bg] == grid.g[gi])
-              base_node[ei * grid.g.size() + gi] = BaseNode{bg, be};
+        base->d_ln_r != grid.d_ln_r || !subset(base->g, grid.g) || !subset(base->eta, grid.eta))
+      throw std::runtime_error(base_path + ": its alpha' or radius axis is not this grid's, or it has g or eta "
+                                           "nodes this grid lacks");
+    for (std::size_t bg = 0; bg < base->g.size(); ++bg)
+      for (std::size_t be = 0; be < base->eta.size(); ++be) {
+        const auto gi = std::find(grid.g.begin(), grid.g.end(), base->g[bg]) - grid.g.begin();
+        const auto ei = std::find(grid.eta.begin(), grid.eta.end(), base->eta[be]) - grid.eta.begin();
+        base_node[static_cast<std::size_t>(ei) * grid.g.size() + static_cast<std::size_t>(gi)] = BaseNode{bg, be};
+      }
   }
   const std::size_t albedos = grid.albedo_prime.size(), bins = grid.bins(), radii = grid.radii;
   ExactTable table;
