@@ -201,7 +201,7 @@ TEST(MonteCarloKernel, FusedKernelsGiveIdenticalResults) {
   }
   // Which kernels this machine compared (the same kernel twice where it lacks an instruction set).
   const auto name = [](SimdLevel k) {
-    return k == SimdLevel::best ? "AVX2+AVX-512VL" : k == SimdLevel::avx2 ? "AVX2" : k == SimdLevel::sse2 ? "SSE2+FMA" : "SSE2";
+    return k == SimdLevel::best ? "AVX-512" : k == SimdLevel::avx2 ? "AVX2" : k == SimdLevel::sse2 ? "SSE2+FMA" : "SSE2";
   };
   std::printf("  kernels compared on this machine: %s, %s, %s\n", name(kernel_for(SimdLevel::best)),
               name(kernel_for(SimdLevel::avx2)), name(kernel_for(SimdLevel::sse2)));

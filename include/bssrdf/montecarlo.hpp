@@ -41,7 +41,7 @@
 // batch_size), never on the thread count: bitwise identical for 1 or 64 threads. Batches are grouped in chunks of
 // 64 (folded in batch order, then the chunks in chunk order), the unit MPI ranks share: bitwise identical for
 // any number of ranks too. Across machines: identical on every x86-64 processor with FMA (whichever of the
-// fused AVX-512VL, AVX2 and SSE2 kernels runs); a processor without FMA rounds each a b + c twice, which moves
+// fused AVX-512, AVX2 and SSE2 kernels runs); a processor without FMA rounds each a b + c twice, which moves
 // photons by ~1e-11 of their paths: the same statistics, possibly other last bits (BSSRDF_MC_SIMD=nofma runs
 // that kernel anywhere). A run split across machines of both kinds is therefore not guaranteed bitwise.
 //

@@ -18,7 +18,7 @@
 
 namespace bssrdf::mc {
 
-// Two or four doubles (or 64-bit integers) as one value, one SSE2 or AVX register: GCC/Clang
+// Two, four or eight doubles (or 64-bit integers) as one value, one SSE2, AVX or AVX-512 register: GCC/Clang
 // vector extensions. Every operation is the IEEE operation of each element (the compiler contracts
 // nothing, -ffp-contract=off; the fused operations are written out, fma_of), so the results do not
 // depend on the vector width.
@@ -28,6 +28,9 @@ using i2 = std::int64_t __attribute__((vector_size(16)));
 using d4 = double __attribute__((vector_size(32)));
 using u4 = std::uint64_t __attribute__((vector_size(32)));
 using i4 = std::int64_t __attribute__((vector_size(32)));
+using d8 = double __attribute__((vector_size(64)));
+using u8 = std::uint64_t __attribute__((vector_size(64)));
+using i8 = std::int64_t __attribute__((vector_size(64)));
 
 inline d2 load2(const double* p) {
   d2 v;
@@ -64,6 +67,10 @@ inline d2 sqrt_of(d2 x) {
 
 // Element by element (the compiler packs it into one vsqrtpd where AVX is enabled).
 inline d4 sqrt_of(d4 x) { return d4{std::sqrt(x[0]), std::sqrt(x[1]), std::sqrt(x[2]), std::sqrt(x[3])}; }
+[[gnu::always_inline]] inline d8 sqrt_of(d8 x) {
+  return d8{std::sqrt(x[0]), std::sqrt(x[1]), std::sqrt(x[2]), std::sqrt(x[3]),
+            std::sqrt(x[4]), std::sqrt(x[5]), std::sqrt(x[6]), std::sqrt(x[7])};
+}
 
 // a b + c rounded once (IEEE fusedMultiplyAdd), element by element: one instruction in a kernel
 // compiled with FMA, the C library's exactly rounded fma elsewhere (tests only).
@@ -76,6 +83,11 @@ inline double fma_of(double a, double b, double c) { return std::fma(a, b, c); }
 [[gnu::always_inline]] inline d4 fma_of(d4 a, d4 b, d4 c) {
   return d4{__builtin_fma(a[0], b[0], c[0]), __builtin_fma(a[1], b[1], c[1]), __builtin_fma(a[2], b[2], c[2]),
             __builtin_fma(a[3], b[3], c[3])};
+}
+[[gnu::always_inline]] inline d8 fma_of(d8 a, d8 b, d8 c) {
+  return d8{__builtin_fma(a[0], b[0], c[0]), __builtin_fma(a[1], b[1], c[1]), __builtin_fma(a[2], b[2], c[2]),
+            __builtin_fma(a[3], b[3], c[3]), __builtin_fma(a[4], b[4], c[4]), __builtin_fma(a[5], b[5], c[5]),
+            __builtin_fma(a[6], b[6], c[6]), __builtin_fma(a[7], b[7], c[7])};
 }
 // A constant stands for the vector of it; a vector for itself.
 template <class D, class T>
@@ -105,7 +117,7 @@ struct Unfused {
 };
 
 // A kernel's vectors and its a b + c: SSE2 without FMA (every x86-64), SSE2 with FMA (only in
-// functions compiled with target("fma")) and AVX2 (target("avx2,fma")).
+// functions compiled with target("fma")), AVX2 (target("avx2,fma")) and AVX-512 (tracer_avx512.cpp).
 struct Sse2 {  // 2 lanes per register
   using D = d2;
   using U = u2;
@@ -123,8 +135,15 @@ struct Avx2 {  // 4 lanes per register
   using Madd = Fused;
   static constexpr int width = 4;
 };
+struct Avx512 {  // 8 lanes per register
+  using D = d8;
+  using U = u8;
+  using I = i8;
+  using Madd = Fused;
+  static constexpr int width = 8;
+};
 
-// Integer type of the same shape as D and back: std::uint64_t for double, u2 for d2, u4 for d4.
+// Integer type of the same shape as D and back: std::uint64_t for double, u2 for d2, u4 for d4, u8 for d8.
 template <class D>
 struct bits_of {
   using type = std::uint64_t;
@@ -136,6 +155,10 @@ struct bits_of<d2> {
 template <>
 struct bits_of<d4> {
   using type = u4;
+};
+template <>
+struct bits_of<d8> {
+  using type = u8;
 };
 template <class D>
 using bits_t = typename bits_of<D>::type;
@@ -150,6 +173,10 @@ struct double_of<u2> {
 template <>
 struct double_of<u4> {
   using type = d4;
+};
+template <>
+struct double_of<u8> {
+  using type = d8;
 };
 template <class U>
 using double_t_of = typename double_of<U>::type;

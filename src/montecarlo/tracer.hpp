@@ -102,8 +102,8 @@ struct BatchTally {
   void reset(std::size_t radial_bins, bool transmission, std::size_t depth_bins);
 };
 
-// Instruction set of the tracer's vector pass, from the fastest: best (AVX2 with FMA, in AVX-512VL's
-// encodings where the processor has them), avx2 (AVX2 with FMA), sse2 (SSE2, with FMA where the
+// Instruction set of the tracer's vector pass, from the fastest: best (AVX-512F/VL/DQ, all eight lanes
+// in one register, where the processor has it), avx2 (AVX2 with FMA), sse2 (SSE2, with FMA where the
 // processor has it), unfused (SSE2 without FMA, as on processors that lack it). A level asks for at
 // most that kernel; the processor and BSSRDF_MC_SIMD=avx2|sse2|nofma in the environment may restrict
 // it further. The fused kernels give bitwise identical results; the unfused one the same statistics,
@@ -123,6 +123,14 @@ struct TraceSettings {
   bool record_reflected = false;
   SimdLevel simd = SimdLevel::best;
 };
+
+#if defined(__x86_64__) || defined(__i386__)
+// The kernel with eight lanes in one AVX-512 register (tracer_avx512.cpp, SimdLevel::best); only on
+// processors with AVX-512F, VL and DQ.
+template <bool kAnalog>
+void trace_avx512(const ChannelGeometry& geometry, const TraceSettings& settings, Rng& rng, std::uint64_t photons,
+                  BatchTally& tally);
+#endif
 
 void trace_batch(const ChannelGeometry& geometry, const TraceSettings& settings, Rng& rng, std::uint64_t photons,
                  BatchTally& tally);
