@@ -100,8 +100,8 @@ namespace {
 
 // The same kernel compiled four times, chosen at run time: SSE2 with separate multiply and add
 // (every x86-64), SSE2 with FMA, AVX2 with FMA (four lanes per register), and AVX-512 (all eight
-// lanes in one register, tracer_avx512.cpp: half the vector instructions; 1.5-1.7 times the photons
-// per second of AVX2 on an AMD Zen 5). The three fused kernels do the same IEEE operations on every
+// lanes in one register, tracer_avx512.cpp: half the vector instructions; 1.1-1.5 times the photons
+// per second of AVX2 on an AMD Zen 5, docs/reference.md). The three fused kernels do the same IEEE operations on every
 // lane (the vector width changes nothing but the speed), so their results are bitwise identical on
 // every machine with FMA; the unfused one rounds each a b + c twice.
 using Kernel = void (*)(const ChannelGeometry&, const TraceSettings&, Rng&, std::uint64_t, BatchTally&);
