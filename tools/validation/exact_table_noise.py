@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """The exact table's own noise, from its stored per-entry standard errors.
 
-    tools/validation/exact_table_noise.py [data/exact/exact_profile.bin ...]
+    tools/validation/exact_table_noise.py [--g G] [data/exact/exact_profile.bin ...]
+
+--g G: only the nodes at the table's g node G (e.g. a trial table's new nodes, data/exact/README.md).
 
 Per node: the relative L2 of r R(r) over dr inside and beyond one transport mfp (the measure of
 tools/validation/validate_exact), with R from the stored y = 2 pi r^2 R and the noise from the
@@ -52,12 +54,28 @@ def noise(path):
 
 
 def main():
-    paths = sys.argv[1:] or ['data/exact/exact_profile.bin']
+    args = sys.argv[1:]
+    only_g = None
+    if args[:1] == ['--g']:
+        if len(args) < 2:
+            fail('--g: give a g node of the table')
+        try:
+            only_g = float(args[1])
+        except ValueError:
+            fail(f"--g: '{args[1]}' is not a number (a g node of the table)")
+        args = args[2:]
+    paths = args or ['data/exact/exact_profile.bin']
     for path in paths:
         header, near, far = noise(path)
         albedo = np.array(header['albedo_prime'])[None, None, :]
         g = np.array(header['g'])[None, :, None]
-        print(f'# {path}: relative L2 of r R(r) from the stored standard errors, % (median, worst)')
+        at_g = np.ones_like(g, dtype=bool)
+        if only_g is not None:
+            at_g = np.isclose(g, only_g, rtol=0, atol=1e-9)
+            if not at_g.any():
+                fail(f'--g: {only_g} is not a g node of {path} (its nodes: {", ".join(map(str, header["g"]))})')
+        scope = '' if only_g is None else f', g {only_g} nodes only'
+        print(f'# {path}{scope}: relative L2 of r R(r) from the stored standard errors, % (median, worst)')
         print(f'# {"nodes":34s} {"near median":>11s} {"worst":>6s} {"far median":>10s} {"worst":>6s}')
         parts = [("alpha' > 0.99 (non-absorbing run)", 0.99, 1, 0, 1),
                  ("  of which g >= 0.85", 0.99, 1, 0.85, 1),
@@ -67,7 +85,9 @@ def main():
                  ("alpha' <= 0.1 (bases 0.01, 0.1)", 0, 0.1, 0, 1),
                  ("  of which alpha' <= 0.012, g >= 0.8", 0, 0.012, 0.8, 1)]
         for name, lo, hi, g_lo, g_hi in parts:
-            mask = np.broadcast_to((albedo > lo) & (albedo <= hi) & (g >= g_lo) & (g <= g_hi), near.shape)
+            mask = np.broadcast_to((albedo > lo) & (albedo <= hi) & (g >= g_lo) & (g <= g_hi) & at_g, near.shape)
+            if not mask.any():
+                continue
             print(f'{name:36s} {100 * np.median(near[mask]):11.2f} {100 * near[mask].max():6.2f} '
                   f'{100 * np.median(far[mask]):10.2f} {100 * far[mask].max():6.2f}')
 
