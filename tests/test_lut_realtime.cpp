@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <set>
 
 #include "bssrdf/error.hpp"
 #include "bssrdf/lut/gaussian_mixture_table.hpp"
@@ -503,6 +504,27 @@ TEST(CliLutRealtime, BatchWritesEveryMaterialReproducibly) {
   EXPECT_EQ(r2.status, 0) << r2.err;
   for (const auto& entry : std::filesystem::directory_iterator(dir))
     EXPECT_EQ(test_cli::slurp(entry.path()), test_cli::slurp(parallel / entry.path().filename())) << entry.path();
+}
+
+TEST(CliLutRealtime, BatchStopsAtTheFirstFileItCannotWriteWhateverTheThreads) {
+  // Files are written in database order while later materials are still being built: a file that
+  // cannot be written (here a directory stands at Coke's name) stops the batch with one line, exit 2,
+  // and leaves the same files at one thread and at two (those before Coke, nothing after it).
+  std::vector<std::set<std::string>> written;
+  for (const char* threads : {"1", "2"}) {
+    const auto dir = temp(std::string("batch-stop") + threads);
+    std::filesystem::create_directories(dir / "coke-separable.json");
+    const auto r = test_cli::run("lut --all --kind separable --taps 11 -f json -q --threads " + std::string(threads) +
+                                 " --output-dir " + dir.string());
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(test_cli::count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("coke-separable.json: cannot write: it is a directory"), std::string::npos) << r.err;
+    auto& names = written.emplace_back();
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) names.insert(entry.path().filename().string());
+  }
+  EXPECT_EQ(written[0], written[1]);
+  EXPECT_TRUE(written[0].count("apple-separable.json"));  // before Coke in the database
+  EXPECT_FALSE(written[0].count("chardonnay-separable.json"));  // after Coke: the batch stopped there
 }
 
 TEST(CliLutRealtime, BatchSkipsWhatCannotBeTabulatedAndWritesTheRest) {

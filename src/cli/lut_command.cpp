@@ -54,9 +54,11 @@ std::string file_name(const std::string& material, const std::string& kind, cons
 }
 
 // Every material of the database (--all), one file each in --output-dir: built in parallel (--threads
-// workers, each table single-threaded), then written in database order, so files and messages do not
-// depend on the thread count. A material this kind cannot tabulate (e.g. a channel that does not
-// scatter) is skipped with its reason, one line each on stderr; the others are still written.
+// workers, each table single-threaded) and written in database order as soon as every earlier material is
+// done, by whichever worker finds the next one ready, so files and messages do not depend on the thread
+// count, writing overlaps building and each encoded table is freed once written (its memory then serves
+// the next: fresh pages cost a page fault each). A material this kind cannot tabulate (e.g. a channel
+// that does not scatter) is skipped with its reason, one line each on stderr; the others are still written.
 void tabulate_all(const LutOptions& o, const TableKind& kind) {
   if (!o.medium.material.empty() || !o.medium.sigma_a.empty())
     throw InvalidInput("--all: give no --material or coefficients with --all");
@@ -85,8 +87,27 @@ void tabulate_all(const LutOptions& o, const TableKind& kind) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<std::string> encoded(materials.size()), failure(materials.size()), previews(materials.size()),
       notes(materials.size());
-  std::size_t done = 0;
-  std::mutex progress_mutex;
+  std::vector<char> ready(materials.size(), 0);
+  std::size_t done = 0, next_to_write = 0, written = 0;
+  bool writing = false, stopped = false;  // a worker is writing (the others go on building); a write failed
+  std::vector<std::string> skipped;
+  std::mutex mutex;  // guards ready, done, next_to_write, writing, stopped and the progress bar
+  const auto write_one = [&](std::size_t i) {  // outside the lock; only the one writer calls it
+    if (!failure[i].empty()) {
+      skipped.push_back(materials[i].name + ": " + failure[i]);
+      return;
+    }
+    const auto path = dir / file_name(materials[i].name, o.kind, format);
+    write_file_atomically(path, encoded[i]);  // an unwritable directory stops the batch
+    std::string().swap(encoded[i]);
+    ++written;
+    if (!o.quiet && !progress) std::cout << "written: " << path.string() << '\n';
+    if (previews[i].empty()) return;
+    const auto png = dir / (file_stem(materials[i].name) + "-" + std::filesystem::path(o.preview).filename().string());
+    write_file_atomically(png, previews[i]);
+    std::string().swap(previews[i]);
+    if (!o.quiet && !progress) std::cout << "written: " << png.string() << '\n';
+  };
   parallel_for(materials.size(), o.threads, [&](std::size_t i) {
     LutOptions one = o;
     one.medium.material = materials[i].name;
@@ -102,25 +123,25 @@ void tabulate_all(const LutOptions& o, const TableKind& kind) {
     } catch (const InvalidInput& e) {
       failure[i] = e.what();
     }
-    std::lock_guard lock(progress_mutex);
+    std::unique_lock lock(mutex);
+    ready[i] = 1;
     if (progress) progress(++done, materials.size());
-  });
-  std::size_t written = 0;
-  std::vector<std::string> skipped;
-  for (std::size_t i = 0; i < materials.size(); ++i) {
-    if (!failure[i].empty()) {
-      skipped.push_back(materials[i].name + ": " + failure[i]);
-      continue;
+    if (writing || stopped) return;  // the writer will reach this one; after a failed write, nothing more
+    writing = true;
+    while (next_to_write < materials.size() && ready[next_to_write]) {
+      const std::size_t k = next_to_write++;
+      lock.unlock();
+      try {
+        write_one(k);
+      } catch (...) {
+        lock.lock();
+        stopped = true;
+        throw;
+      }
+      lock.lock();
     }
-    const auto path = dir / file_name(materials[i].name, o.kind, format);
-    write_file_atomically(path, encoded[i]);  // an unwritable directory stops the batch
-    ++written;
-    if (!o.quiet && !progress) std::cout << "written: " << path.string() << '\n';
-    if (previews[i].empty()) continue;
-    const auto png = dir / (file_stem(materials[i].name) + "-" + std::filesystem::path(o.preview).filename().string());
-    write_file_atomically(png, previews[i]);
-    if (!o.quiet && !progress) std::cout << "written: " << png.string() << '\n';
-  }
+    writing = false;
+  });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   for (const auto& line : skipped) std::cerr << "bssrdf: skipped " << line << '\n';
   for (std::size_t i = 0; i < materials.size(); ++i)
