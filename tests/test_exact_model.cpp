@@ -84,11 +84,23 @@ TEST(ExactTable, RoundTripsThroughTheFileFormatAndRefusesTruncation) {
   write_exact_table(table(), path.string());
   const ExactTable back = read_exact_table(path.string());
   EXPECT_EQ(back.ln_y, table().ln_y);
+  EXPECT_EQ(back.relative_error, table().relative_error);
   EXPECT_EQ(back.total, table().total);
   EXPECT_EQ(back.total_eta, table().total_eta);
   EXPECT_EQ(back.fine_total, table().fine_total);
-  std::filesystem::resize_file(path, std::filesystem::file_size(path) - 8);
+  // The arrays are read straight from the file: a file cut anywhere (in the magic, the header, each
+  // array), or with bytes after the totals, is refused as a whole.
+  const std::string whole = test_cli::slurp(path);
+  const std::size_t n = table().ln_y.size(), header_end = whole.size() - 6 * n - 8 * table().total.size() -
+                                                          8 * table().fine_total.size();
+  for (const std::size_t size : {std::size_t{0}, std::size_t{7}, std::size_t{16}, header_end - 1, header_end,
+                                 header_end + 4 * n - 2, header_end + 5 * n, whole.size() - 8, whole.size() - 1}) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc).write(whole.data(), static_cast<std::streamsize>(size));
+    EXPECT_THROW(read_exact_table(path.string()), InvalidInput) << size;
+  }
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << whole << "x";
   EXPECT_THROW(read_exact_table(path.string()), InvalidInput);
+  EXPECT_THROW(read_exact_table(temp("").string()), FileError);  // a directory
   // A version 1 table (no fine totals) still loads, and its totals are the coarse ones.
   ExactTable v1 = table();
   v1.total_eta.clear();

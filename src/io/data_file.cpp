@@ -44,7 +44,7 @@ std::size_t too_deep_at(const std::string& text) {
 
 }  // namespace
 
-std::string read_data_file(const std::filesystem::path& path, const std::string& what) {
+std::ifstream open_data_file(const std::filesystem::path& path, const std::string& what) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   if (!std::filesystem::exists(status)) throw FileError(path.string(), 0, "cannot open " + what + ": no such file");
@@ -54,7 +54,24 @@ std::string read_data_file(const std::filesystem::path& path, const std::string&
     throw FileError(path.string(), 0, what + " is larger than " + std::to_string(kMaxInputFileBytes >> 20) + " MB");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw FileError(path.string(), 0, "cannot open " + what);
+  return in;
+}
+
+std::string read_data_file(const std::filesystem::path& path, const std::string& what) {
+  auto in = open_data_file(path, what);
+  std::error_code ec;
+  const std::uintmax_t size =
+      std::filesystem::is_regular_file(path, ec) ? std::filesystem::file_size(path, ec) : std::uintmax_t{0};
   std::string text;
+  // A regular file is read at once into its final place (read in pieces, the string's regrowth copied
+  // a 2 MB file twice over); then whatever it grew by since, as a FIFO or device is read.
+  if (!ec && size > 0 && size <= kMaxInputFileBytes) {
+    text.resize(static_cast<std::size_t>(size));
+    in.read(text.data(), static_cast<std::streamsize>(size));
+    text.resize(static_cast<std::size_t>(in.gcount()));
+    if (in.bad()) throw FileError(path.string(), 0, "cannot read " + what);
+    in.clear();
+  }
   char buffer[65536];
   while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
     text.append(buffer, static_cast<std::size_t>(in.gcount()));

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -18,6 +19,9 @@ inline constexpr std::uintmax_t kMaxInputFileBytes = 256u << 20;
 
 // The whole text of a regular file; `what` says what the file should be ("the materials file").
 std::string read_data_file(const std::filesystem::path& path, const std::string& what);
+// The file opened for reading, after the same checks (it exists, is no directory, is not too large),
+// for a binary format read straight into its arrays.
+std::ifstream open_data_file(const std::filesystem::path& path, const std::string& what);
 
 // Parses JSON text; FileError(file, line, ...) for malformed JSON, nesting deeper than
 // kMaxJsonDepth and numbers that overflow a double (1e400).

@@ -28,21 +28,26 @@ bool increasing(const std::vector<double>& v) {
   return !v.empty();
 }
 
-template <class T>
-void append_bytes(std::string& out, const std::vector<T>& values) {
+template <class Array>
+void append_bytes(std::string& out, const Array& values) {
   if (values.empty()) return;  // data() may be null
-  out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+  out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(typename Array::value_type));
 }
 
-template <class T>
-std::vector<T> take_bytes(const std::string& data, std::size_t& offset, std::size_t count, const std::string& path) {
-  if (count > (data.size() - offset) / sizeof(T))
+// Reads `count` values of T from `in` straight into `values` (no copy of the file), after checking that
+// the file still holds them (`remaining` bytes): a header claiming more is a truncated table, refused
+// before anything is allocated.
+template <class Array>
+void read_array(std::istream& in, std::uintmax_t& remaining, std::size_t count, Array& values,
+                const std::string& path) {
+  using T = typename Array::value_type;
+  if (count > remaining / sizeof(T)) throw InvalidInput(kField, path, "a complete table file (truncated data)");
+  values.resize(count);
+  if (count == 0) return;  // (a version 1 table has no fine totals)
+  const auto bytes = static_cast<std::streamsize>(count * sizeof(T));
+  if (!in.read(reinterpret_cast<char*>(values.data()), bytes))
     throw InvalidInput(kField, path, "a complete table file (truncated data)");
-  std::vector<T> values(count);
-  if (count == 0) return values;  // (a version 1 table has no fine totals) memcpy to null is undefined
-  std::memcpy(values.data(), data.data() + offset, count * sizeof(T));
-  offset += count * sizeof(T);
-  return values;
+  remaining -= static_cast<std::uintmax_t>(bytes);
 }
 
 }  // namespace
@@ -108,13 +113,23 @@ void write_exact_table(const ExactTable& table, const std::string& path) {
 }
 
 ExactTable read_exact_table(const std::string& path) {
-  const std::string data = read_data_file(path, "the exact-model table");
-  if (data.size() < 16 || std::memcmp(data.data(), kMagic, sizeof kMagic) != 0)
+  auto in = open_data_file(path, "the exact-model table");
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  in.seekg(0);
+  if (size < 0 || !in) throw InvalidInput(kField, path, "a regular file");
+  char start[16];
+  if (size < 16 || !in.read(start, sizeof start) || std::memcmp(start, kMagic, sizeof kMagic) != 0)
     throw InvalidInput(kField, path, "a bssrdf exact table (magic BSSRDFX1)");
   std::uint64_t length = 0;
-  std::memcpy(&length, data.data() + 8, sizeof length);
-  if (length > data.size() - 16) throw InvalidInput(kField, path, "a complete table file (truncated header)");
-  const nlohmann::json header = parse_json_document(data.substr(16, length), path);
+  std::memcpy(&length, start + 8, sizeof length);
+  auto remaining = static_cast<std::uintmax_t>(size) - 16;
+  if (length > remaining) throw InvalidInput(kField, path, "a complete table file (truncated header)");
+  remaining -= length;
+  std::string text(static_cast<std::size_t>(length), '\0');
+  if (!in.read(text.data(), static_cast<std::streamsize>(length)))
+    throw InvalidInput(kField, path, "a complete table file (truncated header)");
+  const nlohmann::json header = parse_json_document(text, path);
   ExactTable table;
   try {
     if (header.at("format") != "bssrdf-exact-table" || (header.at("version") != 1 && header.at("version") != 2))
@@ -133,14 +148,12 @@ ExactTable read_exact_table(const std::string& path) {
   if (table.radii > (1u << 20) || table.albedo_prime.size() * table.g.size() * table.eta.size() > (1u << 24) ||
       table.total_eta.size() > (1u << 16))
     throw InvalidInput(kField, path, "a table of plausible size");
-  std::size_t offset = 16 + length;
   const std::size_t n = table.nodes() * table.radii;
-  table.ln_y = take_bytes<float>(data, offset, n, path);
-  table.relative_error = take_bytes<std::uint16_t>(data, offset, n, path);
-  table.total = take_bytes<double>(data, offset, table.nodes(), path);
-  table.fine_total =
-      take_bytes<double>(data, offset, table.total_eta.size() * table.g.size() * table.albedo_prime.size(), path);
-  if (offset != data.size()) throw InvalidInput(kField, path, "no data after the totals");
+  read_array(in, remaining, n, table.ln_y, path);
+  read_array(in, remaining, n, table.relative_error, path);
+  read_array(in, remaining, table.nodes(), table.total, path);
+  read_array(in, remaining, table.total_eta.size() * table.g.size() * table.albedo_prime.size(), table.fine_total, path);
+  if (remaining != 0) throw InvalidInput(kField, path, "no data after the totals");
   table.prepare();
   return table;
 }

@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "bssrdf/huge_page_allocator.hpp"
+
 namespace bssrdf {
 
 struct ExactTable {
@@ -29,12 +31,16 @@ struct ExactTable {
   double d_ln_r = 0;                 // radius step in ln r
   std::size_t radii = 0;
 
+  // The two arrays of a value per node and radius (1.8 MB in all) fill huge pages: loading them is
+  // then one page fault per 2 MB (huge_page_allocator.hpp).
+  template <class T>
+  using NodeArray = std::vector<T, HugePageAllocator<T>>;
   // [eta][g][albedo][radius]
-  std::vector<float> ln_y;
+  NodeArray<float> ln_y;
   // Relative standard error of y, in units of 1e-4; kExtrapolated where the Monte Carlo had too
   // few photons and the value continues the measured profile (near field below the multiple-
   // scattering onset, far tail beyond the well-measured radii).
-  std::vector<std::uint16_t> relative_error;
+  NodeArray<std::uint16_t> relative_error;
   static constexpr std::uint16_t kExtrapolated = 65535;
   // [eta][g][albedo]: total diffuse reflectance per unit entered flux (adding-doubling).
   std::vector<double> total;
