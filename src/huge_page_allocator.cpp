@@ -8,7 +8,7 @@ namespace bssrdf {
 namespace {
 
 constexpr std::size_t kHugePage = std::size_t{2} << 20;
-constexpr std::size_t kSmall = std::size_t{1} << 20;  // below: operator new (a huge page would be mostly idle)
+constexpr std::size_t kSmall = std::size_t{256} << 10;  // below: operator new (a huge page would be mostly idle)
 
 std::size_t mapped_bytes(std::size_t bytes) { return (bytes + kHugePage - 1) / kHugePage * kHugePage; }
 

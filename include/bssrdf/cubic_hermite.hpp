@@ -10,8 +10,10 @@ namespace bssrdf {
 
 // The basis at t in [0, 1] of an interval of unit length: {h00, h10, h01, h11}, the weights of the
 // value and the slope at its start and of the value and the slope at its end.
+// Always inlined, as catmull_rom: the tables call them millions of times in their loops, where GCC
+// otherwise left them a call each (18 % of the penumbra batch).
 template <class T>
-std::array<T, 4> hermite_basis(T t) {
+[[gnu::always_inline]] inline std::array<T, 4> hermite_basis(T t) {
   const T t2 = t * t, t3 = t2 * t;
   return {T(2) * t3 - T(3) * t2 + T(1), t3 - T(2) * t2 + t, T(-2) * t3 + T(3) * t2, t3 - t2};
 }
@@ -27,7 +29,7 @@ std::array<T, 4> catmull_rom_weights(T t) {
 // Catmull-Rom on p[0 .. n), n >= 2, between p[i] and p[i + 1] (i + 1 < n) at fraction t; the slope
 // one-sided (p[i + 1] - p[i]) at an end where a neighbour is missing.
 template <class T>
-T catmull_rom(const T* p, std::size_t n, std::size_t i, T t) {
+[[gnu::always_inline]] inline T catmull_rom(const T* p, std::size_t n, std::size_t i, T t) {
   const T p1 = p[i], p2 = p[i + 1];
   const T m1 = i > 0 ? T(0.5) * (p2 - p[i - 1]) : p2 - p1;
   const T m2 = i + 2 < n ? T(0.5) * (p[i + 2] - p1) : p2 - p1;

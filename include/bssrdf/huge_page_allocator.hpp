@@ -2,7 +2,7 @@
 // 2 MB aligned and marked for transparent huge pages, so filling it costs one page fault per 2 MB
 // instead of one per 4 KB. In a virtual machine with shadow page tables a 4 KB fault costs about
 // 10 us (measured on the development machine), which made loading the exact table 10 ms of every
-// command. Requests under 1 MB, and systems without madvise(MADV_HUGEPAGE), use operator new.
+// command. Requests under 256 KB, and systems without madvise(MADV_HUGEPAGE), use operator new.
 //
 //   std::vector<float, HugePageAllocator<float>> ln_y(n);
 #pragma once
