@@ -1,5 +1,5 @@
 // The process group of an MPI launch, for the programs (bssrdf, generate_exact_table); in the
-// bssrdf_mpi library, which is built with MPI when CMake finds it and as a stub returning null otherwise.
+// bssrdf_mpi library, which opens the MPI plugin (libbssrdf-mpi.so) when CMake found MPI and returns null otherwise.
 #pragma once
 
 #include "bssrdf/process_group.hpp"

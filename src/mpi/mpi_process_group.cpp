@@ -1,49 +1,19 @@
 // The MPI implementation of ProcessGroup (Open MPI, MPICH): point-to-point messages to rank 0 in
-// rank order, errors returned instead of aborting so that a rank that cannot deliver is named.
+// rank order, errors returned instead of aborting so that a rank that cannot deliver is named. Built as
+// the plugin libbssrdf-mpi.so, which launched_process_group.cpp opens under mpirun or srun only.
 #include <mpi.h>
-#include <unistd.h>
 
-#include <fcntl.h>
 #include <algorithm>
 #include <chrono>
-#include <csignal>
-#include <cstdio>
-#include <cstdlib>
+#include <cstdint>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
-#include "launched_process_group.hpp"
+#include "bssrdf/process_group.hpp"
 
 namespace bssrdf {
 namespace {
-
-// This process's rank as the launcher announces it (Open MPI's mpirun; PMIx or PMI as srun and
-// MPICH's hydra set them), or -1 when no launcher started it.
-int announced_rank() {
-  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
-    if (const char* value = std::getenv(name)) return std::atoi(value);
-  return -1;
-}
-
-int announced_size() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "SLURM_NTASKS"})
-    if (const char* value = std::getenv(name)) return std::atoi(value);
-  return 0;  // unknown (PMIx announces no size): assume several
-}
-
-void silence() {
-  const int null = ::open("/dev/null", O_WRONLY);
-  if (null < 0) return;
-  ::dup2(null, STDOUT_FILENO);
-  ::dup2(null, STDERR_FILENO);
-  ::close(null);
-}
-
-extern "C" void on_terminate(int) {
-  static const char message[] =
-      "bssrdf: error: MPI run stopped by the launcher (a rank died or was killed); no output written\n";
-  [[maybe_unused]] const auto written = ::write(STDERR_FILENO, message, sizeof message - 1);
-  ::_exit(3);
-}
 
 constexpr std::uint64_t kPiece = 1u << 30;  // MPI counts are int: messages go in pieces of 1 GiB
 
@@ -55,10 +25,6 @@ class MpiProcessGroup final : public ProcessGroup {
     MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
     MPI_Comm_size(MPI_COMM_WORLD, &size_);
-    if (rank_ != 0)
-      silence();
-    else if (size_ > 1)
-      std::signal(SIGTERM, on_terminate);  // again, in case MPI_Init replaced it
   }
   ~MpiProcessGroup() override { MPI_Finalize(); }
 
@@ -120,17 +86,10 @@ class MpiProcessGroup final : public ProcessGroup {
 
 }  // namespace
 
-void prepare_launched_process() {
-  const int rank = announced_rank();
-  if (rank > 0) silence();
-  // From the start: a rank that dies before or during MPI_Init stops rank 0 there too.
-  if (rank == 0 && announced_size() != 1) std::signal(SIGTERM, on_terminate);
-}
+}  // namespace bssrdf
 
-ProcessGroup* launched_process_group() {
-  if (announced_rank() < 0) return nullptr;
-  static MpiProcessGroup group;  // MPI_Finalize at exit
+// The plugin's one entry point: the launch's group, MPI initialised on the first call (finalised at exit).
+extern "C" __attribute__((visibility("default"))) bssrdf::ProcessGroup* bssrdf_mpi_process_group() {
+  static bssrdf::MpiProcessGroup group;
   return &group;
 }
-
-}  // namespace bssrdf
