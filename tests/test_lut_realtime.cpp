@@ -4,6 +4,9 @@
 
 #include <unistd.h>
 #include <algorithm>
+#include <cstdint>
+#include <bit>
+#include <random>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -11,6 +14,7 @@
 #include <set>
 
 #include "bssrdf/error.hpp"
+#include "bssrdf/exp_array.hpp"
 #include "bssrdf/lut/gaussian_mixture_table.hpp"
 #include "bssrdf/lut/penumbra_table.hpp"
 #include "bssrdf/lut/preintegrated_table.hpp"
@@ -542,4 +546,35 @@ TEST(CliLutRealtime, BatchSkipsWhatCannotBeTabulatedAndWritesTheRest) {
   EXPECT_EQ(files + static_cast<std::size_t>(test_cli::count_lines(r.err)), 47u);
   EXPECT_GE(files, 45u);
   EXPECT_FALSE(std::filesystem::exists(dir / "spectralon-transmission.json"));
+}
+
+TEST(ExpArray, WithinOneUlpOfTheLibraryAndZeroBelowTheSmallestDouble) {
+  // The projections' vectorised exponential against std::exp over its whole range, subnormal results
+  // included; the ends as std::exp has them (0 at or below -745 by definition, where std::exp gives at
+  // most the smallest subnormal).
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> uniform(-744.9, 709.7);
+  std::vector<double> x(1'000'000);
+  for (auto& v : x) v = uniform(random);
+  for (double v : {0.0, -0.0, 1e-300, -1e-17, 1.0, -1.0, 709.78, -708.4, -744.4, -744.99})
+    x.push_back(v);
+  std::vector<double> y(x.size());
+  exp_array(x.data(), y.data(), x.size());
+  std::int64_t worst = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const double e = std::exp(x[k]);
+    const auto ulps = std::abs(std::bit_cast<std::int64_t>(y[k]) - std::bit_cast<std::int64_t>(e));
+    worst = std::max(worst, ulps);
+    if (ulps > 1) ADD_FAILURE() << "x = " << x[k] << ": " << y[k] << " against " << e;
+  }
+  EXPECT_LE(worst, 1);
+  const std::vector<double> ends{-745.0, -800.0, -INFINITY, 710.0, INFINITY, NAN};
+  std::vector<double> end_values(ends.size());
+  exp_array(ends.data(), end_values.data(), ends.size());
+  EXPECT_EQ(end_values[0], 0.0);
+  EXPECT_EQ(end_values[1], 0.0);
+  EXPECT_EQ(end_values[2], 0.0);
+  EXPECT_EQ(end_values[3], INFINITY);
+  EXPECT_EQ(end_values[4], INFINITY);
+  EXPECT_TRUE(std::isnan(end_values[5]));
 }

@@ -8,6 +8,7 @@
 
 #include "bssrdf/cubic_hermite.hpp"
 #include "bssrdf/error.hpp"
+#include "bssrdf/exp_array.hpp"
 #include "bssrdf/scalar_math.hpp"
 
 namespace bssrdf {
@@ -167,17 +168,14 @@ double ProjectedProfile::line(double x, double ln_abs_x) const {
 }
 
 void ProjectedProfile::lines(const double* x, const double* ln_x, double* out, std::size_t n) const {
+  // ln line(x) first, then every exponential in one vectorised pass (exp_array: 0 at or below kNegligible).
   for (std::size_t k = 0; k < n; ++k) {
     const double a = std::abs(x[k]);
-    if (a <= r_min()) {
-      out[k] = std::exp(log_line_.front());
-    } else if (a >= r_max()) {
-      out[k] = 0;
-    } else {
-      const double v = grid_cubic(log_line_, u0_, h_, ln_x[k]);
-      out[k] = v <= kNegligible ? 0 : std::exp(v);
-    }
+    out[k] = a <= r_min()   ? log_line_.front()
+             : a >= r_max() ? kNegligible
+                            : grid_cubic(log_line_, u0_, h_, ln_x[k]);
   }
+  exp_array(out, out, n);
 }
 
 double ProjectedProfile::half_plane(double x) const {

@@ -1,0 +1,14 @@
+// e^x for a whole array at once, in a loop the compiler vectorises (no calls, no tables, no branches):
+// the tables' projections take one exponential per sample (the pre-integrated table's ring quadrature:
+// 26 % of its batch in the C library's exp). Within 1 ulp of std::exp (tested at 10^6 random points,
+// subnormal results included); exactly 0 at or below -745 (the smallest double is e^-744.4), infinite
+// above 709.79 as std::exp, NaN for NaN.
+#pragma once
+
+#include <cstddef>
+
+namespace bssrdf {
+
+void exp_array(const double* x, double* out, std::size_t n);
+
+}  // namespace bssrdf
