@@ -34,9 +34,8 @@ namespace {
   // 2^j from the bits of j + kRound (an integer in the low bits, two's complement), for j = k/2 rounded and k - j:
   // only 64-bit additions and a left shift, which SSE2 has (not the arithmetic right shift k >> 1 would need).
   const auto power = [kRound](double j) {
-    return std::bit_cast<double>((std::bit_cast<std::uint64_t>(j + kRound) - std::bit_cast<std::uint64_t>(kRound) +
-                                  std::uint64_t{1023})
-                                 << 52);
+    return std::bit_cast<double>(
+        (std::bit_cast<std::uint64_t>(j + kRound) - std::bit_cast<std::uint64_t>(kRound) + std::uint64_t{1023}) << 52);
   };
   const double half = (k * 0.5 + kRound) - kRound;
   const double scale1 = power(half), scale2 = power(k - half);
@@ -49,7 +48,7 @@ namespace {
 // One copy per vector width, chosen when the program loads: the same operations, so the same bits, on every
 // processor (no contraction: -ffp-contract=off).
 __attribute__((target_clones("avx512f", "avx2", "default"))) void exp_array(const double* x, double* out,
-                                                                             std::size_t n) {
+                                                                            std::size_t n) {
   for (std::size_t k = 0; k < n; ++k) out[k] = exp_lane(x[k]);
 }
 

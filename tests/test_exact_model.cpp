@@ -91,8 +91,8 @@ TEST(ExactTable, RoundTripsThroughTheFileFormatAndRefusesTruncation) {
   // The arrays are read straight from the file: a file cut anywhere (in the magic, the header, each
   // array), or with bytes after the totals, is refused as a whole.
   const std::string whole = test_cli::slurp(path);
-  const std::size_t n = table().ln_y.size(), header_end = whole.size() - 6 * n - 8 * table().total.size() -
-                                                          8 * table().fine_total.size();
+  const std::size_t n = table().ln_y.size(),
+                    header_end = whole.size() - 6 * n - 8 * table().total.size() - 8 * table().fine_total.size();
   for (const std::size_t size : {std::size_t{0}, std::size_t{7}, std::size_t{16}, header_end - 1, header_end,
                                  header_end + 4 * n - 2, header_end + 5 * n, whole.size() - 8, whole.size() - 1}) {
     std::ofstream(path, std::ios::binary | std::ios::trunc).write(whole.data(), static_cast<std::streamsize>(size));

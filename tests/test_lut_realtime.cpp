@@ -4,13 +4,13 @@
 
 #include <unistd.h>
 #include <algorithm>
-#include <cstdint>
 #include <bit>
-#include <random>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <random>
 #include <set>
 
 #include "bssrdf/error.hpp"
@@ -527,7 +527,7 @@ TEST(CliLutRealtime, BatchStopsAtTheFirstFileItCannotWriteWhateverTheThreads) {
     for (const auto& entry : std::filesystem::directory_iterator(dir)) names.insert(entry.path().filename().string());
   }
   EXPECT_EQ(written[0], written[1]);
-  EXPECT_TRUE(written[0].count("apple-separable.json"));  // before Coke in the database
+  EXPECT_TRUE(written[0].count("apple-separable.json"));        // before Coke in the database
   EXPECT_FALSE(written[0].count("chardonnay-separable.json"));  // after Coke: the batch stopped there
 }
 
@@ -556,8 +556,7 @@ TEST(ExpArray, WithinOneUlpOfTheLibraryAndZeroBelowTheSmallestDouble) {
   std::uniform_real_distribution<double> uniform(-744.9, 709.7);
   std::vector<double> x(1'000'000);
   for (auto& v : x) v = uniform(random);
-  for (double v : {0.0, -0.0, 1e-300, -1e-17, 1.0, -1.0, 709.78, -708.4, -744.4, -744.99})
-    x.push_back(v);
+  for (double v : {0.0, -0.0, 1e-300, -1e-17, 1.0, -1.0, 709.78, -708.4, -744.4, -744.99}) x.push_back(v);
   std::vector<double> y(x.size());
   exp_array(x.data(), y.data(), x.size());
   std::int64_t worst = 0;

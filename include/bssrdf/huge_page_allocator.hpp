@@ -12,7 +12,7 @@
 
 namespace bssrdf {
 
-void* allocate_huge_pages(std::size_t bytes);           // throws std::bad_alloc
+void* allocate_huge_pages(std::size_t bytes);               // throws std::bad_alloc
 void free_huge_pages(void* p, std::size_t bytes) noexcept;  // bytes: as allocated
 
 template <class T>

@@ -171,9 +171,7 @@ void ProjectedProfile::lines(const double* x, const double* ln_x, double* out, s
   // ln line(x) first, then every exponential in one vectorised pass (exp_array: 0 at or below kNegligible).
   for (std::size_t k = 0; k < n; ++k) {
     const double a = std::abs(x[k]);
-    out[k] = a <= r_min()   ? log_line_.front()
-             : a >= r_max() ? kNegligible
-                            : grid_cubic(log_line_, u0_, h_, ln_x[k]);
+    out[k] = a <= r_min() ? log_line_.front() : a >= r_max() ? kNegligible : grid_cubic(log_line_, u0_, h_, ln_x[k]);
   }
   exp_array(out, out, n);
 }

@@ -152,7 +152,8 @@ ExactTable read_exact_table(const std::string& path) {
   read_array(in, remaining, n, table.ln_y, path);
   read_array(in, remaining, n, table.relative_error, path);
   read_array(in, remaining, table.nodes(), table.total, path);
-  read_array(in, remaining, table.total_eta.size() * table.g.size() * table.albedo_prime.size(), table.fine_total, path);
+  read_array(in, remaining, table.total_eta.size() * table.g.size() * table.albedo_prime.size(), table.fine_total,
+             path);
   if (remaining != 0) throw InvalidInput(kField, path, "no data after the totals");
   table.prepare();
   return table;
