@@ -19,7 +19,9 @@
 #include "bssrdf/model_registry.hpp"
 #include "bssrdf/models/exact.hpp"
 #include "bssrdf/montecarlo.hpp"
+#include "bssrdf/reduced.hpp"
 #include "bssrdf/reference_comparison.hpp"
+#include "bssrdf/single_scattering.hpp"
 #include "cli_runner.hpp"
 
 using namespace bssrdf;
@@ -318,6 +320,30 @@ TEST(ExactModel, BelowTheFirstAlbedoNodeContinuesExactly) {
 
   for (const Point& p : {Point{2e-4, 0.5, 1.33}, Point{6e-4, 0.95, 1.2}, Point{5e-5, 0.0, 1.0}})
     expect_agrees_with_monte_carlo(p, 20000000, 37, 40);
+}
+
+TEST(ExactModel, BelowTheFirstAlbedoNodeATotalWithoutMeasurableMultipleScatteringStaysFinite) {
+  // A first albedo node low enough that its multiple scattering (~1e-4 of the total at alpha' 9e-5,
+  // g 0.74: generator version 7) is below the rounding of the interpolated single scattering: here
+  // every first-node total is set 0.1 % below its exact single scattering. The medium below it then
+  // gets its single scattering alone (it was NaN, and radius_for_fraction's bracket failed).
+  ExactTable low = table();
+  const double a0 = low.albedo_prime.front();
+  for (std::size_t e = 0; e < low.ln_total_eta().size(); ++e)
+    for (std::size_t gi = 0; gi < low.g.size(); ++gi) {
+      const double g = low.g[gi], eta = low.ln_total_eta()[e];
+      const double ss = 0.999 * single_scattering_total(albedo_from_reduced(a0, g), g, eta);
+      (low.total_eta.empty() ? low.total : low.fine_total)[low.node(e, gi, 0)] = ss;
+    }
+  low.prepare();
+  for (double g : {0.2, 0.737, 0.9})
+    for (double ap : {0.5 * a0, 0.1 * a0}) {
+      const double t = exact_total(low, ap, g, 1.291);
+      EXPECT_NEAR(t / single_scattering_total(albedo_from_reduced(ap, g), g, 1.291), 1.0, 1e-12) << g << " " << ap;
+      const ExactProfile p(low, ap, g, 1.291);
+      EXPECT_TRUE(std::isfinite(p.total()) && p.total() > 0) << g << " " << ap;
+      EXPECT_TRUE(std::isfinite(p.cumulative(2.0)) && p.cumulative(2.0) > 0) << g << " " << ap;
+    }
 }
 
 TEST(ExactModel, BelowTheFirstAlbedoNodeTheLogGridChangesNothingAgainstThePerRadiusIntegral) {

@@ -256,15 +256,14 @@ class ShiftedRow {
   std::array<double, 4> w_;  // of p[i - 1 .. i + 2]
 };
 
-// Below the first albedo node (0.001) down to alpha' = 0 (R = 0): single scattering is the exact
-// integral at the medium, and multiple scattering follows from the first two nodes by the
-// order-of-scattering series. In units of the medium's own mean free path (rho = sigma_t r) a medium
-// of albedo alpha has y(rho) = sum_k alpha^k Y_k(rho), Y_k depending on g and eta only, so at each rho
-// the multiple scattering over alpha^2 is a smooth function of alpha, Y_2 + alpha Y_3 + ...: read at
-// the nodes' own rho = sigma_t,j r and continued to the medium's alpha (extrapolate). (At g 0.998
-// the first node's alpha is 0.33 and its radius scale sigma_t 1.5: scaling the node's multiple
-// scattering by (alpha / alpha_0)^2 in place, the continuation before this one, missed fresh Monte
-// Carlo by 2.9 % in total and 11 % in the far field.)
+// Below the first albedo node (0.001; 8.9e-5 in a version-7 table) down to alpha' = 0 (R = 0): single scattering is the
+// exact integral at the medium, and multiple scattering follows from the first two nodes by the order-of-scattering
+// series. In units of the medium's own mean free path (rho = sigma_t r) a medium of albedo alpha has y(rho) = sum_k
+// alpha^k Y_k(rho), Y_k depending on g and eta only, so at each rho the multiple scattering over alpha^2 is a smooth
+// function of alpha, Y_2 + alpha Y_3 + ...: read at the nodes' own rho = sigma_t,j r and continued to the medium's
+// alpha (extrapolate). (At g 0.998 the first node's alpha is 0.33 and its radius scale sigma_t 1.5: scaling the node's
+// multiple scattering by (alpha / alpha_0)^2 in place, the continuation before this one, missed fresh Monte Carlo
+// by 2.9 % in total and 11 % in the far field.)
 struct BelowFirstNode {
   Reduced<double> medium;
   std::array<Reduced<double>, 2> node;  // the first two albedo nodes at (g, eta)
@@ -282,14 +281,22 @@ struct BelowFirstNode {
   double extrapolate(double ln_ms0, double ln_ms1) const {
     return std::isnan(ln_ms1) ? ln_ms0 : (1 - t) * ln_ms0 + t * ln_ms1;
   }
+  // The nodes' multiple scattering is their interpolated total less the exact single scattering at
+  // the medium's (g, eta). Where that is not positive (a version-7 table's first nodes at moderate g,
+  // where multiple scattering is ~1e-4 of the total, below the interpolation's rounding of the single
+  // scattering in g and eta), the node holds none measurable, and neither does the medium below it:
+  // its total is its single scattering (as the profile's branch for that case).
   double total(const ExactTable& table, NodeWeights w) const {
     std::array<double, 2> ms{};
     for (std::size_t j = 0; j < 2; ++j) {
       w.a = {{j}, {1.0}, 1};
       const double alpha_j = node[j].albedo();
-      ms[j] = std::log(std::exp(interpolated_ln_total(table, w)) - ss_per_albedo * alpha_j) - 2 * std::log(alpha_j);
+      const double multiple = std::exp(interpolated_ln_total(table, w)) - ss_per_albedo * alpha_j;
+      ms[j] = multiple > 0 ? std::log(multiple) - 2 * std::log(alpha_j) : std::numeric_limits<double>::quiet_NaN();
     }
-    return ss_per_albedo * medium.albedo() + std::exp(extrapolate(ms[0], ms[1])) * medium.albedo() * medium.albedo();
+    const double alpha = medium.albedo();
+    if (std::isnan(ms[0])) return ss_per_albedo * alpha;
+    return ss_per_albedo * alpha + std::exp(extrapolate(ms[0], ms[1])) * alpha * alpha;
   }
   // ln y at the table's radii. At the medium's rho each node's y is read from its row (the table's y
   // at (g, eta), beyond the last g node as that continuation has it), and its single scattering is alpha_j Y_1(rho) =
@@ -428,7 +435,7 @@ double exact_albedo_prime_from_total(const ExactTable& table, double total, doub
   if (!(total >= lo_t && total <= 1))
     throw InvalidInput("total_reflectance", format_number(total),
                        "[" + format_number(lo_t) + ", 1] for the exact model at g = " + format_number(g) +
-                           ", eta = " + format_number(eta) + " (alpha' 0.001 to 1)");
+                           ", eta = " + format_number(eta) + " (alpha' " + format_number(lo_a) + " to 1)");
   if (total > hi_t) {  // above the last node: the continuation's own inverse
     const auto [t_last, t_before] = last_totals(table, weights_at(table, hi_a, g, eta));
     return AboveLastNode(table, hi_a, g, eta).albedo_prime_for(total, t_last, t_before);

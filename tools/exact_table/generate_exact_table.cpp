@@ -68,13 +68,18 @@ namespace {
 
 using namespace bssrdf;
 
-constexpr int kGeneratorVersion = 6;
+constexpr int kGeneratorVersion = 7;
 constexpr int kSmoothingHalf = 3;  // radial smoothing window (smooth_radially): 7 bins, 0.58 decades
 constexpr int kSmoothingWide = 5;  // where a bin's error exceeds 3 %: 11 bins
 
 // ---- the grid ---------------------------------------------------------------------------------
 // alpha': uniform in logit(alpha') from 0.001 to 0.9999 (41 nodes, step 0.40): the profile's
 // shape changes with ln(1 - alpha') near 1 (sigma_tr ~ sqrt(1 - alpha')) and with ln alpha' near 0.
+// Version 7: six more nodes below 0.001 on the same lattice, down to 8.9e-5. Below the first node
+// the model continues in the single albedo alpha from the first two nodes (models/exact.cpp); at
+// g 0.999 alpha' 0.001 is alpha 0.50, too far from 0 for that continuation (2.5 % in total, 9 % in
+// the far field at alpha' 4.6e-4 against fresh Monte Carlo), while 8.9e-5 is alpha 0.08, where
+// g 0.99's first node (alpha 0.09) is validated. The base-0.01 runs serve them.
 // g: denser towards 1, where the near field changes fastest (version 6: 0.995 and 0.999, whose runs
 // are in data/exact/state/, not yet in the shipped table: data/exact/README.md); eta: every 0.15 to
 // 1.6, with one more node at 1.05 where the boundary's effect on the near field changes fastest,
@@ -87,10 +92,12 @@ struct Grid {
   double ln_r0 = std::log(1e-3), d_ln_r = std::numbers::ln10 / 12;
   std::size_t radii = 77;
 
+  static constexpr int kLowNodes = 6;  // below 0.001 (version 7)
+  static constexpr int kVersion6Albedos = 41;
   Grid() {
     const double lo = std::log(0.001 / 0.999), hi = std::log(0.9999 / 0.0001);
-    const int n = 41;
-    for (int i = 0; i < n; ++i) {
+    const int n = kVersion6Albedos;
+    for (int i = -kLowNodes; i < n; ++i) {
       const double u = lo + (hi - lo) * i / (n - 1);
       albedo_prime.push_back(i == 0 ? 0.001 : i == n - 1 ? 0.9999 : 1 / (1 + std::exp(-u)));
     }
@@ -119,6 +126,7 @@ struct Grid {
       if (albedo_prime <= base_albedo_prime[b]) return b;
     return white();
   }
+  bool serves_low_nodes(std::size_t run) const { return run == run_for(albedo_prime.front()); }
   // Tally bins per albedo: [0] inside the first edge, [1..radii] one per node radius (edges at the
   // geometric midpoints), [radii + 1] beyond the last edge.
   std::size_t bins() const { return radii + 2; }
@@ -188,10 +196,19 @@ void save(const NodeSums& s, const std::filesystem::path& path) {
   std::filesystem::rename(temporary, path);
 }
 
-bool load(NodeSums& s, const std::filesystem::path& path, const Grid& grid) {
+// A state file holds every albedo node's sums. One written by version 6 (41 nodes from 0.001) is read
+// into this grid's rows from 0.001 on, the six lower rows empty, except that of a run serving those
+// rows (base 0.01): it reads as not run, and `run` traces it again from its first chunk, with the
+// same seeds (the same photons: its rows from 0.001 on come out as before if the tracer is unchanged).
+bool load(NodeSums& s, const std::filesystem::path& path, const Grid& grid, bool serves_low_nodes) {
+  s = NodeSums{};
   s.resize(grid.albedo_prime.size(), grid.bins());
   std::ifstream f(path, std::ios::binary);
   if (!f) return false;
+  const auto size = std::filesystem::file_size(path);
+  const auto file_size = [&](std::size_t albedos) { return 8 + 48 + (2 * albedos * grid.bins() + 4 * albedos) * 8; };
+  const bool version6 = size == file_size(Grid::kVersion6Albedos);
+  if (version6 && serves_low_nodes) return false;
   char magic[8];
   f.read(magic, 8);
   if (!f || std::memcmp(magic, kStateMagic, 8) != 0) throw std::runtime_error(path.string() + ": not a state file");
@@ -205,7 +222,19 @@ bool load(NodeSums& s, const std::filesystem::path& path, const Grid& grid) {
   s.seconds = scalars[0];
   s.lost = scalars[1];
   s.specular = scalars[2];
-  for (auto* v : {&s.bin_sum, &s.bin_sq, &s.ms_sum, &s.ms_sq, &s.ss_sum, &s.ss_sq}) read_vector(f, *v);
+  if (version6) {
+    const std::size_t low = Grid::kLowNodes, bins = grid.bins();
+    NodeSums old;
+    old.resize(Grid::kVersion6Albedos, bins);
+    for (auto* v : {&old.bin_sum, &old.bin_sq, &old.ms_sum, &old.ms_sq, &old.ss_sum, &old.ss_sq}) read_vector(f, *v);
+    std::copy(old.bin_sum.begin(), old.bin_sum.end(), s.bin_sum.begin() + static_cast<std::ptrdiff_t>(low * bins));
+    std::copy(old.bin_sq.begin(), old.bin_sq.end(), s.bin_sq.begin() + static_cast<std::ptrdiff_t>(low * bins));
+    for (auto [from, to] :
+         {std::pair{&old.ms_sum, &s.ms_sum}, {&old.ms_sq, &s.ms_sq}, {&old.ss_sum, &s.ss_sum}, {&old.ss_sq, &s.ss_sq}})
+      std::copy(from->begin(), from->end(), to->begin() + static_cast<std::ptrdiff_t>(low));
+  } else {
+    for (auto* v : {&s.bin_sum, &s.bin_sq, &s.ms_sum, &s.ms_sq, &s.ss_sum, &s.ss_sq}) read_vector(f, *v);
+  }
   if (!f || f.peek() != EOF) throw std::runtime_error(path.string() + ": wrong size for this grid");
   return true;
 }
@@ -319,7 +348,7 @@ int run(const std::filesystem::path& dir, std::uint64_t target, std::uint64_t ch
           if (item++ % ranks != rank) continue;
           NodeSums sums;
           const auto path = node_path(dir, grid, gi, ei, b);
-          load(sums, path, grid);
+          load(sums, path, grid, grid.serves_low_nodes(b));
           const std::uint64_t run_target = target * grid.run_factor(b);
           if (sums.photons >= run_target) continue;
           any = true;
@@ -507,9 +536,10 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   const auto out_dir = std::filesystem::absolute(out_path).parent_path();
   if (!std::filesystem::is_directory(out_dir))
     throw std::runtime_error("--out " + out_path + ": the folder " + out_dir.string() + " does not exist");
-  // --base: a table whose (g, eta) nodes are copied (its alpha' and radius axes must be this grid's;
-  // its g and eta nodes a subset of this grid's: how a table grows new eta nodes (version 5) and new
-  // g nodes (version 6)).
+  // --base: a table whose nodes are copied (its radius axis must be this grid's, its alpha' axis this
+  // grid's or its part from 0.001 on, its g and eta nodes a subset of this grid's: how a table grows
+  // new eta nodes (version 5), new g nodes (version 6) and new albedo nodes below 0.001 (version 7,
+  // from the state's base-0.01 runs at every (g, eta))).
   std::optional<ExactTable> base;
   struct BaseNode {
     std::size_t g, eta;
@@ -524,10 +554,15 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
       return std::all_of(part.begin(), part.end(),
                          [&](double v) { return std::find(whole.begin(), whole.end(), v) != whole.end(); });
     };
-    if (base->albedo_prime != grid.albedo_prime || base->radii != grid.radii || base->ln_r0 != grid.ln_r0 ||
-        base->d_ln_r != grid.d_ln_r || !subset(base->g, grid.g) || !subset(base->eta, grid.eta))
-      throw std::runtime_error(base_path + ": its alpha' or radius axis is not this grid's, or it has g or eta "
-                                           "nodes this grid lacks");
+    const bool albedo_suffix =
+        base->albedo_prime.size() <= grid.albedo_prime.size() &&
+        std::equal(base->albedo_prime.begin(), base->albedo_prime.end(),
+                   grid.albedo_prime.end() - static_cast<std::ptrdiff_t>(base->albedo_prime.size()));
+    if (!albedo_suffix || base->radii != grid.radii || base->ln_r0 != grid.ln_r0 || base->d_ln_r != grid.d_ln_r ||
+        !subset(base->g, grid.g) || !subset(base->eta, grid.eta))
+      throw std::runtime_error(base_path +
+                               ": its alpha' or radius axis is not this grid's, or it has g or eta "
+                               "nodes this grid lacks");
     for (std::size_t bg = 0; bg < base->g.size(); ++bg)
       for (std::size_t be = 0; be < base->eta.size(); ++be) {
         const auto gi = std::find(grid.g.begin(), grid.g.end(), base->g[bg]) - grid.g.begin();
@@ -558,25 +593,32 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   double smoothing_chi2 = 0, wide_chi2 = 0, smoothing_bins = 0;
   std::vector<AddingDoublingTotal> coarse_ad(table.nodes());
   nlohmann::json scale_check = nlohmann::json::array();
+  // Albedo nodes below the base table's first (version 7's low nodes) come from the state.
+  const std::size_t first_copied = base ? albedos - base->albedo_prime.size() : albedos;
   for (std::size_t ei = 0; ei < grid.eta.size(); ++ei) {
     for (std::size_t gi = 0; gi < grid.g.size(); ++gi) {
-      if (const auto& copy = from_base(gi, ei)) {  // copied from --base: its profiles, errors and totals stand
-        for (std::size_t a = 0; a < albedos; ++a) {
-          const std::size_t from = base->node(copy->eta, copy->g, a), to = table.node(ei, gi, a);
-          coarse_ad[to] = adding_doubling_total(grid.albedo_prime[a], grid.g[gi], grid.eta[ei]);
-          table.total[to] = base->total[from];
-          for (std::size_t k = 0; k < radii; ++k) {
-            table.ln_y[to * radii + k] = base->ln_y[from * radii + k];
-            table.relative_error[to * radii + k] = base->relative_error[from * radii + k];
-          }
+      const auto& copy = from_base(gi, ei);
+      const auto copied = [&](std::size_t a) { return copy && a >= first_copied; };
+      for (std::size_t a = first_copied; copy && a < albedos; ++a) {  // from --base: profiles, errors, totals stand
+        const std::size_t from = base->node(copy->eta, copy->g, a - first_copied), to = table.node(ei, gi, a);
+        coarse_ad[to] = adding_doubling_total(grid.albedo_prime[a], grid.g[gi], grid.eta[ei]);
+        table.total[to] = base->total[from];
+        for (std::size_t k = 0; k < radii; ++k) {
+          table.ln_y[to * radii + k] = base->ln_y[from * radii + k];
+          table.relative_error[to * radii + k] = base->relative_error[from * radii + k];
         }
-        continue;
       }
+      if (copy && first_copied == 0) continue;
       std::vector<NodeSums> runs(grid.runs());
       for (std::size_t b = 0; b < grid.runs(); ++b) {
+        bool needed = false;  // the runs serving the nodes not copied
+        for (std::size_t a = 0; a < albedos; ++a)
+          needed = needed || (!copied(a) && grid.run_for(grid.albedo_prime[a]) == b);
+        if (!needed) continue;
         NodeSums& s = runs[b];
-        if (!load(s, node_path(dir, grid, gi, ei, b), grid) || s.photons == 0)
-          throw std::runtime_error("no Monte Carlo for " + describe_node(grid, gi, ei) + ": run first");
+        if (!load(s, node_path(dir, grid, gi, ei, b), grid, grid.serves_low_nodes(b)) || s.photons == 0)
+          throw std::runtime_error("no Monte Carlo for " + describe_node(grid, gi, ei) + " base alpha' " +
+                                   std::to_string(grid.run_albedo_prime(b)) + ": run first");
         if (b == grid.white()) {
           min_photons = std::min(min_photons, s.photons);
           max_photons = std::max(max_photons, s.photons);
@@ -589,6 +631,7 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
       }
       const double g = grid.g[gi], eta = grid.eta[ei];
       for (std::size_t a = 0; a < albedos; ++a) {
+        if (copied(a)) continue;
         const NodeSums& s = runs[grid.run_for(grid.albedo_prime[a])];
         const double n = static_cast<double>(s.photons);
         const double ap = grid.albedo_prime[a];
@@ -814,9 +857,11 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
       for (std::size_t gi = 0; gi < grid.g.size(); ++gi)
         if (from_base(gi, ei)) copied.push_back({grid.g[gi], grid.eta[ei]});
     p["base_table"] = {{"g_eta_nodes_copied", copied},
+                       {"albedo_prime_nodes_copied_from", base->albedo_prime.front()},
                        {"note",
-                        "the Monte Carlo figures above are this build's state only (the other (g, eta) nodes); the "
-                        "base table's provenance follows"},
+                        "the Monte Carlo figures above are this build's state only (the other (g, eta) nodes, and "
+                        "at the copied ones the albedo nodes below the base table's first); the base table's "
+                        "provenance follows"},
                        {"provenance", nlohmann::json::parse(base->provenance)}};
   }
   table.provenance = p.dump();

@@ -15,9 +15,10 @@
 // Domain: alpha' in [0, 1], g in [0, 0.999], eta over the table's nodes (1 to 2); outside it the
 // constructor throws InvalidInput naming the parameter. Beyond the table's nodes the model continues
 // where the continuation is measured to hold (tools/validation/exact_vs_montecarlo.txt):
-//  - below the first albedo node (0.001) single scattering is exact and multiple scattering follows
-//    from the first two nodes' at the medium's own optical radius rho = sigma_t r, ln(MS / alpha^2)
-//    linear in alpha (the order-of-scattering series); at alpha' = 0, R = 0;
+//  - below the first albedo node (0.001; 8.9e-5 in a version-7 table) single scattering is exact
+//    and multiple scattering follows from the first two nodes' at the medium's own optical radius
+//    rho = sigma_t r, ln(MS / alpha^2) linear in alpha (the order-of-scattering series); at
+//    alpha' = 0, R = 0;
 //  - above the last albedo node (0.9999) the last node's profile times the classical dipole's ratio of
 //    the two albedos' profiles (diffusion's far field, exact there), its total from
 //    1 - T = c1 s + c2 s^2, s = sqrt(1 - alpha'), through the last two nodes to T(1) = 1;
@@ -54,7 +55,7 @@ ValidityReport exact_domain(const ExactTable& table, double albedo_prime, double
 double exact_total(const ExactTable& table, double albedo_prime, double g, double eta);
 
 // The reduced albedo whose exact total is `total` at (g, eta): the inverse of exact_total,
-// monotone in alpha'. Throws InvalidInput when `total` is outside [total(0.001), total(0.9999)].
+// monotone in alpha'. Throws InvalidInput when `total` is outside [total(first albedo node), 1].
 double exact_albedo_prime_from_total(const ExactTable& table, double total, double g, double eta);
 
 // How a build below the first albedo node integrates the medium's single scattering at the table's
