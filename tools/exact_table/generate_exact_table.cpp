@@ -54,6 +54,7 @@
 #include <vector>
 
 #include "bssrdf/adding_doubling/slab.hpp"
+#include "bssrdf/error.hpp"
 #include "bssrdf/layers.hpp"
 #include "bssrdf/medium.hpp"
 #include "bssrdf/models/exact.hpp"
@@ -177,8 +178,10 @@ std::filesystem::path node_path(const std::filesystem::path& dir, const Grid& gr
 void write_vector(std::ofstream& f, const std::vector<double>& v) {
   f.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(double)));
 }
-void read_vector(std::ifstream& f, std::vector<double>& v) {
-  f.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(double)));
+// Reads `count` doubles into v from element `first` on (a version-6 file's rows land above the new
+// low-albedo rows: load).
+void read_doubles(std::ifstream& f, std::vector<double>& v, std::size_t first, std::size_t count) {
+  f.read(reinterpret_cast<char*>(v.data() + first), static_cast<std::streamsize>(count * sizeof(double)));
 }
 
 void save(const NodeSums& s, const std::filesystem::path& path) {
@@ -196,19 +199,28 @@ void save(const NodeSums& s, const std::filesystem::path& path) {
   std::filesystem::rename(temporary, path);
 }
 
-// A state file holds every albedo node's sums. One written by version 6 (41 nodes from 0.001) is read
-// into this grid's rows from 0.001 on, the six lower rows empty, except that of a run serving those
-// rows (base 0.01): it reads as not run, and `run` traces it again from its first chunk, with the
-// same seeds (the same photons: its rows from 0.001 on come out as before if the tracer is unchanged).
+// A state file holds every albedo node's sums: magic, 3 counts, 3 scalars, then bin_sum and bin_sq
+// ([albedo][bin]) and ms_sum, ms_sq, ss_sum, ss_sq ([albedo]). One written by version 6 (41 nodes from
+// 0.001) is read into this grid's rows from 0.001 on, the six lower rows empty, except that of a run
+// serving those rows (base 0.01): it reads as not run, and `run` traces it again from its first chunk,
+// with the same seeds (the same photons: its rows from 0.001 on come out as before if the tracer is
+// unchanged).
 bool load(NodeSums& s, const std::filesystem::path& path, const Grid& grid, bool serves_low_nodes) {
+  const std::size_t albedos = grid.albedo_prime.size(), bins = grid.bins();
   s = NodeSums{};
-  s.resize(grid.albedo_prime.size(), grid.bins());
+  s.resize(albedos, bins);
   std::ifstream f(path, std::ios::binary);
   if (!f) return false;
-  const auto size = std::filesystem::file_size(path);
-  const auto file_size = [&](std::size_t albedos) { return 8 + 48 + (2 * albedos * grid.bins() + 4 * albedos) * 8; };
-  const bool version6 = size == file_size(Grid::kVersion6Albedos);
+  const auto bytes = [&](std::size_t rows) {
+    return sizeof kStateMagic + 3 * sizeof(std::uint64_t) + (3 + 2 * rows * bins + 4 * rows) * sizeof(double);
+  };
+  const std::uintmax_t size = std::filesystem::file_size(path);
+  const bool version6 = size == bytes(Grid::kVersion6Albedos);
   if (version6 && serves_low_nodes) return false;
+  if (!version6 && size != bytes(albedos))
+    throw std::runtime_error(path.string() + ": wrong size for this grid (" + std::to_string(size) + " bytes; " +
+                             std::to_string(bytes(albedos)) + ", or " + std::to_string(bytes(Grid::kVersion6Albedos)) +
+                             " from generator version 6)");
   char magic[8];
   f.read(magic, 8);
   if (!f || std::memcmp(magic, kStateMagic, 8) != 0) throw std::runtime_error(path.string() + ": not a state file");
@@ -222,19 +234,9 @@ bool load(NodeSums& s, const std::filesystem::path& path, const Grid& grid, bool
   s.seconds = scalars[0];
   s.lost = scalars[1];
   s.specular = scalars[2];
-  if (version6) {
-    const std::size_t low = Grid::kLowNodes, bins = grid.bins();
-    NodeSums old;
-    old.resize(Grid::kVersion6Albedos, bins);
-    for (auto* v : {&old.bin_sum, &old.bin_sq, &old.ms_sum, &old.ms_sq, &old.ss_sum, &old.ss_sq}) read_vector(f, *v);
-    std::copy(old.bin_sum.begin(), old.bin_sum.end(), s.bin_sum.begin() + static_cast<std::ptrdiff_t>(low * bins));
-    std::copy(old.bin_sq.begin(), old.bin_sq.end(), s.bin_sq.begin() + static_cast<std::ptrdiff_t>(low * bins));
-    for (auto [from, to] :
-         {std::pair{&old.ms_sum, &s.ms_sum}, {&old.ms_sq, &s.ms_sq}, {&old.ss_sum, &s.ss_sum}, {&old.ss_sq, &s.ss_sq}})
-      std::copy(from->begin(), from->end(), to->begin() + static_cast<std::ptrdiff_t>(low));
-  } else {
-    for (auto* v : {&s.bin_sum, &s.bin_sq, &s.ms_sum, &s.ms_sq, &s.ss_sum, &s.ss_sq}) read_vector(f, *v);
-  }
+  const std::size_t rows = version6 ? Grid::kVersion6Albedos : albedos, low = albedos - rows;
+  for (auto* v : {&s.bin_sum, &s.bin_sq}) read_doubles(f, *v, low * bins, rows * bins);
+  for (auto* v : {&s.ms_sum, &s.ms_sq, &s.ss_sum, &s.ss_sq}) read_doubles(f, *v, low, rows);
   if (!f || f.peek() != EOF) throw std::runtime_error(path.string() + ": wrong size for this grid");
   return true;
 }
@@ -618,7 +620,7 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
         NodeSums& s = runs[b];
         if (!load(s, node_path(dir, grid, gi, ei, b), grid, grid.serves_low_nodes(b)) || s.photons == 0)
           throw std::runtime_error("no Monte Carlo for " + describe_node(grid, gi, ei) + " base alpha' " +
-                                   std::to_string(grid.run_albedo_prime(b)) + ": run first");
+                                   format_number(grid.run_albedo_prime(b)) + ": run first");
         if (b == grid.white()) {
           min_photons = std::min(min_photons, s.photons);
           max_photons = std::max(max_photons, s.photons);
