@@ -100,33 +100,6 @@ Weights hermite_weights(const std::vector<double>& axis, double (*f)(double), do
   return out;
 }
 
-// Beyond the last g node (0.99, to kForwardLimit): ln y continues linearly in x = 1 - g from that
-// node, with the slope of the least-squares line through it and the three nodes before it (x 0.01 to
-// 0.05). In transport units a strongly forward medium approaches its reduced counterpart smoothly as
-// x -> 0 (the small-angle limit), so the profile is linear in x to first order; anchoring at the last
-// node keeps the model continuous there, and a slope from four nodes keeps their Monte Carlo noise
-// from being amplified (the extrapolated value's noise is 1.04 times the last node's at x = 0.001).
-constexpr double kForwardLimit = 0.999;
-Weights forward_weights(const std::vector<double>& axis, double g) {
-  Weights out;
-  const std::size_t last = axis.size() - 1, first = last >= 3 ? last - 3 : 0;
-  const double x_last = 1 - axis[last], x = 1 - g;
-  double spread = 0;
-  for (std::size_t i = first; i < last; ++i) spread += (1 - axis[i] - x_last) * (1 - axis[i] - x_last);
-  double rest = 1;
-  for (std::size_t i = first; i < last; ++i) {
-    const double c = (x - x_last) * (1 - axis[i] - x_last) / spread;
-    out.node[out.count] = i;
-    out.w[out.count] = c;
-    ++out.count;
-    rest -= c;
-  }
-  out.node[out.count] = last;
-  out.w[out.count] = rest;
-  ++out.count;
-  return out;
-}
-
 struct NodeWeights {
   Weights a, g, e;
   Weights e_total;  // on the totals' eta axis (ExactTable::ln_total_eta)
@@ -147,8 +120,8 @@ NodeWeights weights_at(const ExactTable& table, double albedo_prime, double g, d
   }
   // Above the last albedo node the last node's values stand here (AboveLastNode continues them).
   return {hermite_weights(table.albedo_prime, albedo_coordinate, std::min(albedo_prime, table.albedo_prime.back())),
-          g > table.g.back() ? forward_weights(table.g, g) : hermite_weights(table.g, g_coordinate, g),
-          hermite_weights(table.eta, eta_coordinate, eta), hermite_weights(table.ln_total_eta(), eta_coordinate, eta)};
+          hermite_weights(table.g, g_coordinate, g), hermite_weights(table.eta, eta_coordinate, eta),
+          hermite_weights(table.ln_total_eta(), eta_coordinate, eta)};
 }
 
 double interpolated_ln_total(const ExactTable& table, const NodeWeights& w) {
@@ -299,7 +272,7 @@ struct BelowFirstNode {
     return ss_per_albedo * alpha + std::exp(extrapolate(ms[0], ms[1])) * alpha * alpha;
   }
   // ln y at the table's radii. At the medium's rho each node's y is read from its row (the table's y
-  // at (g, eta), beyond the last g node as that continuation has it), and its single scattering is alpha_j Y_1(rho) =
+  // at (g, eta)), and its single scattering is alpha_j Y_1(rho) =
   // (alpha_j / alpha) y_ss(r): the split is made in linear terms, so the table's y is met exactly at the first node
   // even where it lies a rounding (or the generator's 96-point rule, ~1e-4 at r = 0.001) below the exact single
   // scattering.
@@ -397,9 +370,7 @@ std::pair<double, double> last_totals(const ExactTable& table, NodeWeights w) {
 }  // namespace
 
 std::pair<double, double> exact_albedo_range(const ExactTable&) { return {0.0, 1.0}; }
-std::pair<double, double> exact_g_range(const ExactTable& table) {
-  return {table.g.front(), table.g.back() >= 0.99 ? std::max(table.g.back(), kForwardLimit) : table.g.back()};
-}
+std::pair<double, double> exact_g_range(const ExactTable& table) { return {table.g.front(), table.g.back()}; }
 std::pair<double, double> exact_eta_range(const ExactTable& table) { return {table.eta.front(), table.eta.back()}; }
 
 ValidityReport exact_domain(const ExactTable& table, double albedo_prime, double g, double eta) {
@@ -411,7 +382,7 @@ ValidityReport exact_domain(const ExactTable& table, double albedo_prime, double
                             format_number(range.first) + " to " + format_number(range.second) + ")"});
   };
   // Below the first albedo node the model continues exactly (BelowFirstNode), down to 0; above the
-  // last, by diffusion (AboveLastNode), up to 1; beyond the last g node linearly in 1 - g.
+  // last, by diffusion (AboveLastNode), up to 1; in g the table's nodes reach 0.999.
   check("exact_albedo", "alpha'", albedo_prime, exact_albedo_range(table));
   check("exact_g", "g", g, exact_g_range(table));
   check("exact_eta", "eta", eta, exact_eta_range(table));
@@ -470,9 +441,13 @@ ExactProfile::ExactProfile(const ExactTable& table, double albedo_prime, double 
     above.emplace(table, albedo_prime, g, eta);
     above->continue_profile(table, ln_y_);
   }
-  // Below the first radius single scattering dominates (y ~ r); beyond the last, an exponential
-  // tail in r: both continue the curve with the slope of its end.
-  head_slope_ = std::max(0.5, (ln_y_[1] - ln_y_[0]) / d_ln_r_);
+  // Below the first radius y = 2 pi r^2 R continues as a power of r, beyond the last as an exponential
+  // tail in r: both with the slope of the curve's end. The power is at least 1: as r -> 0 single
+  // scattering's R ~ 1/r is the strongest singularity (multiple scattering's is at most logarithmic,
+  // y ~ r^2), so y falls at least as fast as r. Nodes whose first radii hold Monte Carlo noise
+  // (g 0.995, 0.999: 7 % at the first radius) gave first-step slopes down to 0.48, and the disc
+  // r < 0.001 twice its energy (alpha' 0.1375, g 0.997: 1.77 times the Monte Carlo's mean R there).
+  head_slope_ = std::max(1.0, (ln_y_[1] - ln_y_[0]) / d_ln_r_);
   const double r_last = std::exp(ln_r0_ + d_ln_r_ * static_cast<double>(radii - 1));
   const double r_before = std::exp(ln_r0_ + d_ln_r_ * static_cast<double>(radii - 2));
   tail_slope_ = std::min(-1e-3, (ln_y_[radii - 1] - ln_y_[radii - 2]) / (r_last - r_before));

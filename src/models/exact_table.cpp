@@ -20,6 +20,7 @@ static_assert(std::endian::native == std::endian::little, "the exact table is st
 namespace {
 
 constexpr char kMagic[8] = {'B', 'S', 'S', 'R', 'D', 'F', 'X', '1'};
+constexpr char kErrorsMagic[8] = {'B', 'S', 'S', 'R', 'D', 'F', 'E', '1'};
 constexpr const char* kField = "exact table";
 
 bool increasing(const std::vector<double>& v) {
@@ -57,7 +58,7 @@ void ExactTable::validate() const {
     throw InvalidInput(kField, "axes", "non-empty increasing albedo', g and eta nodes");
   if (radii < 2 || !(d_ln_r > 0)) throw InvalidInput(kField, "radii", "at least 2 radii with a positive step");
   const std::size_t n = nodes() * radii;
-  if (ln_y.size() != n || relative_error.size() != n || total.size() != nodes())
+  if (ln_y.size() != n || (relative_error.size() != n && !relative_error.empty()) || total.size() != nodes())
     throw InvalidInput(kField, "array sizes", std::to_string(n) + " values and " + std::to_string(nodes()) + " totals");
   for (float v : ln_y)
     if (!std::isfinite(v)) throw InvalidInput(kField, "ln_y", "finite values");
@@ -76,11 +77,22 @@ void ExactTable::validate() const {
   }
 }
 
+// Writes `bytes` to `path` by way of PATH.partial: never a half-written file under the real name.
+void write_atomically(const std::string& path, const std::string& bytes, const char* what) {
+  const std::string temporary = path + ".partial";
+  {
+    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+    file.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    if (!file) throw FileError(path, 0, std::string("cannot write the ") + what);
+  }
+  std::filesystem::rename(temporary, path);
+}
+
 void write_exact_table(const ExactTable& table, const std::string& path) {
   table.validate();
   nlohmann::json header;
   header["format"] = "bssrdf-exact-table";
-  header["version"] = table.total_eta.empty() ? 1 : 2;
+  header["version"] = 3;
   header["albedo_prime"] = table.albedo_prime;
   header["g"] = table.g;
   header["eta"] = table.eta;
@@ -88,11 +100,10 @@ void write_exact_table(const ExactTable& table, const std::string& path) {
   header["d_ln_r"] = table.d_ln_r;
   header["radii"] = table.radii;
   if (!table.total_eta.empty()) header["total_eta"] = table.total_eta;
-  header["layout"] = std::string(
-                         "ln_y float32 [eta][g][albedo_prime][radius], relative_error uint16 (1e-4 units, 65535 = "
-                         "extrapolated) same order, total float64 [eta][g][albedo_prime]") +
+  header["layout"] = std::string("ln_y float32 [eta][g][albedo_prime][radius], total float64 [eta][g][albedo_prime]") +
                      (table.total_eta.empty() ? "" : ", fine_total float64 [total_eta][g][albedo_prime]") +
-                     "; little-endian";
+                     "; little-endian; relative_error uint16 (1e-4 units, 65535 = extrapolated) in ln_y's order in "
+                     "the file beside it named as this one plus .errors";
   header["provenance"] = table.provenance.empty() ? nlohmann::json::object() : nlohmann::json::parse(table.provenance);
   const std::string text = header.dump();
   std::string out(kMagic, sizeof kMagic);
@@ -100,19 +111,44 @@ void write_exact_table(const ExactTable& table, const std::string& path) {
   out.append(reinterpret_cast<const char*>(&length), sizeof length);
   out += text;
   append_bytes(out, table.ln_y);
-  append_bytes(out, table.relative_error);
   append_bytes(out, table.total);
   append_bytes(out, table.fine_total);
-  const std::string temporary = path + ".partial";
-  {
-    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-    file.write(out.data(), static_cast<std::streamsize>(out.size()));
-    if (!file) throw FileError(path, 0, "cannot write the exact table");
+  if (!table.relative_error.empty()) {  // first, so that a table never stands beside older errors
+    std::string errors(kErrorsMagic, sizeof kErrorsMagic);
+    const std::uint64_t count = table.relative_error.size();
+    errors.append(reinterpret_cast<const char*>(&count), sizeof count);
+    append_bytes(errors, table.relative_error);
+    write_atomically(path + ".errors", errors, "exact table's errors");
+  } else if (std::error_code ec; std::filesystem::is_regular_file(path + ".errors", ec)) {
+    std::filesystem::remove(path + ".errors", ec);  // another table's errors must not stand beside this one
   }
-  std::filesystem::rename(temporary, path);  // never a half-written table under the real name
+  write_atomically(path, out, "exact table");
 }
 
-ExactTable read_exact_table(const std::string& path) {
+namespace {
+
+// A version-3 table's relative errors from PATH.errors: exactly `count` of them.
+void read_errors(const std::string& path, std::size_t count, ExactTable::NodeArray<std::uint16_t>& values) {
+  const std::string file = path + ".errors";
+  auto in = open_data_file(file, "the exact-model table's errors");
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  in.seekg(0);
+  char start[16];
+  if (size < 16 || !in.read(start, sizeof start) || std::memcmp(start, kErrorsMagic, sizeof kErrorsMagic) != 0)
+    throw InvalidInput(kField, file, "the table's errors (magic BSSRDFE1)");
+  std::uint64_t stored = 0;
+  std::memcpy(&stored, start + 8, sizeof stored);
+  if (stored != count)
+    throw InvalidInput(kField, file, std::to_string(count) + " errors, one per value of the table beside it");
+  auto remaining = static_cast<std::uintmax_t>(size) - 16;
+  read_array(in, remaining, count, values, file);
+  if (remaining != 0) throw InvalidInput(kField, file, "no data after the errors");
+}
+
+}  // namespace
+
+ExactTable read_exact_table(const std::string& path, TableErrors errors) {
   auto in = open_data_file(path, "the exact-model table");
   in.seekg(0, std::ios::end);
   const std::streamoff size = in.tellg();
@@ -131,10 +167,13 @@ ExactTable read_exact_table(const std::string& path) {
     throw InvalidInput(kField, path, "a complete table file (truncated header)");
   const nlohmann::json header = parse_json_document(text, path);
   ExactTable table;
+  int version = 0;
   try {
-    if (header.at("format") != "bssrdf-exact-table" || (header.at("version") != 1 && header.at("version") != 2))
-      throw InvalidInput(kField, path, "format bssrdf-exact-table version 1 or 2");
-    if (header.at("version") == 2) table.total_eta = header.at("total_eta").get<std::vector<double>>();
+    version = header.at("version").get<int>();
+    if (header.at("format") != "bssrdf-exact-table" || version < 1 || version > 3)
+      throw InvalidInput(kField, path, "format bssrdf-exact-table version 1, 2 or 3");
+    if (version == 2 || (version == 3 && header.contains("total_eta")))
+      table.total_eta = header.at("total_eta").get<std::vector<double>>();
     table.albedo_prime = header.at("albedo_prime").get<std::vector<double>>();
     table.g = header.at("g").get<std::vector<double>>();
     table.eta = header.at("eta").get<std::vector<double>>();
@@ -150,11 +189,21 @@ ExactTable read_exact_table(const std::string& path) {
     throw InvalidInput(kField, path, "a table of plausible size");
   const std::size_t n = table.nodes() * table.radii;
   read_array(in, remaining, n, table.ln_y, path);
-  read_array(in, remaining, n, table.relative_error, path);
+  if (version < 3) {  // errors inline: read, or stepped over (still checked to be there)
+    if (errors == TableErrors::read) {
+      read_array(in, remaining, n, table.relative_error, path);
+    } else {
+      if (n > remaining / sizeof(std::uint16_t))
+        throw InvalidInput(kField, path, "a complete table file (truncated data)");
+      in.seekg(static_cast<std::streamoff>(n * sizeof(std::uint16_t)), std::ios::cur);
+      remaining -= n * sizeof(std::uint16_t);
+    }
+  }
   read_array(in, remaining, table.nodes(), table.total, path);
   read_array(in, remaining, table.total_eta.size() * table.g.size() * table.albedo_prime.size(), table.fine_total,
              path);
   if (remaining != 0) throw InvalidInput(kField, path, "no data after the totals");
+  if (version == 3 && errors == TableErrors::read) read_errors(path, n, table.relative_error);
   table.prepare();
   return table;
 }

@@ -36,7 +36,17 @@ def load(path):
     shape = (len(header['eta']), len(header['g']), len(header['albedo_prime']), header['radii'])
     count = int(np.prod(shape))
     ln_y = np.frombuffer(data, '<f4', count, offset).reshape(shape)
-    relative = np.frombuffer(data, '<u2', count, offset + 4 * count).reshape(shape)
+    if header['version'] < 3:  # errors inline after ln_y
+        relative = np.frombuffer(data, '<u2', count, offset + 4 * count).reshape(shape)
+        return header, ln_y.astype(float), relative
+    # version 3: in PATH.errors (magic BSSRDFE1, uint64 count, the values)
+    try:
+        errors = open(path + '.errors', 'rb').read()
+    except OSError as error:
+        fail(f'{path}.errors: {error.strerror} (the table\'s relative errors are kept beside it)')
+    if errors[:8] != b'BSSRDFE1' or struct.unpack('<Q', errors[8:16])[0] != count or len(errors) != 16 + 2 * count:
+        fail(f'{path}.errors: not the errors of {path} ({count} values)')
+    relative = np.frombuffer(errors, '<u2', count, 16).reshape(shape)
     return header, ln_y.astype(float), relative
 
 

@@ -7,6 +7,9 @@
 //                  [photons per point at most=5e7] [eta_min=1 eta_max=1.6]
 //   validate_exact at SCATTERINGS MAX_PHOTONS SEED ALPHA',G,ETA [...]   (given points, e.g. again with
 //                  more photons where a random point's run was too noisy to resolve the goal)
+//   BSSRDF_VALIDATE_BINS=PREFIX validate_exact ...   also writes each point's bins to PREFIX_<i>.tsv (inner,
+//                  outer radius, Monte Carlo R and its standard error, the model's bin average): where a
+//                  miss lies in r
 //
 // Each point: alpha' log-uniform in logit over [0.001, 0.9999] (1 - alpha' log-uniform where
 // alpha'_min >= 0.9999: the continuation to 1), g uniform in -ln(1 - g) over [0, 0.99], eta uniform
@@ -22,6 +25,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <numbers>
 #include <random>
 #include <string>
 #include <vector>
@@ -62,6 +66,29 @@ MonteCarloResult run(const Medium& medium, const Model& model, double scattering
   for (std::size_t c = 0; c < medium.channels(); ++c) ell = std::min(ell, medium.reduced(c).ell);
   options.r_min = 1e-3 * ell;
   return run_monte_carlo(LayerStack::half_space(medium), options);
+}
+
+// The point's bins side by side (BSSRDF_VALIDATE_BINS).
+void write_bins(const std::string& prefix, int i, const Model& model, const Medium& medium,
+                const MonteCarloResult& run) {
+  const std::string path = prefix + "_" + std::to_string(i) + ".tsv";
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) {
+    std::fprintf(stderr, "validate_exact: cannot write %s\n", path.c_str());
+    std::exit(2);
+  }
+  const auto m = medium.reduced(0);
+  const auto mc = run.channels[0].per_entered_flux();
+  std::fprintf(f, "# alpha' %.9g g %.9g eta %.9g\n# inner\touter\tmc\tmc_stderr\tmodel\n", m.albedo_prime, m.g, m.eta);
+  for (std::size_t k = 0; k < mc.reflectance.size(); ++k) {
+    const double inner = run.bin_inner[k], outer = run.bin_outer[k];
+    const double area = std::numbers::pi * (outer * outer - inner * inner);
+    const double model_average =
+        (model.cumulative_reflectance(m, outer) - model.cumulative_reflectance(m, inner)) / area;
+    std::fprintf(f, "%.9g\t%.9g\t%.9g\t%.9g\t%.9g\n", inner, outer, mc.reflectance[k], mc.reflectance_stderr[k],
+                 model_average);
+  }
+  std::fclose(f);
 }
 
 }  // namespace
@@ -146,6 +173,7 @@ int main(int argc, char** argv) {
       const auto mc =
           run(medium, *model, scatterings, seed * 1000 + seed_offset + static_cast<unsigned>(i), max_photons);
       const auto d = compare_with_monte_carlo(*model, medium.reduced(0), mc);
+      if (const char* prefix = std::getenv("BSSRDF_VALIDATE_BINS")) write_bins(prefix, i, *model, medium, mc);
       const auto per_entered = mc.channels[0].per_entered_flux();
       const double sigma =
           d.total * per_entered.diffuse_reflectance.value / per_entered.diffuse_reflectance.standard_error;

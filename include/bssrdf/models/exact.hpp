@@ -15,15 +15,16 @@
 // Domain: alpha' in [0, 1], g in [0, 0.999], eta over the table's nodes (1 to 2); outside it the
 // constructor throws InvalidInput naming the parameter. Beyond the table's nodes the model continues
 // where the continuation is measured to hold (tools/validation/exact_vs_montecarlo.txt):
-//  - below the first albedo node (0.001; 8.9e-5 in a version-7 table) single scattering is exact
+//  - below the first albedo node (8.9e-5) single scattering is exact
 //    and multiple scattering follows from the first two nodes' at the medium's own optical radius
 //    rho = sigma_t r, ln(MS / alpha^2) linear in alpha (the order-of-scattering series); at
 //    alpha' = 0, R = 0;
 //  - above the last albedo node (0.9999) the last node's profile times the classical dipole's ratio of
 //    the two albedos' profiles (diffusion's far field, exact there), its total from
 //    1 - T = c1 s + c2 s^2, s = sqrt(1 - alpha'), through the last two nodes to T(1) = 1;
-//  - beyond the last g node (0.99) ln y linear in 1 - g from that node, with the slope of the last four
-//    nodes (a strongly forward medium approaches its reduced counterpart smoothly).
+//  - below the first radius (0.001 transport mfp) y as a power of r, at least r^1 (single
+//    scattering's R ~ 1/r is the strongest singularity at r -> 0).
+// In g the nodes reach 0.999 (a table ending lower, as those before 2026-12-07, ends the domain there).
 // Accuracy and speed: README "The exact model" (measured against fresh Monte Carlo off the grid).
 #pragma once
 
@@ -40,8 +41,7 @@
 namespace bssrdf {
 
 // The model's domain, inclusive: alpha' 0 to 1 (continued below the first albedo node exactly and
-// above the last by diffusion), g from the first node to 0.999 (continued linearly in 1 - g beyond the
-// last node, 0.99), eta over the nodes.
+// above the last by diffusion), g and eta over the nodes (0 to 0.999, 1 to 2).
 std::pair<double, double> exact_albedo_range(const ExactTable& table);
 std::pair<double, double> exact_g_range(const ExactTable& table);
 std::pair<double, double> exact_eta_range(const ExactTable& table);

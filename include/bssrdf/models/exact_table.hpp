@@ -39,7 +39,8 @@ struct ExactTable {
   NodeArray<float> ln_y;
   // Relative standard error of y, in units of 1e-4; kExtrapolated where the Monte Carlo had too
   // few photons and the value continues the measured profile (near field below the multiple-
-  // scattering onset, far tail beyond the well-measured radii).
+  // scattering onset, far tail beyond the well-measured radii). Empty unless read with
+  // TableErrors::read (the model does not use it).
   NodeArray<std::uint16_t> relative_error;
   static constexpr std::uint16_t kExtrapolated = 65535;
   // [eta][g][albedo]: total diffuse reflectance per unit entered flux (adding-doubling).
@@ -75,11 +76,16 @@ struct ExactTable {
   void validate() const;
 };
 
-// Binary file: magic "BSSRDFX1", a little-endian uint64 header length, a JSON header (axes,
-// layout, provenance), then ln_y (float32), relative_error (uint16), total (float64) and, in
-// version 2, fine_total (float64), little-endian; version 1 files (no fine totals) still load. Throws InvalidInput
-// (field "exact table") on a malformed or truncated file.
-ExactTable read_exact_table(const std::string& path);
+// Binary file (version 3): magic "BSSRDFX1", a little-endian uint64 header length, a JSON header
+// (axes, layout, provenance), then ln_y (float32), total (float64) and, with a total_eta axis,
+// fine_total (float64), little-endian. The relative errors live beside it in PATH.errors (magic
+// "BSSRDFE1", a uint64 count, the uint16 values in ln_y's order): the model never reads them, and
+// without them the table with version 7's nodes stays under 2 MiB. Versions 1 and 2 (errors inline
+// after ln_y; version 1 without fine totals) still load. Throws InvalidInput (field "exact table")
+// on a malformed or truncated file.
+enum class TableErrors { skip, read };  // read: relative_error filled (from PATH.errors in version 3)
+ExactTable read_exact_table(const std::string& path, TableErrors errors = TableErrors::skip);
+// Writes PATH (version 3) and, when the table holds relative errors, PATH.errors.
 void write_exact_table(const ExactTable& table, const std::string& path);
 
 // The table shipped with the project, loaded on first use (thread-safe). Looked up in
