@@ -127,23 +127,24 @@ TEST(ModelChoiceLive, InsideTheDomainEstimatesAreLiveAndExactIsACandidate) {
   for (const auto& e : *table) EXPECT_EQ(e.source, "table") << e.model;
 }
 
-// Below the first albedo node with g > 0.995 the continuation misses the goal (fresh Monte Carlo: far field
-// 3.7 % beyond noise at alpha' 3e-5, g 0.997, total -1.1 % at g 0.998;
-// tools/validation/exact_extended_vs_montecarlo.txt, runs M): the tool says so, through exact's band there, instead of
-// the 1.8 % of the region around it.
-TEST(ModelChoiceLive, ExactSaysItMissesTheGoalBelowTheFirstNodeBeyondG0995) {
-  const auto corner = estimate_model_errors(reduce(0.9997, 0.0003 / (1 - 0.997), 0.997, 1.3));
-  const auto neighbour = estimate_model_errors(reduce(0.99, 0.01 / (1 - 0.997), 0.997, 1.3));  // alpha' 0.01
-  ASSERT_TRUE(corner && neighbour);
+// Where the exact model misses the goal the tool says so, through exact's band there: above eta 1.6
+// beyond g 0.99 its far field misses by 6.9 % at alpha' 0.003, g 0.998, eta 1.9 (fresh Monte Carlo,
+// tools/validation/exact_v8_vs_montecarlo.txt). Below alpha' 0.001 with g > 0.995, where the
+// continuation had missed (3.7 % far field, -2.6 % total at g 0.999), the table's own nodes (since
+// 2026-12-07) meet it, and the band says that too.
+TEST(ModelChoiceLive, ExactSaysWhereItMissesTheGoal) {
+  const auto high_index = estimate_model_errors(reduce(0.997, 0.003 / (1 - 0.998), 0.998, 1.9));
+  const auto below_old_node = estimate_model_errors(reduce(0.9997, 0.0003 / (1 - 0.997), 0.997, 1.3));
+  ASSERT_TRUE(high_index && below_old_node);
   const auto exact_of = [](const std::vector<ModelErrorEstimate>& estimates) {
     for (const auto& e : estimates)
       if (e.model == "exact") return e;
     ADD_FAILURE() << "exact has no estimate";
     return estimates.front();
   };
-  EXPECT_GT(exact_of(*corner).profile_error, 0.03);  // the goal: 3 %
-  EXPECT_GT(exact_of(*corner).total_error, 0.01);
-  EXPECT_LT(exact_of(*neighbour).profile_error, 0.03);
+  EXPECT_GT(exact_of(*high_index).profile_error, 0.03);  // the goal: 3 %
+  EXPECT_LT(exact_of(*below_old_node).profile_error, 0.03);
+  EXPECT_LT(exact_of(*below_old_node).total_error, 0.02);
 }
 
 // Over the 47 bundled materials: the served set grows with the accuracy, every served choice is

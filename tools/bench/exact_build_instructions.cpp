@@ -6,7 +6,7 @@
 //   done
 // (the difference of the two "Collected" counts over the builds' number is one build's cost).
 //   exact_build_instructions CASE [builds]   CASE 0 table, 1 alpha' > 0.9999, 2 g > 0.99, 3 eta near 2,
-//                                            4 alpha' < 0.001, 5 the same through the per-radius
+//                                            4 alpha' below the first node, 5 the same through the per-radius
 //                                            single-scattering path (the previous one);
 //                                            builds: 200 (20 for cases 4 and 5)
 #include <cstdio>
@@ -43,10 +43,11 @@ int main(int argc, char** argv) {
         sink = ExactProfile(table, 0.7, 0.5, 2.0 - 0.02 * u).total();
         break;
       case 4:
-        sink = ExactProfile(table, 0.0009 * u, 0.5, 1.35).total();
+        sink = ExactProfile(table, table.albedo_prime.front() * u, 0.5, 1.35).total();
         break;
       case 5:
-        sink = ExactProfile(table, 0.0009 * u, 0.5, 1.35, SingleScatteringRadii::per_radius).total();
+        sink =
+            ExactProfile(table, table.albedo_prime.front() * u, 0.5, 1.35, SingleScatteringRadii::per_radius).total();
         break;
     }
   }
