@@ -5,6 +5,11 @@
 
 namespace bssrdf {
 
+double model_bin_average(const Model& model, const Reduced<double>& m, double inner, double outer) {
+  const double area = std::numbers::pi * (outer * outer - inner * inner);
+  return (model.cumulative_reflectance(m, outer) - model.cumulative_reflectance(m, inner)) / area;
+}
+
 ProfileDeviation compare_with_monte_carlo(const Model& model, const Reduced<double>& m, const MonteCarloResult& run,
                                           std::size_t channel) {
   const auto mc = run.channels.at(channel).per_entered_flux();
@@ -14,7 +19,7 @@ ProfileDeviation compare_with_monte_carlo(const Model& model, const Reduced<doub
   for (std::size_t i = 0; i < mc.reflectance.size(); ++i) {
     const double inner = run.bin_inner[i], outer = run.bin_outer[i];
     const double area = std::numbers::pi * (outer * outer - inner * inner);
-    const double average = (model.cumulative_reflectance(m, outer) - model.cumulative_reflectance(m, inner)) / area;
+    const double average = model_bin_average(model, m, inner, outer);
     for (int part : {0, outer <= m.ell ? 1 : 2}) {
       diff[part] += area * std::pow(average - mc.reflectance[i], 2);
       norm[part] += area * std::pow(mc.reflectance[i], 2);

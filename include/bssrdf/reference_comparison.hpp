@@ -25,6 +25,10 @@ struct ProfileDeviation {
   double near_r = 0, far_r = 0, near_r_noise = 0, far_r_noise = 0;
 };
 
+// The model's mean R(r) over the annulus inner < r < outer (from its cumulative reflectance): what a
+// Monte Carlo bin tallies.
+double model_bin_average(const Model& model, const Reduced<double>& m, double inner, double outer);
+
 ProfileDeviation compare_with_monte_carlo(const Model& model, const Reduced<double>& m, const MonteCarloResult& run,
                                           std::size_t channel = 0);
 

@@ -51,6 +51,14 @@ void read_array(std::istream& in, std::uintmax_t& remaining, std::size_t count, 
   remaining -= static_cast<std::uintmax_t>(bytes);
 }
 
+// Steps over `count` values of T (a version-2 table's inline errors, unread), checked as read_array does.
+template <class T>
+void skip_array(std::istream& in, std::uintmax_t& remaining, std::size_t count, const std::string& path) {
+  if (count > remaining / sizeof(T)) throw InvalidInput(kField, path, "a complete table file (truncated data)");
+  in.seekg(static_cast<std::streamoff>(count * sizeof(T)), std::ios::cur);
+  remaining -= count * sizeof(T);
+}
+
 }  // namespace
 
 void ExactTable::validate() const {
@@ -190,14 +198,10 @@ ExactTable read_exact_table(const std::string& path, TableErrors errors) {
   const std::size_t n = table.nodes() * table.radii;
   read_array(in, remaining, n, table.ln_y, path);
   if (version < 3) {  // errors inline: read, or stepped over (still checked to be there)
-    if (errors == TableErrors::read) {
+    if (errors == TableErrors::read)
       read_array(in, remaining, n, table.relative_error, path);
-    } else {
-      if (n > remaining / sizeof(std::uint16_t))
-        throw InvalidInput(kField, path, "a complete table file (truncated data)");
-      in.seekg(static_cast<std::streamoff>(n * sizeof(std::uint16_t)), std::ios::cur);
-      remaining -= n * sizeof(std::uint16_t);
-    }
+    else
+      skip_array<std::uint16_t>(in, remaining, n, path);
   }
   read_array(in, remaining, table.nodes(), table.total, path);
   read_array(in, remaining, table.total_eta.size() * table.g.size() * table.albedo_prime.size(), table.fine_total,

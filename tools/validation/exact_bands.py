@@ -6,9 +6,10 @@
 Reads every point line (alpha', g, eta, photons, total %, sigma, near %, noise %, far %, noise %);
 a point given again (validate_exact at ...: the same alpha', g and eta to 5 digits) replaces its
 earlier run. Outputs after --then measure a newer table or model: a region with points there takes
-its points from the last such group alone (the earlier runs measured what no longer ships). Prints, per region of src/model_registry.cpp (first match wins) and for the whole
-domain, the points, the worst |total| and the worst L2 excess sqrt(L2^2 - noise^2), near and far:
-the band the registry states is the worst total and the worse of the two L2 figures."""
+its points from the last such group alone (the earlier runs measured what no longer ships).
+Prints, per region of src/model_registry.cpp (first match wins) and for the whole domain, the
+points, the worst |total| and the worst L2 excess sqrt(L2^2 - noise^2), near and far: the band the
+registry states is the worst total and the worse of the two L2 figures."""
 import math
 import sys
 
@@ -29,10 +30,15 @@ REGIONS = [
 ]
 
 
-def points(paths, seen=None):
-    seen = {} if seen is None else seen
+def points(paths):
+    seen = {}
     for path in paths:
-        for line in open(path, encoding="utf-8"):
+        try:
+            lines = open(path, encoding="utf-8").readlines()
+        except OSError as error:
+            print(f"exact_bands.py: {path}: {error.strerror}", file=sys.stderr)
+            sys.exit(2)
+        for line in lines:
             if line.startswith("#") or not line.strip():
                 continue
             fields = line.split()
@@ -58,7 +64,7 @@ def region(p):
 
 def main():
     if len(sys.argv) < 2:
-        print("usage: exact_bands.py VALIDATE_EXACT_OUTPUT...", file=sys.stderr)
+        print("usage: exact_bands.py OUTPUT... [--then LATER_OUTPUT...]...", file=sys.stderr)
         return 2
     groups = [[]]
     for arg in sys.argv[1:]:

@@ -25,7 +25,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <numbers>
 #include <random>
 #include <string>
 #include <vector>
@@ -82,11 +81,8 @@ void write_bins(const std::string& prefix, int i, const Model& model, const Medi
   std::fprintf(f, "# alpha' %.9g g %.9g eta %.9g\n# inner\touter\tmc\tmc_stderr\tmodel\n", m.albedo_prime, m.g, m.eta);
   for (std::size_t k = 0; k < mc.reflectance.size(); ++k) {
     const double inner = run.bin_inner[k], outer = run.bin_outer[k];
-    const double area = std::numbers::pi * (outer * outer - inner * inner);
-    const double model_average =
-        (model.cumulative_reflectance(m, outer) - model.cumulative_reflectance(m, inner)) / area;
     std::fprintf(f, "%.9g\t%.9g\t%.9g\t%.9g\t%.9g\n", inner, outer, mc.reflectance[k], mc.reflectance_stderr[k],
-                 model_average);
+                 model_bin_average(model, m, inner, outer));
   }
   std::fclose(f);
 }
