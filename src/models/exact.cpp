@@ -10,6 +10,7 @@
 
 #include "bssrdf/cubic_hermite.hpp"
 #include "bssrdf/error.hpp"
+#include "bssrdf/exp_array.hpp"
 #include "bssrdf/models/dipole.hpp"
 #include "bssrdf/root_finding.hpp"
 #include "bssrdf/single_scattering.hpp"
@@ -144,12 +145,6 @@ bool inside(double v, std::pair<double, double> range) {
 // The medium of reduced albedo alpha' in transport units (sigma_t' = 1).
 Reduced<double> transport_medium(double albedo_prime, double g, double eta) {
   return reduce(1 - albedo_prime, albedo_prime / (1 - g), g, eta);
-}
-
-// ln(e^a + e^b) without overflow or underflow (either may be -inf).
-double log_add(double a, double b) {
-  if (a < b) std::swap(a, b);
-  return b == -std::numeric_limits<double>::infinity() ? a : a + std::log1p(std::exp(b - a));
 }
 
 // ln y_ss of a medium (transport units) at the radii e^{ln_r0 + k d_ln_r}, k < n, by the log-grid
@@ -287,30 +282,47 @@ struct BelowFirstNode {
     };
     const std::array<ShiftedRow, 2> node_y{read_at_medium_rho(0), read_at_medium_rho(1)};
     const std::vector<double> ln_ss = single_scattering_row(table, medium, how);
-    constexpr double kInf = std::numeric_limits<double>::infinity();
-    const double alpha = medium.albedo(), ln_alpha = std::log(alpha);
+    const double alpha = medium.albedo();
+    // (alpha_j / alpha): node j's single scattering over the medium's.
+    const std::array<double, 2> ss_ratio{node[0].albedo() / alpha, node[1].albedo() / alpha};
+    // The multiple scattering over alpha^2, ln-linear in alpha, as a factor on the first node's:
+    // MS / MS_0 = (alpha / alpha_0)^2 (MS_1 alpha_0^2 / (MS_0 alpha_1^2))^t.
+    const double ln_to_medium = 2 * std::log(1 / ss_ratio[0]);
+    const double ln_between = 2 * std::log(ss_ratio[0] / ss_ratio[1]);
+    const double ln_alpha = std::log(alpha);
     const std::array<double, 2> ln_alpha_node{std::log(node[0].albedo()), std::log(node[1].albedo())};
     ln_y.resize(n);
+    constexpr double kNone = -std::numeric_limits<double>::infinity();
+    const auto far = [&](std::size_t k) { return ln_ss[k] == kNone; };  // no single scattering left
+    // The exponentials in two vectorised passes (exp_array). First, in units of the first node's y at
+    // each radius (the two nodes' y differ by a few e-folds where single scattering has not
+    // underflowed): the medium's single scattering u = y_ss / y_0 and the second node's d = y_1 / y_0.
+    std::vector<double> v0(n), u(n), d(n);
     for (std::size_t k = 0; k < n; ++k) {
-      // ln of each node's multiple scattering over alpha_j^2 (NaN where it is not positive), in
-      // logarithms: far out the nodes' tails differ by more than a double's range.
-      std::array<double, 2> v{}, ms{};
-      for (std::size_t j = 0; j < 2; ++j) {
-        v[j] = node_y[j](k);
-        // Single scattering's share of it; none where it underflowed (the far field).
-        const double share = ln_ss[k] == -kInf ? 0.0 : std::exp(ln_ss[k] + ln_alpha_node[j] - ln_alpha - v[j]);
-        ms[j] = share == 0  ? v[j] - 2 * ln_alpha_node[j]
-                : share < 1 ? v[j] + std::log1p(-share) - 2 * ln_alpha_node[j]
-                            : std::numeric_limits<double>::quiet_NaN();
-      }
-      if (!std::isnan(ms[0])) {
-        ln_y[k] = log_add(extrapolate(ms[0], ms[1]) + 2 * ln_alpha, ln_ss[k]);
-      } else {
-        // The first node all single scattering within rounding (the near field): its y scaled,
-        // y = y_ss (1 - alpha / alpha_0) + (alpha / alpha_0)^2 y_0, which meets it at alpha_0.
-        const double ratio = alpha / node[0].albedo();
-        ln_y[k] = log_add(ln_ss[k] + std::log1p(-ratio), v[0] + 2 * std::log(ratio));
-      }
+      v0[k] = node_y[0](k);
+      const double v1 = node_y[1](k);
+      if (far(k))  // far out the nodes' tails differ by more than a double's range: in logarithms
+        ln_y[k] = extrapolate(v0[k] - 2 * ln_alpha_node[0], v1 - 2 * ln_alpha_node[1]) + 2 * ln_alpha;
+      u[k] = far(k) ? 0.0 : ln_ss[k] - v0[k];
+      d[k] = far(k) ? 0.0 : v1 - v0[k];
+    }
+    exp_array(u.data(), u.data(), n);
+    exp_array(d.data(), d.data(), n);
+    // Then each node's multiple scattering over y_0, m_j = y_j / y_0 - (alpha_j / alpha) u, and the
+    // medium's, m_0 (m_1 alpha_0^2 / (m_0 alpha_1^2))^t (alpha / alpha_0)^2: its exponent into d.
+    for (std::size_t k = 0; k < n; ++k) {
+      const double m0 = 1 - ss_ratio[0] * u[k], m1 = d[k] - ss_ratio[1] * u[k];
+      d[k] = m0 > 0 && m1 > 0 && std::isfinite(m1) ? t * (std::log(m1 / m0) + ln_between) + ln_to_medium
+                                                   : ln_to_medium;  // the second node's not positive: the first's alone
+    }
+    exp_array(d.data(), d.data(), n);
+    const double ratio = 1 / ss_ratio[0];
+    for (std::size_t k = 0; k < n; ++k) {
+      if (far(k)) continue;
+      const double m0 = 1 - ss_ratio[0] * u[k];
+      // Where the first node is all single scattering within rounding (the near field), its y scaled,
+      // y = y_ss (1 - alpha / alpha_0) + (alpha / alpha_0)^2 y_0, which meets it at alpha_0.
+      ln_y[k] = v0[k] + std::log(m0 > 0 ? m0 * d[k] + u[k] : u[k] * (1 - ratio) + ratio * ratio);
     }
   }
 };
@@ -454,18 +466,21 @@ ExactProfile::ExactProfile(const ExactTable& table, double albedo_prime, double 
 
   // Normalise to the interpolated adding-doubling total: integrate y over ln r (Simpson on four
   // sub-intervals per radius step, plus the head and tail in closed form).
+  // Every exponential at once (exp_array, vectorised): y at the radii, then at the steps' quarters.
+  std::vector<double> y(4 * radii - 3);
+  std::copy(ln_y_.begin(), ln_y_.end(), y.begin());
+  for (std::size_t k = 0; k + 1 < radii; ++k)
+    for (std::size_t j = 1; j < 4; ++j)
+      y[radii + 3 * k + j - 1] = catmull_rom(ln_y_.data(), radii, k, 0.25 * static_cast<double>(j));
+  exp_array(y.data(), y.data(), y.size());
   cumulative_.assign(radii, 0.0);
-  double y_left = std::exp(ln_y_[0]);
-  double sum = y_left / head_slope_;
+  double sum = y[0] / head_slope_;
   cumulative_[0] = sum;
   const double h = d_ln_r_ / 4;
   for (std::size_t k = 0; k + 1 < radii; ++k) {
-    const double y_right = std::exp(ln_y_[k + 1]);
-    double s = y_left + y_right;
-    for (int j = 1; j < 4; ++j) s += (j % 2 ? 4 : 2) * std::exp(catmull_rom(ln_y_.data(), radii, k, 0.25 * j));
-    sum += s * h / 3;
+    const double* quarter = &y[radii + 3 * k];
+    sum += (y[k] + 4 * quarter[0] + 2 * quarter[1] + 4 * quarter[2] + y[k + 1]) * h / 3;
     cumulative_[k + 1] = sum;
-    y_left = y_right;
   }
   // Tail: int_{r_N}^inf y_N e^{b (r - r_N)} dr / r <= y_N / (|b| r_N); the table ends far out
   // (99.9 % of the energy inside), so the bound is the value.
@@ -476,8 +491,8 @@ ExactProfile::ExactProfile(const ExactTable& table, double albedo_prime, double 
     const auto [t_last, t_before] = last_totals(table, w);
     total_ = above->total(t_last, t_before);
   }
-  const double scale = total_ / sum;
-  for (auto& v : ln_y_) v += std::log(scale);
+  const double scale = total_ / sum, ln_scale = std::log(scale);
+  for (auto& v : ln_y_) v += ln_scale;
   for (auto& c : cumulative_) c *= scale;
 }
 

@@ -8,8 +8,10 @@
 //   validate_exact at SCATTERINGS MAX_PHOTONS SEED ALPHA',G,ETA [...]   (given points, e.g. again with
 //                  more photons where a random point's run was too noisy to resolve the goal)
 //   BSSRDF_VALIDATE_BINS=PREFIX validate_exact ...   also writes each point's bins to PREFIX_<i>.tsv (inner,
-//                  outer radius, Monte Carlo R and its standard error, the model's bin average): where a
-//                  miss lies in r
+//                  outer radius, Monte Carlo R and its standard error, the model's bin average, the bin's
+//                  representative radius; the run's total and photons in the header): where a miss lies in r
+//   validate_exact rescore FILE.tsv [...]   the same figures from such files, the model as it is now (another
+//                  table through BSSRDF_EXACT_TABLE): two tables against the very same reference runs
 //
 // Each point: alpha' log-uniform in logit over [0.001, 0.9999] (1 - alpha' log-uniform where
 // alpha'_min >= 0.9999: the continuation to 1), g uniform in -ln(1 - g) over [0, 0.99], eta uniform
@@ -78,14 +80,102 @@ void write_bins(const std::string& prefix, int i, const Model& model, const Medi
   }
   const auto m = medium.reduced(0);
   const auto mc = run.channels[0].per_entered_flux();
-  std::fprintf(f, "# alpha' %.9g g %.9g eta %.9g\n# inner\touter\tmc\tmc_stderr\tmodel\n", m.albedo_prime, m.g, m.eta);
+  std::fprintf(f, "# alpha' %.17g g %.17g eta %.17g\n", m.albedo_prime, m.g, m.eta);
+  std::fprintf(f, "# diffuse_reflectance %.17g stderr %.17g photons %llu\n", mc.diffuse_reflectance.value,
+               mc.diffuse_reflectance.standard_error, static_cast<unsigned long long>(run.options.photons));
+  std::fprintf(f, "# inner\touter\tmc\tmc_stderr\tmodel\tradius\n");
   for (std::size_t k = 0; k < mc.reflectance.size(); ++k) {
     const double inner = run.bin_inner[k], outer = run.bin_outer[k];
-    std::fprintf(f, "%.9g\t%.9g\t%.9g\t%.9g\t%.9g\n", inner, outer, mc.reflectance[k], mc.reflectance_stderr[k],
-                 model_bin_average(model, m, inner, outer));
+    std::fprintf(f, "%.17g\t%.17g\t%.17g\t%.17g\t%.9g\t%.17g\n", inner, outer, mc.reflectance[k],
+                 mc.reflectance_stderr[k], model_bin_average(model, m, inner, outer), run.bin_radius[k]);
   }
   std::fclose(f);
 }
+
+// A run as write_bins left it (per entered flux: no specular reflection), for `rescore`.
+struct StoredRun {
+  Medium medium;
+  MonteCarloResult run;
+};
+StoredRun read_bins(const char* path) {
+  const auto fail = [&](const char* what) {
+    std::fprintf(stderr, "validate_exact: %s: %s (expected a file written with BSSRDF_VALIDATE_BINS)\n", path, what);
+    std::exit(2);
+  };
+  std::FILE* f = std::fopen(path, "r");
+  if (!f) fail("cannot read");
+  double ap = 0, g = 0, eta = 0, total = 0, total_se = 0;
+  unsigned long long photons = 0;
+  char columns[256];
+  if (std::fscanf(f, "# alpha' %lf g %lf eta %lf\n", &ap, &g, &eta) != 3 ||
+      std::fscanf(f, "# diffuse_reflectance %lf stderr %lf photons %llu\n", &total, &total_se, &photons) != 3 ||
+      !std::fgets(columns, sizeof columns, f) || !(ap > 0 && ap < 1 && g >= 0 && g < 1 && eta >= 1 && total > 0))
+    fail("no header of a validate_exact bins file");
+  StoredRun s{Medium::single_channel(1 - ap, ap / (1 - g), g, eta), {}};
+  ChannelResult c;
+  c.diffuse_reflectance = {total, total_se};
+  double inner = 0, outer = 0, r = 0, se = 0, model = 0, radius = 0;
+  while (std::fscanf(f, "%lf %lf %lf %lf %lf %lf", &inner, &outer, &r, &se, &model, &radius) == 6) {
+    s.run.bin_inner.push_back(inner);
+    s.run.bin_outer.push_back(outer);
+    s.run.bin_radius.push_back(radius);
+    c.reflectance.push_back(r);
+    c.reflectance_stderr.push_back(se);
+  }
+  const bool complete = std::feof(f);
+  std::fclose(f);
+  if (!complete || c.reflectance.empty()) fail("a bin row is not six numbers");
+  s.run.channels.push_back(std::move(c));
+  s.run.options.photons = photons;
+  return s;
+}
+
+// The per-point rows and the section's summary: each point's deviation against its run.
+class Scores {
+ public:
+  Scores() {
+    std::printf("# %9s %6s %6s %10s %8s %7s %8s %8s %8s %8s\n", "alpha'", "g", "eta", "photons", "total%", "sigma",
+                "near%", "noise%", "far%", "noise%");
+  }
+  void add(const Reduced<double>& m, const MonteCarloResult& mc, const ProfileDeviation& d) {
+    const auto per_entered = mc.channels[0].per_entered_flux();
+    const double sigma = d.total * per_entered.diffuse_reflectance.value / per_entered.diffuse_reflectance.standard_error;
+    std::printf("%11.6g %6.3f %6.3f %10llu %8.3f %7.2f %8.3f %8.3f %8.3f %8.3f\n", m.albedo_prime, m.g, m.eta,
+                static_cast<unsigned long long>(mc.options.photons), 100 * d.total, sigma, 100 * d.near_r,
+                100 * d.near_r_noise, 100 * d.far_r, 100 * d.far_r_noise);
+    std::fflush(stdout);
+    ++n_;
+    total_ok_ += std::abs(d.total) <= 0.01 || std::abs(sigma) <= 3;
+    near_ok_ += d.near_r <= 0.03;
+    far_ok_ += d.far_r <= 0.03;
+    // The table's own error: what the L2 holds beyond the run's noise (they add in quadrature).
+    const double near_excess = std::sqrt(std::max(0.0, d.near_r * d.near_r - d.near_r_noise * d.near_r_noise));
+    const double far_excess = std::sqrt(std::max(0.0, d.far_r * d.far_r - d.far_r_noise * d.far_r_noise));
+    near_excess_ok_ += near_excess <= 0.03;
+    far_excess_ok_ += far_excess <= 0.03;
+    worst_total_ = std::max(worst_total_, std::abs(d.total));
+    worst_near_ = std::max(worst_near_, d.near_r);
+    worst_far_ = std::max(worst_far_, d.far_r);
+    worst_near_excess_ = std::max(worst_near_excess_, near_excess);
+    worst_far_excess_ = std::max(worst_far_excess_, far_excess);
+  }
+  void summary() const {
+    const int n = n_;
+    std::printf("# points meeting the goals: total %d/%d, near L2 %d/%d, far L2 %d/%d\n", total_ok_, n, near_ok_, n,
+                far_ok_, n);
+    std::printf(
+        "# worst: total %.3f %%, near L2 %.3f %%, far L2 %.3f %% (the Monte Carlo noise is in the L2: see columns)\n",
+        100 * worst_total_, 100 * worst_near_, 100 * worst_far_);
+    std::printf(
+        "# beyond the runs' noise (sqrt(L2^2 - noise^2)): near L2 within 3 %% at %d/%d (worst %.3f %%), far L2 at "
+        "%d/%d (worst %.3f %%)\n",
+        near_excess_ok_, n, 100 * worst_near_excess_, far_excess_ok_, n, 100 * worst_far_excess_);
+  }
+
+ private:
+  int n_ = 0, total_ok_ = 0, near_ok_ = 0, far_ok_ = 0, near_excess_ok_ = 0, far_excess_ok_ = 0;
+  double worst_total_ = 0, worst_near_ = 0, worst_far_ = 0, worst_near_excess_ = 0, worst_far_excess_ = 0;
+};
 
 }  // namespace
 
@@ -94,6 +184,22 @@ struct Point {
 };
 
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "rescore") {
+    if (argc < 3) {
+      std::fprintf(stderr, "usage: validate_exact rescore FILE.tsv [...]\n");
+      return 2;
+    }
+    std::vector<StoredRun> runs;
+    for (int i = 2; i < argc; ++i) runs.push_back(read_bins(argv[i]));  // every file read before any output
+    const auto model = make_model("exact");
+    std::printf("# exact model (table %s) vs the stored Monte Carlo runs %s ...\n",
+                std::getenv("BSSRDF_EXACT_TABLE") ? std::getenv("BSSRDF_EXACT_TABLE") : "bundled", argv[2]);
+    Scores scores;
+    for (const StoredRun& s : runs)
+      scores.add(s.medium.reduced(0), s.run, compare_with_monte_carlo(*model, s.medium.reduced(0), s.run));
+    scores.summary();
+    return 0;
+  }
   // `validate_exact at SCATTERINGS MAX_PHOTONS SEED ALPHA',G,ETA ...`: given points again with more
   // photons (where a random point's run was too noisy to resolve the goal).
   const bool given = argc > 1 && std::string(argv[1]) == "at";
@@ -157,49 +263,18 @@ int main(int argc, char** argv) {
   };
   // One section: each point against its own fresh run.
   const auto section = [&](const std::vector<Point>& list, std::uint64_t seed_offset, double max_photons) {
-    const int n = static_cast<int>(list.size());
-    std::printf("# %9s %6s %6s %10s %8s %7s %8s %8s %8s %8s\n", "alpha'", "g", "eta", "photons", "total%", "sigma",
-                "near%", "noise%", "far%", "noise%");
-    int total_ok = 0, near_ok = 0, far_ok = 0, near_excess_ok = 0, far_excess_ok = 0;
-    double worst_total = 0, worst_near = 0, worst_far = 0, worst_near_excess = 0, worst_far_excess = 0;
-    for (int i = 0; i < n; ++i) {
-      const auto [ap, g, eta] = list[static_cast<std::size_t>(i)];
+    Scores scores;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const auto [ap, g, eta] = list[i];
       // Transport units: sigma_t' = 1.
       const Medium medium = Medium::single_channel(1 - ap, ap / (1 - g), g, eta);
       const auto mc =
           run(medium, *model, scatterings, seed * 1000 + seed_offset + static_cast<unsigned>(i), max_photons);
-      const auto d = compare_with_monte_carlo(*model, medium.reduced(0), mc);
-      if (const char* prefix = std::getenv("BSSRDF_VALIDATE_BINS")) write_bins(prefix, i, *model, medium, mc);
-      const auto per_entered = mc.channels[0].per_entered_flux();
-      const double sigma =
-          d.total * per_entered.diffuse_reflectance.value / per_entered.diffuse_reflectance.standard_error;
-      std::printf("%11.6g %6.3f %6.3f %10llu %8.3f %7.2f %8.3f %8.3f %8.3f %8.3f\n", ap, g, eta,
-                  static_cast<unsigned long long>(mc.options.photons), 100 * d.total, sigma, 100 * d.near_r,
-                  100 * d.near_r_noise, 100 * d.far_r, 100 * d.far_r_noise);
-      std::fflush(stdout);
-      total_ok += std::abs(d.total) <= 0.01 || std::abs(sigma) <= 3;
-      near_ok += d.near_r <= 0.03;
-      far_ok += d.far_r <= 0.03;
-      // The table's own error: what the L2 holds beyond the run's noise (they add in quadrature).
-      const double near_excess = std::sqrt(std::max(0.0, d.near_r * d.near_r - d.near_r_noise * d.near_r_noise));
-      const double far_excess = std::sqrt(std::max(0.0, d.far_r * d.far_r - d.far_r_noise * d.far_r_noise));
-      near_excess_ok += near_excess <= 0.03;
-      far_excess_ok += far_excess <= 0.03;
-      worst_total = std::max(worst_total, std::abs(d.total));
-      worst_near = std::max(worst_near, d.near_r);
-      worst_far = std::max(worst_far, d.far_r);
-      worst_near_excess = std::max(worst_near_excess, near_excess);
-      worst_far_excess = std::max(worst_far_excess, far_excess);
+      if (const char* prefix = std::getenv("BSSRDF_VALIDATE_BINS"))
+        write_bins(prefix, static_cast<int>(i), *model, medium, mc);
+      scores.add(medium.reduced(0), mc, compare_with_monte_carlo(*model, medium.reduced(0), mc));
     }
-    std::printf("# points meeting the goals: total %d/%d, near L2 %d/%d, far L2 %d/%d\n", total_ok, n, near_ok, n,
-                far_ok, n);
-    std::printf(
-        "# worst: total %.3f %%, near L2 %.3f %%, far L2 %.3f %% (the Monte Carlo noise is in the L2: see columns)\n",
-        100 * worst_total, 100 * worst_near, 100 * worst_far);
-    std::printf(
-        "# beyond the runs' noise (sqrt(L2^2 - noise^2)): near L2 within 3 %% at %d/%d (worst %.3f %%), far L2 at "
-        "%d/%d (worst %.3f %%)\n",
-        near_excess_ok, n, 100 * worst_near_excess, far_excess_ok, n, 100 * worst_far_excess);
+    scores.summary();
   };
 
   if (given) {
