@@ -59,10 +59,11 @@ double exact_total(const ExactTable& table, double albedo_prime, double g, doubl
 double exact_albedo_prime_from_total(const ExactTable& table, double total, double g, double eta);
 
 // How a build below the first albedo node integrates the medium's single scattering at the table's
-// radii: `log_grid` (single_scattering_ln_y, all radii at once: the whole build 8.8 us on the
-// development machine, tools/bench/bench_exact) or `per_radius` (96-point Gauss-Legendre at each
-// radius, as the table's generator did: 188 us; the measured baseline of bench_exact and the tests).
-// The profiles agree to 1e-6 relative (tests/test_exact_model.cpp).
+// radii: `log_grid` (single_scattering_ln_y, all radii at once: the whole build 84 700 instructions,
+// 15 us on the development machine's 2026-12-07 timings, tools/bench/bench_exact and docs/exact.md) or
+// `per_radius` (96-point Gauss-Legendre at each radius, as the table's generator did: 188 us; the
+// measured baseline of bench_exact and the tests). The profiles agree to 1e-6 relative
+// (tests/test_exact_model.cpp).
 enum class SingleScatteringRadii { log_grid, per_radius };
 
 class ExactProfile {

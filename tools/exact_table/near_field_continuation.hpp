@@ -1,0 +1,31 @@
+// The exact table generator's continuation of a node's multiple scattering below its first
+// well-measured radius (generator version 9; data/exact/README.md): y_ms ~ r^s from that radius
+// inward, s in [1, 2], chosen so the continued radii hold the energy the run tallied there.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+
+namespace bssrdf::exact_table {
+
+// The slope s of ln y_ms in ln r below radius index `first` (radii spaced d_ln_r in ln r), where
+// y_ms is `y_first` at that radius and the run's tallies at the `first` radii inside it sum to
+// `pooled` (each radius's bin mean of y) with standard error `pooled_se`. As r -> 0 multiple
+// scattering is flat in R (s = 2); within a mean free path of the entry a strongly forward medium
+// is not there yet (R ~ 1/r, s = 1: single scattering's singularity, the strongest there is). The
+// pooled tally decides where it is measured within 30 % (as a well-measured bin); else s = 2.
+inline double near_field_slope(double y_first, double pooled, double pooled_se, std::size_t first, double d_ln_r) {
+  const auto continued_sum = [&](double slope) {  // falls as the slope grows
+    double sum = 0;
+    for (std::size_t k = 0; k < first; ++k)
+      sum += y_first * std::exp(slope * d_ln_r * (static_cast<double>(k) - static_cast<double>(first)));
+    return sum;
+  };
+  if (first == 0 || !(pooled > 0 && pooled_se < 0.3 * pooled) || pooled <= continued_sum(2)) return 2;
+  if (pooled >= continued_sum(1)) return 1;
+  double lo = 1, hi = 2;
+  for (int i = 0; i < 50; ++i) ((continued_sum(0.5 * (lo + hi)) > pooled) ? lo : hi) = 0.5 * (lo + hi);
+  return 0.5 * (lo + hi);
+}
+
+}  // namespace bssrdf::exact_table
