@@ -311,6 +311,7 @@ struct BelowFirstNode {
     // Then each node's multiple scattering over y_0, m_j = y_j / y_0 - (alpha_j / alpha) u, and the
     // medium's, m_0 (m_1 alpha_0^2 / (m_0 alpha_1^2))^t (alpha / alpha_0)^2: its exponent into d.
     for (std::size_t k = 0; k < n; ++k) {
+      if (far(k)) continue;
       const double m0 = 1 - ss_ratio[0] * u[k], m1 = d[k] - ss_ratio[1] * u[k];
       d[k] = m0 > 0 && m1 > 0 && std::isfinite(m1) ? t * (std::log(m1 / m0) + ln_between) + ln_to_medium
                                                    : ln_to_medium;  // the second node's not positive: the first's alone
