@@ -13,11 +13,14 @@ namespace {
 
 constexpr double kStep = 0.19188209108483255;  // the table's ln-radius step, ln 10 / 12
 
-// The sum over the `first` radii inside of y ~ r^s, the value at the first measured radius y0.
+// What a run tallies at the `first` radii r_k = r_first e^{(k - first) step} inside the first measured
+// one when y follows the power law y0 (r / r_first)^s there.
 double tally(double y0, double s, std::size_t first) {
   double sum = 0;
-  for (std::size_t k = 0; k < first; ++k)
-    sum += y0 * std::exp(s * kStep * (static_cast<double>(k) - static_cast<double>(first)));
+  for (std::size_t k = 0; k < first; ++k) {
+    const double r_over_first = std::exp(kStep * (static_cast<double>(k) - static_cast<double>(first)));
+    sum += y0 * std::pow(r_over_first, s);
+  }
   return sum;
 }
 

@@ -781,7 +781,7 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
               exact_table::near_field_slope(y_ms[fg], pooled, std::sqrt(pooled_variance), fg, grid.d_ln_r);
           if (fg > 0) near_slopes.push_back(slope);
           for (std::size_t k = 0; k < fg; ++k) {
-            y_ms[k] = y_ms[fg] * std::exp(slope * grid.d_ln_r * (static_cast<double>(k) - static_cast<double>(fg)));
+            y_ms[k] = exact_table::near_field_continued(y_ms[fg], slope, k, fg, grid.d_ln_r);
             continued[k] = true;
           }
           // Between well-measured radii, a bin without photons takes the log-linear interpolation
@@ -887,16 +887,13 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   p["extrapolated_entries"] = extrapolated;
   {
     std::sort(near_slopes.begin(), near_slopes.end());
-    const auto count = [&](double lo, double hi) {
-      return std::count_if(near_slopes.begin(), near_slopes.end(), [&](double v) { return v >= lo && v <= hi; });
-    };
     p["near_field_continuation"] = {
         {"rule",
          "y_ms ~ r^s below the first radius measured within 30 %, s in [1, 2] holding the pooled tally there "
          "where that is measured within 30 %, else s = 2"},
         {"nodes", near_slopes.size()},
-        {"slope_1", count(1, 1)},
-        {"slope_2", count(2, 2)},
+        {"slope_1", std::count(near_slopes.begin(), near_slopes.end(), 1.0)},
+        {"slope_2", std::count(near_slopes.begin(), near_slopes.end(), 2.0)},
         {"median_slope", near_slopes.empty() ? 2.0 : near_slopes[near_slopes.size() / 2]}};
   }
   p["radial_smoothing"] = {

@@ -8,6 +8,11 @@
 
 namespace bssrdf::exact_table {
 
+// y_ms at radius index k < first, continued from y_first at index `first` with slope s in ln r.
+inline double near_field_continued(double y_first, double slope, std::size_t k, std::size_t first, double d_ln_r) {
+  return y_first * std::exp(slope * d_ln_r * (static_cast<double>(k) - static_cast<double>(first)));
+}
+
 // The slope s of ln y_ms in ln r below radius index `first` (radii spaced d_ln_r in ln r), where
 // y_ms is `y_first` at that radius and the run's tallies at the `first` radii inside it sum to
 // `pooled` (each radius's bin mean of y) with standard error `pooled_se`. As r -> 0 multiple
@@ -17,14 +22,16 @@ namespace bssrdf::exact_table {
 inline double near_field_slope(double y_first, double pooled, double pooled_se, std::size_t first, double d_ln_r) {
   const auto continued_sum = [&](double slope) {  // falls as the slope grows
     double sum = 0;
-    for (std::size_t k = 0; k < first; ++k)
-      sum += y_first * std::exp(slope * d_ln_r * (static_cast<double>(k) - static_cast<double>(first)));
+    for (std::size_t k = 0; k < first; ++k) sum += near_field_continued(y_first, slope, k, first, d_ln_r);
     return sum;
   };
   if (first == 0 || !(pooled > 0 && pooled_se < 0.3 * pooled) || pooled <= continued_sum(2)) return 2;
   if (pooled >= continued_sum(1)) return 1;
-  double lo = 1, hi = 2;
-  for (int i = 0; i < 50; ++i) ((continued_sum(0.5 * (lo + hi)) > pooled) ? lo : hi) = 0.5 * (lo + hi);
+  double lo = 1, hi = 2;  // bisection: the sum at lo is above the tally, at hi below it
+  for (int i = 0; i < 50; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (continued_sum(mid) > pooled ? lo : hi) = mid;
+  }
   return 0.5 * (lo + hi);
 }
 

@@ -149,8 +149,8 @@ class Scores {
     near_ok_ += d.near_r <= 0.03;
     far_ok_ += d.far_r <= 0.03;
     // The table's own error: what the L2 holds beyond the run's noise (they add in quadrature).
-    const double near_excess = std::sqrt(std::max(0.0, d.near_r * d.near_r - d.near_r_noise * d.near_r_noise));
-    const double far_excess = std::sqrt(std::max(0.0, d.far_r * d.far_r - d.far_r_noise * d.far_r_noise));
+    const auto beyond_noise = [](double l2, double noise) { return std::sqrt(std::max(0.0, l2 * l2 - noise * noise)); };
+    const double near_excess = beyond_noise(d.near_r, d.near_r_noise), far_excess = beyond_noise(d.far_r, d.far_r_noise);
     near_excess_ok_ += near_excess <= 0.03;
     far_excess_ok_ += far_excess <= 0.03;
     worst_total_ = std::max(worst_total_, std::abs(d.total));
@@ -160,16 +160,15 @@ class Scores {
     worst_far_excess_ = std::max(worst_far_excess_, far_excess);
   }
   void summary() const {
-    const int n = n_;
-    std::printf("# points meeting the goals: total %d/%d, near L2 %d/%d, far L2 %d/%d\n", total_ok_, n, near_ok_, n,
-                far_ok_, n);
+    std::printf("# points meeting the goals: total %d/%d, near L2 %d/%d, far L2 %d/%d\n", total_ok_, n_, near_ok_, n_,
+                far_ok_, n_);
     std::printf(
         "# worst: total %.3f %%, near L2 %.3f %%, far L2 %.3f %% (the Monte Carlo noise is in the L2: see columns)\n",
         100 * worst_total_, 100 * worst_near_, 100 * worst_far_);
     std::printf(
         "# beyond the runs' noise (sqrt(L2^2 - noise^2)): near L2 within 3 %% at %d/%d (worst %.3f %%), far L2 at "
         "%d/%d (worst %.3f %%)\n",
-        near_excess_ok_, n, 100 * worst_near_excess_, far_excess_ok_, n, 100 * worst_far_excess_);
+        near_excess_ok_, n_, 100 * worst_near_excess_, far_excess_ok_, n_, 100 * worst_far_excess_);
   }
 
  private:
