@@ -156,4 +156,13 @@ std::vector<double> single_scattering_ln_y(const Reduced<double>& m, double ln_r
   return ln_y;
 }
 
+double single_scattering_singular_coefficient(double g, double eta) {
+  const double theta_c = eta > 1 ? std::asin(1 / eta) : std::numbers::pi / 2;
+  const auto integrand = [&](double s) {  // theta = theta_c (1 - s^2)
+    const double mu = std::cos(theta_c * (1 - s * s));
+    return henyey_greenstein(-mu, g) * (1 - fresnel_reflectance(mu, eta)) * mu * 2 * theta_c * s;
+  };
+  return integrate_gauss_legendre(integrand, 0.0, 1.0, 12);
+}
+
 }  // namespace bssrdf

@@ -169,17 +169,56 @@ std::vector<double> single_scattering_normal(const Reduced<double>& m, double ln
   return ln_ss;
 }
 
-// The same at the table's radii, by the log grid or (the generator's rule) radius by radius.
-std::vector<double> single_scattering_row(const ExactTable& table, const Reduced<double>& m,
+// The same at the radii e^{ln_r0 + k d_ln_r}, k < n (the table's, or its head's below them), by the log
+// grid or (the generator's rule) radius by radius.
+std::vector<double> single_scattering_row(double ln_r0, double d_ln_r, std::size_t n, const Reduced<double>& m,
                                           SingleScatteringRadii how) {
-  if (how == SingleScatteringRadii::log_grid)
-    return single_scattering_normal(m, table.ln_r0, table.d_ln_r, table.radii);
-  std::vector<double> ln_ss(table.radii);
-  for (std::size_t k = 0; k < table.radii; ++k) {
-    const double r = table.radius(k);
+  if (how == SingleScatteringRadii::log_grid) return single_scattering_normal(m, ln_r0, d_ln_r, n);
+  std::vector<double> ln_ss(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double r = std::exp(ln_r0 + d_ln_r * static_cast<double>(k));
     ln_ss[k] = std::log(2 * std::numbers::pi * r * r * single_scattering_reflectance(m, r, 96));
   }
   return ln_ss;
+}
+
+// Below the table's first radius r_0 (0.001 transport mfp) the curve continues as a power of r, which
+// is right where single scattering has reached its r -> 0 form there, R_ss ~ 1/r (y_ss ~ r), i.e. where
+// sigma_t r_0 x_c << 1. In strongly forward media it has not: their mean free path is about (1 - g)
+// transport mfp, so at r_0 single scattering is still attenuated (g 0.998, eta 1.6: sigma_t r_0 x_c = 1.4)
+// and the first step's slope (1.55 there) continued below r_0 put R at 1e-4 mfp 5x under single
+// scattering alone (fresh Monte Carlo's disc r < 0.001 at alpha' 0.9927, g 0.998, eta 1.604: mean R
+// 28.4 +- 3.7 per mfp^2, the model 11.0). There the curve gains radii below r_0, at the table's step,
+// down to where sigma_t r x_c = 0.05 (single scattering within 5 % of its limit form): y = y_ss, exact,
+// plus r_0's multiple scattering y - y_ss continued flat in R, y ~ r^2 (its r -> 0 form: multiple
+// scattering's R is at most logarithmic there; the first step's slope, noise at these nodes, is not
+// trusted below r_0). How many such radii (0 up to g ~ 0.93).
+std::size_t head_radii(const Reduced<double>& m, double ln_r0, double d_ln_r) {
+  constexpr double kAttenuation = 0.05;
+  const double onset = m.sigma_t() * std::exp(ln_r0) * critical_exit_ratio(m.eta) / kAttenuation;
+  return onset > 1 ? static_cast<std::size_t>(std::ceil(std::log(onset) / d_ln_r)) : 0;
+}
+
+// Prepends `count` radii to ln y (whose first radius is e^{ln_r0}) as head_radii describes. Returns a
+// in y = y_first (a x + (1 - a) x^2), x = r / r_first, the curve below the new first radius: single
+// scattering's y_ss(r_first) x (q - (q - 1) x), q its r -> 0 limit over its value there (its own form
+// is 1 - O(rho ln rho): 17 % under the limit where sigma_t r x_c = 0.05; this is exact at both ends and
+// within ~1 % between), and multiple scattering's x^2.
+double prepend_head(const Reduced<double>& m, double ln_r0, double d_ln_r, std::size_t count, SingleScatteringRadii how,
+                    std::vector<double>& ln_y) {
+  const double ln_head0 = ln_r0 - d_ln_r * static_cast<double>(count);
+  const std::vector<double> ln_ss = single_scattering_row(ln_head0, d_ln_r, count + 2, m, how);
+  // r_0's multiple scattering, flat in R below it (none where single scattering is all of y there).
+  const double ms0 = std::max(0.0, std::exp(ln_y[0]) - std::exp(ln_ss[count]));
+  std::vector<double> head(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const double below = d_ln_r * static_cast<double>(count - k);  // ln(r_0 / r)
+    head[k] = std::log(std::exp(ln_ss[k]) + ms0 * std::exp(-2 * below));
+  }
+  ln_y.insert(ln_y.begin(), head.begin(), head.end());
+  const double limit = 2 * std::numbers::pi * m.sigma_s * single_scattering_singular_coefficient(m.g, m.eta) *
+                       std::exp(ln_head0);  // y_ss -> this x
+  return limit / std::exp(ln_y[0]);
 }
 
 // ln y interpolated: the sum over the weights' (eta, g, albedo) nodes of weight x the node's ln y, per
@@ -281,7 +320,7 @@ struct BelowFirstNode {
       return ShiftedRow(rows[j], std::log(medium.sigma_t() / node[j].sigma_t()) / table.d_ln_r);
     };
     const std::array<ShiftedRow, 2> node_y{read_at_medium_rho(0), read_at_medium_rho(1)};
-    const std::vector<double> ln_ss = single_scattering_row(table, medium, how);
+    const std::vector<double> ln_ss = single_scattering_row(table.ln_r0, table.d_ln_r, n, medium, how);
     const double alpha = medium.albedo();
     // (alpha_j / alpha): node j's single scattering over the medium's.
     const std::array<double, 2> ss_ratio{node[0].albedo() / alpha, node[1].albedo() / alpha};
@@ -441,7 +480,6 @@ ExactProfile::ExactProfile(const ExactTable& table, double albedo_prime, double 
     : albedo_prime_(albedo_prime), g_(g), eta_(eta), ln_r0_(table.ln_r0), d_ln_r_(table.d_ln_r) {
   const NodeWeights w = weights_at(table, albedo_prime, g, eta);
   if (albedo_prime == 0) return;  // nothing scatters: R = 0, total() = 0
-  const std::size_t radii = table.radii;
   std::optional<BelowFirstNode> below;
   if (albedo_prime < table.albedo_prime.front()) {
     below.emplace(table, albedo_prime, g, eta);
@@ -454,6 +492,12 @@ ExactProfile::ExactProfile(const ExactTable& table, double albedo_prime, double 
     above.emplace(table, albedo_prime, g, eta);
     above->continue_profile(table, ln_y_);
   }
+  const Reduced<double> medium = transport_medium(albedo_prime, g, eta);
+  if (const std::size_t head = head_radii(medium, ln_r0_, d_ln_r_); head > 0) {
+    head_linear_ = prepend_head(medium, ln_r0_, d_ln_r_, head, single_scattering, ln_y_);
+    ln_r0_ -= d_ln_r_ * static_cast<double>(head);
+  }
+  const std::size_t radii = ln_y_.size();
   // Below the first radius y = 2 pi r^2 R continues as a power of r, beyond the last as an exponential
   // tail in r: both with the slope of the curve's end. The power is at least 1: as r -> 0 single
   // scattering's R ~ 1/r is the strongest singularity (multiple scattering's is at most logarithmic,
@@ -475,7 +519,7 @@ ExactProfile::ExactProfile(const ExactTable& table, double albedo_prime, double 
       y[radii + 3 * k + j - 1] = catmull_rom(ln_y_.data(), radii, k, 0.25 * static_cast<double>(j));
   exp_array(y.data(), y.data(), y.size());
   cumulative_.assign(radii, 0.0);
-  double sum = y[0] / head_slope_;
+  double sum = y[0] * head_energy(1.0);
   cumulative_[0] = sum;
   const double h = d_ln_r_ / 4;
   for (std::size_t k = 0; k + 1 < radii; ++k) {
@@ -497,11 +541,20 @@ ExactProfile::ExactProfile(const ExactTable& table, double albedo_prime, double 
   for (auto& c : cumulative_) c *= scale;
 }
 
+double ExactProfile::head_energy(double x) const {
+  if (head_linear_ == 0) return std::pow(x, head_slope_) / head_slope_;
+  return x * (head_linear_ + (1 - head_linear_) * x / 2);
+}
+
 double ExactProfile::ln_y(double ln_r) const {
   if (ln_y_.empty()) return -std::numeric_limits<double>::infinity();  // alpha' = 0
   const double f = (ln_r - ln_r0_) / d_ln_r_;
   const std::size_t n = ln_y_.size();
-  if (f <= 0) return ln_y_[0] + head_slope_ * (ln_r - ln_r0_);
+  if (f <= 0) {
+    if (head_linear_ == 0) return ln_y_[0] + head_slope_ * (ln_r - ln_r0_);
+    const double x = std::exp(ln_r - ln_r0_);
+    return ln_y_[0] + std::log(x * (head_linear_ + (1 - head_linear_) * x));
+  }
   if (f >= static_cast<double>(n - 1)) {
     const double r_last = std::exp(ln_r0_ + d_ln_r_ * static_cast<double>(n - 1));
     return ln_y_[n - 1] + tail_slope_ * (std::exp(ln_r) - r_last);
@@ -521,7 +574,7 @@ double ExactProfile::cumulative(double r) const {
   const double ln_r = std::log(r);
   const double f = (ln_r - ln_r0_) / d_ln_r_;
   const std::size_t n = ln_y_.size();
-  if (f <= 0) return std::exp(ln_y(ln_r)) / head_slope_;
+  if (f <= 0) return std::exp(ln_y_[0]) * head_energy(std::exp(ln_r - ln_r0_));
   if (f >= static_cast<double>(n - 1)) {
     // Tail from the last radius: the closed form of the normalising bound, less what lies beyond r.
     const double r_last = std::exp(ln_r0_ + d_ln_r_ * static_cast<double>(n - 1));

@@ -1,7 +1,10 @@
 #!/usr/bin/python3
 """validate_exact rescore against the committed validation record (tools/validation/exact_v9_*).
 
-    rescore_record.py VALIDATE_EXACT
+    rescore_record.py VALIDATE_EXACT           checks
+    rescore_record.py VALIDATE_EXACT --write   rewrites each set's lines for the current model in place
+                                               (after a change to the model or the table; the '#   v8:'
+                                               lines, another table's, are kept)
 
 Each set of tools/validation/exact_v9_vs_montecarlo.txt and exact_v9_unchanged_vs_montecarlo.txt
 names its stored bins (BSSRDF_VALIDATE_BINS=PREFIX, files tools/validation/bins_v9/PREFIX_i.tsv);
@@ -36,17 +39,31 @@ def close(recorded, scored):
     return True
 
 
+def rewritten(section, out):
+    """The section with its current-model block (from the column header not marked v8 to the
+    'beyond the runs' noise' line) replaced by rescore's output past its first line."""
+    lines = section.split('\n')
+    start = next(i for i, line in enumerate(lines) if line.startswith("#    alpha'"))
+    end = next(i for i in range(start, len(lines)) if lines[i].startswith('# beyond'))
+    return '\n'.join(lines[:start] + out.rstrip('\n').split('\n')[1:] + lines[end + 1:])
+
+
 def main():
     exe = sys.argv[1]
+    write = sys.argv[2:] == ['--write']
     failures, checked = 0, 0
     for record in ('exact_v9_vs_montecarlo.txt', 'exact_v9_unchanged_vs_montecarlo.txt'):
-        sections = re.split(r'^# --- ', open(os.path.join(VALIDATION, record), encoding='utf-8').read(),
-                            flags=re.M)[1:]
+        path = os.path.join(VALIDATION, record)
+        parts = re.split(r'^# --- ', open(path, encoding='utf-8').read(), flags=re.M)
+        sections, sections_out = parts[1:], [parts[0]]
         for section in sections:
             name = section.split(':', 1)[0]
             prefix = re.search(r'BSSRDF_VALIDATE_BINS=(\S+)', section).group(1)
             files = sorted(glob.glob(os.path.join(VALIDATION, 'bins_v9', f'{prefix}_*.tsv')))
             out = subprocess.run([exe, 'rescore', *files], capture_output=True, text=True, check=True).stdout
+            if write:
+                sections_out.append(rewritten(section, out))
+                continue
             recorded, scored = point_lines(section.split('\n', 1)[1]), point_lines(out)  # past its command line
             if len(recorded) != len(scored) or not files:
                 print(f'{record} {name}: {len(recorded)} recorded points, {len(scored)} scored')
@@ -57,6 +74,11 @@ def main():
                 if not close(r, s):
                     print(f'{record} {name}: recorded {" ".join(r)}\n{" " * len(record + name)}   scored   {" ".join(s)}')
                     failures += 1
+        if write:
+            with open(path, 'w', encoding='utf-8') as f:
+                f.write('# --- '.join(sections_out))
+    if write:
+        return 0
     with tempfile.TemporaryDirectory() as tmp:
         junk = os.path.join(tmp, 'junk.tsv')
         with open(junk, 'w') as f:

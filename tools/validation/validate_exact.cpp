@@ -11,7 +11,8 @@
 //                  outer radius, Monte Carlo R and its standard error, the model's bin average, the bin's
 //                  representative radius; the run's total and photons in the header): where a miss lies in r
 //   validate_exact rescore FILE.tsv [...]   the same figures from such files, the model as it is now (another
-//                  table through BSSRDF_EXACT_TABLE): two tables against the very same reference runs
+//                  table through BSSRDF_EXACT_TABLE): two tables against the very same reference runs;
+//                  with BSSRDF_VALIDATE_BINS the files are written again with this model's column
 //
 // Each point: alpha' log-uniform in logit over [0.001, 0.9999] (1 - alpha' log-uniform where
 // alpha'_min >= 0.9999: the continuation to 1), g uniform in -ln(1 - g) over [0, 0.99], eta uniform
@@ -194,8 +195,12 @@ int main(int argc, char** argv) {
     std::printf("# exact model (table %s) vs the stored Monte Carlo runs %s ...\n",
                 std::getenv("BSSRDF_EXACT_TABLE") ? std::getenv("BSSRDF_EXACT_TABLE") : "bundled", argv[2]);
     Scores scores;
-    for (const StoredRun& s : runs)
+    const char* prefix = std::getenv("BSSRDF_VALIDATE_BINS");  // the bins again, with this table's model column
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      const StoredRun& s = runs[i];
       scores.add(s.medium.reduced(0), s.run, compare_with_monte_carlo(*model, s.medium.reduced(0), s.run));
+      if (prefix) write_bins(prefix, static_cast<int>(i), *model, s.medium, s.run);
+    }
     scores.summary();
     return 0;
   }

@@ -23,7 +23,11 @@
 //    the two albedos' profiles (diffusion's far field, exact there), its total from
 //    1 - T = c1 s + c2 s^2, s = sqrt(1 - alpha'), through the last two nodes to T(1) = 1;
 //  - below the first radius (0.001 transport mfp) y as a power of r, at least r^1 (single
-//    scattering's R ~ 1/r is the strongest singularity at r -> 0).
+//    scattering's R ~ 1/r is the strongest singularity at r -> 0); for strongly forward media
+//    (g above about 0.93, where 0.001 transport mfp is under 0.05 mean free paths short of that
+//    limit) radii are prepended at the table's step down to sigma_t r = 0.05, holding single
+//    scattering exactly and the first radius's multiple scattering flat in R, and below them
+//    y = y_first x (a + (1 - a) x): R -> a y_first / r_first^2 / x, single scattering's 1/r.
 // In g the nodes reach 0.999 (a table ending lower, as those before 2026-12-07, ends the domain there).
 // Accuracy and speed: README "The exact model" (measured against fresh Monte Carlo off the grid).
 #pragma once
@@ -81,12 +85,15 @@ class ExactProfile {
 
  private:
   double ln_y(double ln_r) const;  // the interpolated, normalised curve
+  // int_0^r y d ln r over y at the first radius, at x = r / r_first <= 1 (the head's closed form).
+  double head_energy(double x) const;
 
   double albedo_prime_, g_, eta_;
   double ln_r0_, d_ln_r_;
   std::vector<double> ln_y_;        // per tabulated radius, normalised
   std::vector<double> cumulative_;  // int_0^{r_k} y d ln r at each tabulated radius
   double head_slope_ = 1, tail_slope_ = 0, total_ = 0;
+  double head_linear_ = 0;  // a in y = y_first (a x + (1 - a) x^2) below the first radius, where a head was prepended
 };
 
 class Model;
