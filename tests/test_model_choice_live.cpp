@@ -103,6 +103,22 @@ TEST(ModelChoiceLive, InsideTheDomainEstimatesAreLiveAndExactIsACandidate) {
       EXPECT_EQ(e.total_error, accuracy.at(reduce(0.000001, 1.0, 0.95, 1.4)).total);
       EXPECT_LT(e.profile_error, accuracy.profile);
     }
+  // The same beyond g 0.99 (alpha' 0.99995, g 0.995): its own band too (sets I and J), within the goal.
+  const auto strongly_forward_white = reduce(0.00005, 1.0 / (1 - 0.995), 0.995, 1.3);
+  const auto forward_white = estimate_model_errors(strongly_forward_white);
+  ASSERT_TRUE(forward_white);
+  for (const auto& e : *forward_white)
+    if (e.model == "exact") {
+      const auto& accuracy = *model_entry("exact").reference_accuracy;
+      const auto band = accuracy.at(strongly_forward_white);
+      const auto first = std::find_if(accuracy.regions.begin(), accuracy.regions.end(),
+                                      [&](const auto& r) { return r.holds(strongly_forward_white); });
+      ASSERT_NE(first, accuracy.regions.end());
+      EXPECT_EQ(first->name, "strongly forward, near conservative");
+      EXPECT_EQ(e.total_error, band.total);
+      EXPECT_LT(band.profile, 0.03);
+      EXPECT_LT(band.profile, accuracy.profile);
+    }
   // Every medium of the domain lies in a region with validation points of its own: none falls
   // through to the domain-wide band (a grid over alpha' 0-1, g 0-0.999, eta 1-2).
   const auto& regions = model_entry("exact").reference_accuracy->regions;

@@ -23,6 +23,7 @@ REGIONS = [
     ("milk-like", 0.99, 0.998, 0.9, 0.95, 1, 1.6),
     ("near conservative", 0.9999, 1, 0, 0.9, 1, 1.6),
     ("forward, near conservative", 0.9999, 1, 0.9, 0.99, 1, 1.6),
+    ("strongly forward, near conservative", 0.9999, 1, 0.99, 0.999, 1, 1.6),
     ("forward, low albedo", 0, 0.05, 0.99, 0.999, 1, 1.6),
     ("strongly forward", 0.05, 1, 0.99, 0.999, 1, 1.6),
     ("forward, high albedo, g 0.98-0.99", 0.99, 0.9999, 0.98, 0.99, 1, 1.6),
