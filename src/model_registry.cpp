@@ -130,8 +130,10 @@ std::vector<ModelEntry> build() {
           // noisier one again with 14x the photons.
           Region{"forward, near conservative", 0.9999, 1, 0.9, 0.99, 1, 1.6, 0.001, 0.017},
           // The same beyond g 0.99 (above the last albedo node, strongly forward): 6 fresh points
-          // with 4e4-1e6 photons (exact_v9_vs_montecarlo.txt, sets I and J).
-          Region{"strongly forward, near conservative", 0.9999, 1, 0.99, 0.999, 1, 1.6, 0.001, 0.023},
+          // (exact_v9_vs_montecarlo.txt, sets I and J, 6e4-1e6 photons; I's noisiest again with 2.7e5,
+          // I2); the near field misses 3.5 % at alpha' 0.99998, g 0.9988, eta 1.408 (the g 0.999
+          // nodes' near-field noise, as at high index).
+          Region{"strongly forward, near conservative", 0.9999, 1, 0.99, 0.999, 1, 1.6, 0.001, 0.036},
           // The table's g nodes 0.995 and 0.999 and albedo nodes below 0.001
           // (tools/validation/exact_v8_vs_montecarlo.txt; generator version 9's changes:
           // exact_v9_vs_montecarlo.txt, and exact_v9_unchanged_vs_montecarlo.txt where they change nothing).

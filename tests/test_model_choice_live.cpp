@@ -103,7 +103,8 @@ TEST(ModelChoiceLive, InsideTheDomainEstimatesAreLiveAndExactIsACandidate) {
       EXPECT_EQ(e.total_error, accuracy.at(reduce(0.000001, 1.0, 0.95, 1.4)).total);
       EXPECT_LT(e.profile_error, accuracy.profile);
     }
-  // The same beyond g 0.99 (alpha' 0.99995, g 0.995): its own band too (sets I and J), within the goal.
+  // The same beyond g 0.99 (alpha' 0.99995, g 0.995): its own band too (sets I and J), tighter than
+  // the domain's (ExactSaysWhereItMissesTheGoal: not within the goal).
   const auto strongly_forward_white = reduce(0.00005, 1.0 / (1 - 0.995), 0.995, 1.3);
   const auto forward_white = estimate_model_errors(strongly_forward_white);
   ASSERT_TRUE(forward_white);
@@ -116,7 +117,6 @@ TEST(ModelChoiceLive, InsideTheDomainEstimatesAreLiveAndExactIsACandidate) {
       ASSERT_NE(first, accuracy.regions.end());
       EXPECT_EQ(first->name, "strongly forward, near conservative");
       EXPECT_EQ(e.total_error, band.total);
-      EXPECT_LT(band.profile, 0.03);
       EXPECT_LT(band.profile, accuracy.profile);
     }
   // Every medium of the domain lies in a region with validation points of its own: none falls
@@ -145,7 +145,8 @@ TEST(ModelChoiceLive, InsideTheDomainEstimatesAreLiveAndExactIsACandidate) {
 
 // Where the exact model misses the goal the tool says so, through exact's band there: above eta 1.6
 // beyond g 0.99 the near field of nearly non-absorbing media misses by 4.2 % at alpha' 0.9927,
-// g 0.998, eta 1.604 (fresh Monte Carlo, tools/validation/exact_v9_vs_montecarlo.txt). Below alpha'
+// g 0.998, eta 1.604, and above alpha' 0.9999 beyond g 0.99 by 3.5 % at alpha' 0.99998, g 0.9988,
+// eta 1.408 (fresh Monte Carlo, tools/validation/exact_v9_vs_montecarlo.txt). Below alpha'
 // 0.001 with g > 0.995, where the continuation had missed (3.7 % far field, -2.6 % total at g 0.999),
 // the table's own nodes (since 2026-12-07) meet it, and the band says that too.
 TEST(ModelChoiceLive, ExactSaysWhereItMissesTheGoal) {
@@ -159,6 +160,9 @@ TEST(ModelChoiceLive, ExactSaysWhereItMissesTheGoal) {
     return estimates.front();
   };
   EXPECT_GT(exact_of(*high_index).profile_error, 0.03);  // the goal: 3 %
+  const auto white = estimate_model_errors(reduce(1 - 0.99998, 0.99998 / (1 - 0.9988), 0.9988, 1.408));
+  ASSERT_TRUE(white);
+  EXPECT_GT(exact_of(*white).profile_error, 0.03);
   EXPECT_LT(exact_of(*below_old_node).profile_error, 0.03);
   EXPECT_LT(exact_of(*below_old_node).total_error, 0.02);
 }
