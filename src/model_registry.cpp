@@ -106,7 +106,7 @@ std::vector<ModelEntry> build() {
   using Region = ModelEntry::ReferenceAccuracy::Region;
   exact.reference_accuracy = ModelEntry::ReferenceAccuracy{
       0.011,
-      0.042,
+      0.041,
       {
           // sigma_s' = 0: nothing scatters back, R = 0 exactly.
           Region{"no scattering", 0, 0, 0, 1, 0, 10, 0, 0},
@@ -152,10 +152,10 @@ std::vector<ModelEntry> build() {
           Region{"forward, high albedo", 0.99, 0.9999, 0.9, 0.98, 1, 1.6, 0.001, 0.030},
           // Everything above eta 1.6, with version 9's table: 13 points (6 fresh, 6 again with more
           // photons, scored with both tables on the same references; one above alpha' 0.9999, set J,
-          // again in J2: near 4.0 % beyond a noise of 6.9 %); the near field misses 4.2 %
-          // at alpha' 0.9927, g 0.998, eta 1.604 (6.5e5 photons: the g 0.999 nodes' non-absorbing
-          // runs' noise); the far field at low albedo within 2.7 %.
-          Region{"high index", 0, 1, 0, 0.999, 1.6, 2.0, 0.003, 0.042},
+          // again in J2: near 4.0 % beyond a noise of 6.9 %); the near field misses 4.0 % there
+          // and 3.7 % at alpha' 0.9927, g 0.998, eta 1.604 (B2: 5.0e6 photons, noise 1.1 %; 4.2 % with
+          // B's 6.5e5); the far field at low albedo within 2.7 %.
+          Region{"high index", 0, 1, 0, 0.999, 1.6, 2.0, 0.003, 0.041},
       }};
 
   table.push_back(dipole);
