@@ -157,10 +157,15 @@ std::vector<double> single_scattering_ln_y(const Reduced<double>& m, double ln_r
 }
 
 double single_scattering_singular_coefficient(double g, double eta) {
+  // int f dv over the exit angle theta (mu = cos theta = tanh v): x = e^v = cot(theta / 2) and
+  // dv = dtheta / sin theta; theta = theta_c (1 - s^2).
+  Reduced<double> m{};
+  m.g = g;
+  m.eta = eta;
   const double theta_c = eta > 1 ? std::asin(1 / eta) : std::numbers::pi / 2;
-  const auto integrand = [&](double s) {  // theta = theta_c (1 - s^2)
-    const double mu = std::cos(theta_c * (1 - s * s));
-    return henyey_greenstein(-mu, g) * (1 - fresnel_reflectance(mu, eta)) * mu * 2 * theta_c * s;
+  const auto integrand = [&](double s) {
+    const double theta = theta_c * (1 - s * s);
+    return single_scattering_exit(m, 1 / std::tan(theta / 2)) / std::sin(theta) * 2 * theta_c * s;
   };
   return integrate_gauss_legendre(integrand, 0.0, 1.0, 12);
 }

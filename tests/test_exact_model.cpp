@@ -290,7 +290,7 @@ TEST(ExactModel, BelowTheFirstRadiusNoMoreSingularThanSingleScattering) {
 TEST(ExactModel, BelowTheFirstRadiusStronglyForwardMediaKeepTheirSingleScattering) {
   // With g near 1 the medium's mean free path is about (1 - g) transport mfp, so at r0 single
   // scattering is still attenuated, and the curve's first step continued below r0 had put R at
-  // 1e-4 mfp 5x under single scattering alone (alpha' 0.9927, g 0.998, eta 1.604). Now y = y_ss,
+  // 1e-4 transport mfp 3.3x under single scattering alone (alpha' 0.9927, g 0.998, eta 1.604). Now y = y_ss,
   // exact, plus r0's multiple scattering flat in R: R(r) >= R_ss(r) within the normalisation (1 %),
   // and the disc r < r0 holds single scattering's energy there plus half r0's multiple scattering,
   // no more (at alpha' 0.1375, g 0.997 the nodes' first radii hold Monte Carlo noise, and a power
@@ -307,10 +307,12 @@ TEST(ExactModel, BelowTheFirstRadiusStronglyForwardMediaKeepTheirSingleScatterin
     // That limit, R_ss -> sigma_s C / r, against the integral itself at rho = 1e-7.
     const double r_small = 1e-7 / m.sigma_t();
     EXPECT_NEAR(single_scattering_reflectance(m, r_small, 96) * r_small / m.sigma_s /
-                    single_scattering_singular_coefficient(p.g, p.eta), 1.0, 1e-5);
+                    single_scattering_singular_coefficient(p.g, p.eta),
+                1.0, 1e-5);
     // The single-scattering disc: int_0^r0 y_ss d ln r (trapezoid in ln r; y_ss ~ r below).
     double disc_ss = y_ss(r0 * std::exp(-40.0)) / 2 * 0.01;
-    for (double u = 0; u < 40; u += 0.01) disc_ss += (y_ss(r0 * std::exp(-u)) + y_ss(r0 * std::exp(-u - 0.01))) / 2 * 0.01;
+    for (double u = 0; u < 40; u += 0.01)
+      disc_ss += (y_ss(r0 * std::exp(-u)) + y_ss(r0 * std::exp(-u - 0.01))) / 2 * 0.01;
     const double ms0 = 2 * std::numbers::pi * r0 * r0 * profile.reflectance(r0) - y_ss(r0);
     EXPECT_GT(ms0, 0) << p.g;
     EXPECT_LT(profile.cumulative(r0), 1.01 * (disc_ss + ms0 / 2)) << p.albedo_prime << " " << p.g;

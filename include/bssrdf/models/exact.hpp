@@ -27,7 +27,7 @@
 //    (g above about 0.93, where 0.001 transport mfp is under 0.05 mean free paths short of that
 //    limit) radii are prepended at the table's step down to sigma_t r = 0.05, holding single
 //    scattering exactly and the first radius's multiple scattering flat in R, and below them
-//    y = y_first x (a + (1 - a) x): R -> a y_first / r_first^2 / x, single scattering's 1/r.
+//    y = y_first x (a + (1 - a) x): R -> a y_first / (2 pi r_first^2 x), single scattering's 1/r.
 // In g the nodes reach 0.999 (a table ending lower, as those before 2026-12-07, ends the domain there).
 // Accuracy and speed: README "The exact model" (measured against fresh Monte Carlo off the grid).
 #pragma once
@@ -85,7 +85,9 @@ class ExactProfile {
 
  private:
   double ln_y(double ln_r) const;  // the interpolated, normalised curve
-  // int_0^r y d ln r over y at the first radius, at x = r / r_first <= 1 (the head's closed form).
+  // Below the first radius, x = r / r_first <= 1: ln(y / y_first) at ln x, and int_0^r y d ln r over
+  // y_first (the head's closed forms).
+  double head_ln_shape(double ln_x) const;
   double head_energy(double x) const;
 
   double albedo_prime_, g_, eta_;
