@@ -67,14 +67,23 @@
 #include "bssrdf/single_scattering.hpp"
 #include "launched_process_group.hpp"
 #include "near_field_continuation.hpp"
+#include "near_field_fit.hpp"
 
 namespace {
 
 using namespace bssrdf;
 
-constexpr int kGeneratorVersion = 9;
+constexpr int kGeneratorVersion = 10;
 constexpr int kSmoothingHalf = 3;  // radial smoothing window (smooth_radially): 7 bins, 0.58 decades
 constexpr int kSmoothingWide = 5;  // where a bin's error exceeds 3 %: 11 bins
+// The near-field fit (near_field_fit.hpp): where the first bin measured within 2 % is this many
+// bins out or more (2/3 of a decade), the bins inside are fitted up to it, but over 2.5 decades at
+// most, and the last 2 x kNearFitBlend bins of the range blend into the smoothed ones. A cubic in
+// ln r: a quadratic over 2.5 decades was biased (the pooled tally of the first half decade 1.0
+// standard errors below it, averaged over the g 0.995 and 0.999 nodes at alpha' 0.99-1; a cubic
+// 0.15, as is a quadratic over 1.5 decades, with a larger error at the first radii). The fit's
+// chi2 and this bias check are in the provenance.
+constexpr std::size_t kNearFitFirst = 8, kNearFitLast = 30, kNearFitBlend = 6;
 
 // ---- the grid ---------------------------------------------------------------------------------
 // alpha': uniform in logit(alpha') from 0.001 to 0.9999 (41 nodes, step 0.40): the profile's
@@ -593,7 +602,20 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
         base_node[static_cast<std::size_t>(ei) * grid.g.size() + static_cast<std::size_t>(gi)] = BaseNode{bg, be};
       }
   }
+  // A node the base table holds whose non-absorbing run is in DIR too (version 10: g 0.99, its near
+  // field measured again) has its albedo nodes served by that run rebuilt from it; the rest copied.
+  std::vector<bool> white_rebuilt(grid.g.size() * grid.eta.size(), false);
+  for (std::size_t ei = 0; ei < grid.eta.size(); ++ei)
+    for (std::size_t gi = 0; gi < grid.g.size(); ++gi)
+      white_rebuilt[ei * grid.g.size() + gi] =
+          from_base(gi, ei) && std::filesystem::exists(node_path(dir, grid, gi, ei, grid.white()));
   const std::size_t albedos = grid.albedo_prime.size(), bins = grid.bins(), radii = grid.radii;
+  // Base albedo nodes below the base table's first (version 7's low nodes) come from the state.
+  const std::size_t first_copied = base ? albedos - base->albedo_prime.size() : albedos;
+  const auto copied_node = [&](std::size_t gi, std::size_t ei, std::size_t a) {
+    return from_base(gi, ei) && a >= first_copied &&
+           !(white_rebuilt[ei * grid.g.size() + gi] && grid.run_for(grid.albedo_prime[a]) == grid.white());
+  };
   ExactTable table;
   table.albedo_prime = grid.albedo_prime;
   table.g = grid.g;
@@ -613,11 +635,11 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   std::string worst_scale_at, worst_ss_at;
   std::size_t extrapolated = 0, monte_carlo_totals = 0;
   std::vector<double> near_slopes;  // the near-field continuation's slope per node that has one
+  std::vector<double> near_fit_chi2;  // the near-field fit's chi2 per degree of freedom per node fitted
+  double near_fit_z[3] = {}, near_fit_groups[3] = {};  // its bias check: (fit - tally) / se pooled over 6 bins
   const int smoothing_half = kSmoothingHalf, wide_half = kSmoothingWide;
   double smoothing_chi2 = 0, wide_chi2 = 0, smoothing_bins = 0;
   nlohmann::json scale_check = nlohmann::json::array();
-  // Albedo nodes below the base table's first (version 7's low nodes) come from the state.
-  const std::size_t first_copied = base ? albedos - base->albedo_prime.size() : albedos;
   // Adding-doubling at every node on every core: 128 angles' totals (coarse_ad) give the fine eta
   // axis its shape; a node not copied from the base takes the refined total (node_ad).
   std::vector<AddingDoublingTotal> coarse_ad(table.nodes()), node_ad(table.nodes());
@@ -626,8 +648,7 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   parallel_for(table.nodes(), 0, [&](std::size_t i) {
     const std::size_t a = i % albedos, gi = i / albedos % grid.g.size(), ei = i / albedos / grid.g.size();
     coarse_ad[i] = adding_doubling_total(grid.albedo_prime[a], grid.g[gi], grid.eta[ei]);
-    const bool copied = from_base(gi, ei) && a >= first_copied;
-    node_ad[i] = copied ? coarse_ad[i]
+    node_ad[i] = copied_node(gi, ei, a) ? coarse_ad[i]
                         : refined_adding_doubling_total(grid.albedo_prime[a], grid.g[gi], grid.eta[ei], coarse_ad[i]);
     const std::size_t done = ++solved;
     if (done % 500 == 0 || done == table.nodes()) {
@@ -638,8 +659,9 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   for (std::size_t ei = 0; ei < grid.eta.size(); ++ei) {
     for (std::size_t gi = 0; gi < grid.g.size(); ++gi) {
       const auto& copy = from_base(gi, ei);
-      const auto copied = [&](std::size_t a) { return copy && a >= first_copied; };
+      const auto copied = [&](std::size_t a) { return copied_node(gi, ei, a); };
       for (std::size_t a = first_copied; copy && a < albedos; ++a) {  // from --base: profiles, errors, totals stand
+        if (!copied(a)) continue;
         const std::size_t from = base->node(copy->eta, copy->g, a - first_copied), to = table.node(ei, gi, a);
         table.total[to] = base->total[from];
         for (std::size_t k = 0; k < radii; ++k) {
@@ -647,7 +669,7 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
           table.relative_error[to * radii + k] = base->relative_error[from * radii + k];
         }
       }
-      if (copy && first_copied == 0) continue;
+      if (copy && first_copied == 0 && !white_rebuilt[ei * grid.g.size() + gi]) continue;
       std::vector<NodeSums> runs(grid.runs());
       for (std::size_t b = 0; b < grid.runs(); ++b) {
         bool needed = false;  // the runs serving the nodes not copied
@@ -756,6 +778,42 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
               mean[k] = use.mean[k];
               se[k] = use.se[k];
             }
+        }
+        {  // a near field noisy over more than 2/3 of a decade: one fit over it (near_field_fit.hpp)
+          std::size_t measured = 0;  // the first bin measured within 2 %
+          while (measured < radii && !(tallied[measured] > 0 && tallied_se[measured] < 0.02 * tallied[measured]))
+            ++measured;
+          if (measured >= kNearFitFirst && measured < radii) {
+            const std::size_t last = std::min<std::size_t>(measured, kNearFitLast);
+            const exact_table::NearFieldFit fit = exact_table::fit_near_field(tallied, tallied_se, last, grid.d_ln_r);
+            if (fit.converged) {
+              near_fit_chi2.push_back(fit.chi2_per_dof);
+              // The bias check: the fit against the tally pooled over 6 bins (half a decade), in
+              // units of the pooled standard error, per group inside the range the fit alone covers.
+              for (std::size_t group = 0; (group + 1) * 6 + 2 * kNearFitBlend <= last + 1 && group < 3; ++group) {
+                double tally = 0, variance = 0, fitted = 0;
+                for (std::size_t k = group * 6; k < group * 6 + 6; ++k) {
+                  tally += tallied[k];
+                  variance += tallied_se[k] * tallied_se[k];
+                  fitted += fit.mean[k];
+                }
+                if (variance > 0) {
+                  near_fit_z[group] += (fitted - tally) / std::sqrt(variance);
+                  near_fit_groups[group] += 1;
+                }
+              }
+              // The fit alone up to 12 bins (one decade) inside its last; then to 6 bins inside, a
+              // blend in ln y with the smoothed bins (the fit's end is its least certain part).
+              for (std::size_t k = 0; k + kNearFitBlend <= last; ++k) {
+                const double w = std::clamp(static_cast<double>(last - kNearFitBlend - k) / kNearFitBlend, 0.0, 1.0);
+                const bool smoothed = good[k] && mean[k] > 0;
+                const double wf = smoothed ? w : 1.0;
+                mean[k] = std::exp(wf * std::log(fit.mean[k]) + (1 - wf) * std::log(mean[k] > 0 ? mean[k] : 1.0));
+                se[k] = wf * fit.se[k] + (1 - wf) * se[k];
+                good[k] = true;
+              }
+            }
+          }
         }
         const bool any_ms = std::any_of(good.begin(), good.end(), [](bool b) { return b; });
         std::size_t first_good = 0, last_good = radii - 1;
@@ -896,6 +954,30 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
         {"slope_2", std::count(near_slopes.begin(), near_slopes.end(), 2.0)},
         {"median_slope", near_slopes.empty() ? 2.0 : near_slopes[near_slopes.size() / 2]}};
   }
+  {
+    std::sort(near_fit_chi2.begin(), near_fit_chi2.end());
+    p["near_field_fit"] = {
+        {"rule",
+         "where the first bin measured within 2 % is 8 or more bins out: ln y_ms a cubic in ln r over the bins "
+         "up to it (30 at most), Poisson maximum likelihood; the fit alone up to 12 bins inside its last, blended "
+         "in ln y into the smoothed bins over the next 6"},
+        {"nodes", near_fit_chi2.size()},
+        {"median_chi2_per_dof", near_fit_chi2.empty() ? NAN : near_fit_chi2[near_fit_chi2.size() / 2]},
+        {"largest_chi2_per_dof", near_fit_chi2.empty() ? NAN : near_fit_chi2.back()},
+        {"bias_check_mean_z_bins_0_5_6_11_12_17",
+         {near_fit_z[0] / std::max(1.0, near_fit_groups[0]), near_fit_z[1] / std::max(1.0, near_fit_groups[1]),
+          near_fit_z[2] / std::max(1.0, near_fit_groups[2])}},
+        {"bias_check_meaning",
+         "per node, (fit - tally) / standard error with both summed over 6 bins (half a decade), averaged over the "
+         "nodes; 0 within about 1 / sqrt(independent runs) when the fit adds no bias (nodes of one run share "
+         "its photons)"}};
+    std::cerr << "near-field fit: " << near_fit_chi2.size() << " nodes, chi2/dof median "
+              << (near_fit_chi2.empty() ? NAN : near_fit_chi2[near_fit_chi2.size() / 2]) << ", largest "
+              << (near_fit_chi2.empty() ? NAN : near_fit_chi2.back()) << "; bias check mean z "
+              << near_fit_z[0] / std::max(1.0, near_fit_groups[0]) << ", "
+              << near_fit_z[1] / std::max(1.0, near_fit_groups[1]) << ", "
+              << near_fit_z[2] / std::max(1.0, near_fit_groups[2]) << "\n";
+  }
   p["radial_smoothing"] = {
       {"method",
        "multiple scattering: ln of each bin mean measured worse than 0.5 % replaced by a local quadratic fit over "
@@ -916,7 +998,15 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
     for (std::size_t ei = 0; ei < grid.eta.size(); ++ei)
       for (std::size_t gi = 0; gi < grid.g.size(); ++gi)
         if (from_base(gi, ei)) copied.push_back({grid.g[gi], grid.eta[ei]});
+    nlohmann::json rebuilt = nlohmann::json::array();
+    for (std::size_t ei = 0; ei < grid.eta.size(); ++ei)
+      for (std::size_t gi = 0; gi < grid.g.size(); ++gi)
+        if (white_rebuilt[ei * grid.g.size() + gi]) rebuilt.push_back({grid.g[gi], grid.eta[ei]});
     p["base_table"] = {{"g_eta_nodes_copied", copied},
+                       {"g_eta_nodes_non_absorbing_run_rebuilt", rebuilt},
+                       {"rebuilt_meaning",
+                        "at these copied nodes the albedo nodes above 0.99 (served by the non-absorbing run) come "
+                        "from this build's state instead"},
                        {"albedo_prime_nodes_copied_from", base->albedo_prime.front()},
                        {"note",
                         "the Monte Carlo figures above are this build's state only (the other (g, eta) nodes, and "

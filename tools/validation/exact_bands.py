@@ -1,12 +1,14 @@
 #!/usr/bin/env python3
 """The exact model's accuracy bands per region, from validate_exact's outputs.
 
-    tools/validation/exact_bands.py OUTPUT... [--then LATER_OUTPUT...]...
+    tools/validation/exact_bands.py OUTPUT... [--then LATER_OUTPUT...]... [--also CURRENT_OUTPUT...]
 
 Reads every point line (alpha', g, eta, photons, total %, sigma, near %, noise %, far %, noise %);
 a point given again (validate_exact at ...: the same alpha', g and eta to 5 digits) replaces its
 earlier run. Outputs after --then measure a newer table or model: a region with points there takes
-its points from the last such group alone (the earlier runs measured what no longer ships).
+its points from the last such group alone (the earlier runs measured what no longer ships). Outputs
+after --also measure the shipped model where a table change moved it: each of their points joins the
+group its region takes, replacing a run at the same point (a point the change moved, run again).
 Prints, per region of src/model_registry.cpp (first match wins) and for the whole domain, the
 points, the worst |total| and the worst L2 excess sqrt(L2^2 - noise^2), near and far: the band the
 registry states is the worst total and the worse of the two L2 figures."""
@@ -50,11 +52,15 @@ def points(paths):
                 a, g, eta, photons, total, sigma, near, near_noise, far, far_noise = map(float, fields)
             except ValueError:
                 continue
-            key = (round(a, 5), round(g, 3), round(eta, 3))
-            seen[key] = dict(a=a, g=g, eta=eta, total=abs(total), sigma=sigma,
+            point = dict(a=a, g=g, eta=eta)
+            seen[key(point)] = dict(a=a, g=g, eta=eta, total=abs(total), sigma=sigma,
                              near=math.sqrt(max(0.0, near * near - near_noise * near_noise)),
                              far=math.sqrt(max(0.0, far * far - far_noise * far_noise)))
     return list(seen.values())
+
+
+def key(p):
+    return (round(p["a"], 5), round(p["g"], 3), round(p["eta"], 3))
 
 
 def region(p):
@@ -68,21 +74,29 @@ def main():
     if len(sys.argv) < 2:
         print("usage: exact_bands.py OUTPUT... [--then LATER_OUTPUT...]...", file=sys.stderr)
         return 2
-    groups = [[]]
+    groups, also, target = [[]], [], None
     for arg in sys.argv[1:]:
         if arg == "--then":
             groups.append([])
+            target = None
+        elif arg == "--also":
+            target = also
         else:
-            groups[-1].append(arg)
+            (groups[-1] if target is None else target).append(arg)
     measured = [points(group) for group in groups]
+    current = points(also) if also else []
     rows = []
     for name, *_ in REGIONS:
         group = []
         for pts in measured:  # the last group with points in the region stands
             here = [p for p in pts if region(p) == name]
             group = here or group
+        for p in current:  # then the current runs join it, each replacing a run at its point
+            if region(p) == name:
+                group = [q for q in group if key(q) != key(p)] + [p]
         rows.append((name, group))
-    pts = [p for _, group in rows for p in group] + [p for m in measured for p in m if region(p) == "elsewhere"]
+    pts = [p for _, group in rows for p in group] + [p for m in measured + [current] for p in m
+                                                      if region(p) == "elsewhere"]
     rows.append(("domain", pts))
     print(f"{'region':40s} {'points':>6s} {'total %':>8s} {'near %':>7s} {'far %':>7s}   worst profile at")
     for name, group in rows:
