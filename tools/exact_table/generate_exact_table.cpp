@@ -7,7 +7,9 @@
 //                              (top up only those runs)
 //   generate_exact_table build --state DIR --out data/exact/exact_profile.bin
 //                              [--base TABLE]   (the (g, eta) nodes TABLE holds are copied from it,
-//                              the others built from DIR: how a table grows new eta or g nodes)
+//                              the others built from DIR: how a table grows new eta or g nodes; a
+//                              copied node whose non-absorbing run DIR holds has the albedo nodes that
+//                              run serves rebuilt from it)
 //
 // Each part is exact or validated:
 //  - multiple scattering (two or more scatterings): the project's Monte Carlo (run_monte_carlo,
@@ -21,6 +23,9 @@
 //    scatterings at far less cost (Grid::base_albedo_prime). Photons are stopped after K = 6 / (1 - alpha_max)
 //    scatterings, where the largest albedo's weight is below e^-6 = 0.25 % and the photons still inside (P(k > K) ~
 //    K^-1/2, under 1 %) carry a fraction of the total of order 1e-5 (the lost part is reported);
+//  - where a run leaves the near field noisy (its first bin measured within 2 % 8 or more radii out:
+//    strongly forward, nearly non-absorbing nodes), one Poisson fit of a cubic in ln r over those bins
+//    (near_field_fit.hpp; version 10), its chi2 and bias check in the provenance;
 //  - single scattering: the exact integral (single_scattering.hpp), evaluated at each node radius;
 //  - the total: adding-doubling of the semi-infinite medium where it is the more precise; the Monte
 //    Carlo multiple-scattering part is scaled to (adding-doubling total - exact single-scattering
