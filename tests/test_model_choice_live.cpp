@@ -158,10 +158,11 @@ TEST(ModelChoiceLive, ExactStatesTheGoalMetBeyondG099) {
   for (const auto& m : {high_index, white, below_old_node}) {
     const auto estimates = estimate_model_errors(m);
     ASSERT_TRUE(estimates);
-    const auto exact = std::find_if(estimates->begin(), estimates->end(), [](const auto& e) { return e.model == "exact"; });
+    const auto exact =
+        std::find_if(estimates->begin(), estimates->end(), [](const auto& e) { return e.model == "exact"; });
     ASSERT_NE(exact, estimates->end());
     EXPECT_EQ(exact->profile_error, accuracy.at(m).profile);  // the region's measured band
-    EXPECT_LT(exact->profile_error, 0.03);                     // the goal: 3 %
+    EXPECT_LT(exact->profile_error, 0.03);                    // the goal: 3 %
     EXPECT_LT(exact->total_error, 0.02);  // 1 % or 3 sigma: forward, low albedo's 1.09 % is 2.1 sigma
   }
 }

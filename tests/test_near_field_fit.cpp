@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 #include <cstddef>
+#include <cstdio>
 #include <random>
 #include <vector>
 
@@ -74,10 +74,10 @@ TEST(NearFieldFit, PoolsTheNoiseAndStatesItsErrorHonestly) {
       squared_raw[i] += std::pow(mean[k] / truth(k) - 1, 2);
     }
   }
-  std::printf("converged %d of %d; within 2 se %.3f; rms at bins 0 and 6: fit %.3f %.3f, tally %.3f %.3f; chi2/dof %.3f\n",
-              converged, runs, within_2se / (3.0 * runs), std::sqrt(squared_fit[0] / runs),
-              std::sqrt(squared_fit[1] / runs), std::sqrt(squared_raw[0] / runs), std::sqrt(squared_raw[1] / runs),
-              chi2 / converged);
+  std::printf(
+      "converged %d of %d; within 2 se %.3f; rms at bins 0 and 6: fit %.3f %.3f, tally %.3f %.3f; chi2/dof %.3f\n",
+      converged, runs, within_2se / (3.0 * runs), std::sqrt(squared_fit[0] / runs), std::sqrt(squared_fit[1] / runs),
+      std::sqrt(squared_raw[0] / runs), std::sqrt(squared_raw[1] / runs), chi2 / converged);
   EXPECT_EQ(converged, runs);
   EXPECT_GT(within_2se, 0.90 * 3 * runs);
   EXPECT_LT(within_2se, 0.99 * 3 * runs);

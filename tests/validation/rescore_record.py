@@ -7,7 +7,8 @@
                                                lines, another table's, are kept)
 
 Each set of tools/validation/exact_v9_vs_montecarlo.txt, exact_v9_unchanged_vs_montecarlo.txt and
-exact_v10_vs_montecarlo.txt names its stored bins (BSSRDF_VALIDATE_BINS=PREFIX, files tools/validation/bins_v9/PREFIX_i.tsv);
+exact_v10_vs_montecarlo.txt names its stored bins (BSSRDF_VALIDATE_BINS=PREFIX, files
+tools/validation/bins_v9/PREFIX_i.tsv);
 scored again with the shipped table they give the record's point lines, to the last printed digit
 (a table shipped without its validation scored again fails here). A malformed or missing bins file
 is refused with one line on stderr, exit 2 and nothing on stdout.
@@ -52,7 +53,8 @@ def main():
     exe = sys.argv[1]
     write = sys.argv[2:] == ['--write']
     failures, checked = 0, 0
-    for record in ('exact_v9_vs_montecarlo.txt', 'exact_v9_unchanged_vs_montecarlo.txt', 'exact_v10_vs_montecarlo.txt'):
+    for record in ('exact_v9_vs_montecarlo.txt', 'exact_v9_unchanged_vs_montecarlo.txt',
+                   'exact_v10_vs_montecarlo.txt'):
         path = os.path.join(VALIDATION, record)
         parts = re.split(r'^# --- ', open(path, encoding='utf-8').read(), flags=re.M)
         sections, sections_out = parts[1:], [parts[0]]

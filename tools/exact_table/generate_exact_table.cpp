@@ -40,6 +40,7 @@
 // Under `mpirun -np N` (or srun) the nodes of each pass are dealt to the ranks (docs/mpi.md): the same
 // state files, bitwise, for any N; a rank that dies stops the run, and `run` again resumes it.
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -609,17 +610,18 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   }
   // A node the base table holds whose non-absorbing run is in DIR too (version 10: g 0.99, its near
   // field measured again) has its albedo nodes served by that run rebuilt from it; the rest copied.
-  std::vector<bool> white_rebuilt(grid.g.size() * grid.eta.size(), false);
+  std::vector<bool> white_rebuilt_at(grid.g.size() * grid.eta.size(), false);
   for (std::size_t ei = 0; ei < grid.eta.size(); ++ei)
     for (std::size_t gi = 0; gi < grid.g.size(); ++gi)
-      white_rebuilt[ei * grid.g.size() + gi] =
+      white_rebuilt_at[ei * grid.g.size() + gi] =
           from_base(gi, ei) && std::filesystem::exists(node_path(dir, grid, gi, ei, grid.white()));
+  const auto white_rebuilt = [&](std::size_t gi, std::size_t ei) { return white_rebuilt_at[ei * grid.g.size() + gi]; };
   const std::size_t albedos = grid.albedo_prime.size(), bins = grid.bins(), radii = grid.radii;
   // Base albedo nodes below the base table's first (version 7's low nodes) come from the state.
   const std::size_t first_copied = base ? albedos - base->albedo_prime.size() : albedos;
   const auto copied_node = [&](std::size_t gi, std::size_t ei, std::size_t a) {
     return from_base(gi, ei) && a >= first_copied &&
-           !(white_rebuilt[ei * grid.g.size() + gi] && grid.run_for(grid.albedo_prime[a]) == grid.white());
+           !(white_rebuilt(gi, ei) && grid.run_for(grid.albedo_prime[a]) == grid.white());
   };
   ExactTable table;
   table.albedo_prime = grid.albedo_prime;
@@ -639,8 +641,9 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   double cpu_seconds = 0, worst_scale_sigma = 0, worst_ss_sigma = 0, worst_lost = 0, largest_r999 = 0;
   std::string worst_scale_at, worst_ss_at;
   std::size_t extrapolated = 0, monte_carlo_totals = 0;
-  std::vector<double> near_slopes;  // the near-field continuation's slope per node that has one
+  std::vector<double> near_slopes;    // the near-field continuation's slope per node that has one
   std::vector<double> near_fit_chi2;  // the near-field fit's chi2 per degree of freedom per node fitted
+  std::size_t near_fit_failed = 0;    // nodes whose fit did not converge (left to smoothing and continuation)
   double near_fit_z[3] = {}, near_fit_groups[3] = {};  // its bias check: (fit - tally) / se pooled over 6 bins
   const int smoothing_half = kSmoothingHalf, wide_half = kSmoothingWide;
   double smoothing_chi2 = 0, wide_chi2 = 0, smoothing_bins = 0;
@@ -653,8 +656,9 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   parallel_for(table.nodes(), 0, [&](std::size_t i) {
     const std::size_t a = i % albedos, gi = i / albedos % grid.g.size(), ei = i / albedos / grid.g.size();
     coarse_ad[i] = adding_doubling_total(grid.albedo_prime[a], grid.g[gi], grid.eta[ei]);
-    node_ad[i] = copied_node(gi, ei, a) ? coarse_ad[i]
-                        : refined_adding_doubling_total(grid.albedo_prime[a], grid.g[gi], grid.eta[ei], coarse_ad[i]);
+    node_ad[i] = copied_node(gi, ei, a)
+                     ? coarse_ad[i]
+                     : refined_adding_doubling_total(grid.albedo_prime[a], grid.g[gi], grid.eta[ei], coarse_ad[i]);
     const std::size_t done = ++solved;
     if (done % 500 == 0 || done == table.nodes()) {
       const std::lock_guard<std::mutex> lock(progress);
@@ -674,7 +678,7 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
           table.relative_error[to * radii + k] = base->relative_error[from * radii + k];
         }
       }
-      if (copy && first_copied == 0 && !white_rebuilt[ei * grid.g.size() + gi]) continue;
+      if (copy && first_copied == 0 && !white_rebuilt(gi, ei)) continue;
       std::vector<NodeSums> runs(grid.runs());
       for (std::size_t b = 0; b < grid.runs(); ++b) {
         bool needed = false;  // the runs serving the nodes not copied
@@ -761,7 +765,7 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
         if (std::none_of(good.begin(), good.end(), [](bool b) { return b; }))
           for (std::size_t k = 0; k < radii; ++k) good[k] = mean[k] > 0;  // noisy: relative errors say so
         const std::vector<double> tallied = mean, tallied_se = se;  // before smoothing: the near field's pooled energy
-        {                                                                 // radial smoothing (smooth_radially)
+        {                                                           // radial smoothing (smooth_radially)
           std::vector<bool> smoothable(radii);
           for (std::size_t k = 0; k < radii; ++k) smoothable[k] = good[k] && se[k] < 0.3 * mean[k];
           const Smoothed smooth = smooth_radially(mean, se, smoothable, smoothing_half);
@@ -791,6 +795,7 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
           if (measured >= kNearFitFirst && measured < radii) {
             const std::size_t last = std::min<std::size_t>(measured, kNearFitLast);
             const exact_table::NearFieldFit fit = exact_table::fit_near_field(tallied, tallied_se, last, grid.d_ln_r);
+            near_fit_failed += !fit.converged;
             if (fit.converged) {
               near_fit_chi2.push_back(fit.chi2_per_dof);
               // The bias check: the fit against the tally pooled over 6 bins (half a decade), in
@@ -961,27 +966,28 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
   }
   {
     std::sort(near_fit_chi2.begin(), near_fit_chi2.end());
+    const double median = near_fit_chi2.empty() ? NAN : near_fit_chi2[near_fit_chi2.size() / 2];
+    const double largest = near_fit_chi2.empty() ? NAN : near_fit_chi2.back();
+    std::array<double, 3> mean_z{};
+    for (std::size_t group = 0; group < 3; ++group)
+      mean_z[group] = near_fit_z[group] / std::max(1.0, near_fit_groups[group]);
     p["near_field_fit"] = {
         {"rule",
          "where the first bin measured within 2 % is 8 or more bins out: ln y_ms a cubic in ln r over the bins "
          "up to it (30 at most), Poisson maximum likelihood; the fit alone up to 12 bins inside its last, blended "
          "in ln y into the smoothed bins over the next 6"},
         {"nodes", near_fit_chi2.size()},
-        {"median_chi2_per_dof", near_fit_chi2.empty() ? NAN : near_fit_chi2[near_fit_chi2.size() / 2]},
-        {"largest_chi2_per_dof", near_fit_chi2.empty() ? NAN : near_fit_chi2.back()},
-        {"bias_check_mean_z_bins_0_5_6_11_12_17",
-         {near_fit_z[0] / std::max(1.0, near_fit_groups[0]), near_fit_z[1] / std::max(1.0, near_fit_groups[1]),
-          near_fit_z[2] / std::max(1.0, near_fit_groups[2])}},
+        {"nodes_not_converged", near_fit_failed},
+        {"median_chi2_per_dof", median},
+        {"largest_chi2_per_dof", largest},
+        {"bias_check_mean_z_bins_0_5_6_11_12_17", mean_z},
         {"bias_check_meaning",
          "per node, (fit - tally) / standard error with both summed over 6 bins (half a decade), averaged over the "
          "nodes; 0 within about 1 / sqrt(independent runs) when the fit adds no bias (nodes of one run share "
          "its photons)"}};
-    std::cerr << "near-field fit: " << near_fit_chi2.size() << " nodes, chi2/dof median "
-              << (near_fit_chi2.empty() ? NAN : near_fit_chi2[near_fit_chi2.size() / 2]) << ", largest "
-              << (near_fit_chi2.empty() ? NAN : near_fit_chi2.back()) << "; bias check mean z "
-              << near_fit_z[0] / std::max(1.0, near_fit_groups[0]) << ", "
-              << near_fit_z[1] / std::max(1.0, near_fit_groups[1]) << ", "
-              << near_fit_z[2] / std::max(1.0, near_fit_groups[2]) << "\n";
+    std::cerr << "near-field fit: " << near_fit_chi2.size() << " nodes (" << near_fit_failed
+              << " not converged), chi2/dof median " << median << ", largest " << largest << "; bias check mean z "
+              << mean_z[0] << ", " << mean_z[1] << ", " << mean_z[2] << "\n";
   }
   p["radial_smoothing"] = {
       {"method",
@@ -1006,7 +1012,7 @@ int build(const std::filesystem::path& dir, const std::string& out_path, std::ui
     nlohmann::json rebuilt = nlohmann::json::array();
     for (std::size_t ei = 0; ei < grid.eta.size(); ++ei)
       for (std::size_t gi = 0; gi < grid.g.size(); ++gi)
-        if (white_rebuilt[ei * grid.g.size() + gi]) rebuilt.push_back({grid.g[gi], grid.eta[ei]});
+        if (white_rebuilt(gi, ei)) rebuilt.push_back({grid.g[gi], grid.eta[ei]});
     p["base_table"] = {{"g_eta_nodes_copied", copied},
                        {"g_eta_nodes_non_absorbing_run_rebuilt", rebuilt},
                        {"rebuilt_meaning",

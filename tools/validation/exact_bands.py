@@ -52,14 +52,15 @@ def points(paths):
                 a, g, eta, photons, total, sigma, near, near_noise, far, far_noise = map(float, fields)
             except ValueError:
                 continue
-            point = dict(a=a, g=g, eta=eta)
-            seen[key(point)] = dict(a=a, g=g, eta=eta, total=abs(total), sigma=sigma,
-                             near=math.sqrt(max(0.0, near * near - near_noise * near_noise)),
-                             far=math.sqrt(max(0.0, far * far - far_noise * far_noise)))
+            point = dict(a=a, g=g, eta=eta, total=abs(total), sigma=sigma,
+                         near=math.sqrt(max(0.0, near * near - near_noise * near_noise)),
+                         far=math.sqrt(max(0.0, far * far - far_noise * far_noise)))
+            seen[key(point)] = point
     return list(seen.values())
 
 
 def key(p):
+    """A point's identity: the same alpha', g and eta to the digits validate_exact prints."""
     return (round(p["a"], 5), round(p["g"], 3), round(p["eta"], 3))
 
 
