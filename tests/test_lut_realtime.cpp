@@ -577,3 +577,38 @@ TEST(ExpArray, WithinOneUlpOfTheLibraryAndZeroBelowTheSmallestDouble) {
   EXPECT_EQ(end_values[4], INFINITY);
   EXPECT_TRUE(std::isnan(end_values[5]));
 }
+
+TEST(LogArray, WithinOneUlpOfTheLibraryOverEveryExponentAndNearOne) {
+  // The exact model's vectorised logarithm against std::log: log-uniform over the whole range (subnormal
+  // arguments included), uniform near 1 (where ln x -> 0 and a careless split loses digits), the
+  // significands either side of sqrt(2) (where the reduction switches exponent), and the ends.
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> exponent(-1074.0, 1023.99), near_one(0.9, 1.1), unit(0.0, 1.0);
+  std::vector<double> x;
+  for (int k = 0; k < 500'000; ++k) x.push_back(std::exp2(exponent(random)));
+  for (int k = 0; k < 400'000; ++k) x.push_back(near_one(random));
+  for (int k = 0; k < 100'000; ++k)
+    x.push_back(std::ldexp(std::sqrt(2.0) * (1 + 1e-6 * (unit(random) - 0.5)), k % 60 - 30));
+  for (double v : {1.0, 2.0, 0.5, std::sqrt(2.0), std::sqrt(0.5), 4.9e-324, 2.2250738585072014e-308,
+                   2.2250738585072009e-308, 1.7976931348623157e308, 1 + 0x1p-52, 1 - 0x1p-53})
+    x.push_back(v);
+  std::vector<double> y(x.size());
+  log_array(x.data(), y.data(), x.size());
+  std::int64_t worst = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const double e = std::log(x[k]);
+    const auto ulps = std::abs(std::bit_cast<std::int64_t>(y[k]) - std::bit_cast<std::int64_t>(e));
+    worst = std::max(worst, ulps);
+    if (ulps > 1) ADD_FAILURE() << "x = " << x[k] << ": " << y[k] << " against " << e;
+  }
+  EXPECT_LE(worst, 1);
+  const std::vector<double> ends{0.0, -0.0, -1.0, -INFINITY, INFINITY, NAN};
+  std::vector<double> end_values(ends.size());
+  log_array(ends.data(), end_values.data(), ends.size());
+  EXPECT_EQ(end_values[0], -INFINITY);
+  EXPECT_EQ(end_values[1], -INFINITY);
+  EXPECT_TRUE(std::isnan(end_values[2]));
+  EXPECT_TRUE(std::isnan(end_values[3]));
+  EXPECT_EQ(end_values[4], INFINITY);
+  EXPECT_TRUE(std::isnan(end_values[5]));
+}

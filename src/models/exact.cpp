@@ -223,17 +223,31 @@ double prepend_head(const Reduced<double>& m, double ln_r0, double d_ln_r, std::
 }
 
 // ln y interpolated: the sum over the weights' (eta, g, albedo) nodes of weight x the node's ln y, per
-// radius, into `out`.
-void interpolate_rows(const ExactTable& table, const Weights& we, const Weights& wg, const Weights& wa,
-                      std::vector<double>& out) {
-  out.assign(table.radii, 0.0);
+// radius, into `out`. Up to 64 rows are summed (most of a build in the table): a copy per vector width, in
+// which each radius adds its rows in the same order, so the result does not depend on the processor.
+__attribute__((target_clones("avx2", "default"))) void interpolate_rows(const ExactTable& table, const Weights& we,
+                                                                        const Weights& wg, const Weights& wa,
+                                                                        std::vector<double>& out) {
+  std::array<const float*, 64> rows{};
+  std::array<double, 64> weights{};
+  std::size_t count = 0;
   for (int e = 0; e < we.count; ++e)
     for (int gi = 0; gi < wg.count; ++gi)
       for (int a = 0; a < wa.count; ++a) {
-        const double weight = we.w[e] * wg.w[gi] * wa.w[a];
-        const float* row = &table.ln_y[table.index(we.node[e], wg.node[gi], wa.node[a], 0)];
-        for (std::size_t k = 0; k < table.radii; ++k) out[k] += weight * row[k];
+        weights[count] = we.w[e] * wg.w[gi] * wa.w[a];
+        rows[count++] = &table.ln_y[table.index(we.node[e], wg.node[gi], wa.node[a], 0)];
       }
+  // Four rows a pass (fewer loads and stores of `out`), added one after another as a pass per row would.
+  const std::size_t n = table.radii;
+  out.assign(n, 0.0);
+  std::size_t j = 0;
+  for (; j + 4 <= count; j += 4) {
+    const float *r0 = rows[j], *r1 = rows[j + 1], *r2 = rows[j + 2], *r3 = rows[j + 3];
+    const double w0 = weights[j], w1 = weights[j + 1], w2 = weights[j + 2], w3 = weights[j + 3];
+    for (std::size_t k = 0; k < n; ++k) out[k] = (((out[k] + w0 * r0[k]) + w1 * r1[k]) + w2 * r2[k]) + w3 * r3[k];
+  }
+  for (; j < count; ++j)
+    for (std::size_t k = 0; k < n; ++k) out[k] += weights[j] * rows[j][k];
 }
 
 // A row of uniformly spaced values p[0..n) read at k + shift for k = 0, 1, ...: Catmull-Rom, linear
@@ -350,21 +364,25 @@ struct BelowFirstNode {
     exp_array(d.data(), d.data(), n);
     // Then each node's multiple scattering over y_0, m_j = y_j / y_0 - (alpha_j / alpha) u, and the
     // medium's, m_0 (m_1 alpha_0^2 / (m_0 alpha_1^2))^t (alpha / alpha_0)^2: its exponent into d.
+    // (Logarithms, too, in vectorised passes: m_1 / m_0 into d, NaN where the second node's is not positive.)
     for (std::size_t k = 0; k < n; ++k) {
-      if (far(k)) continue;
       const double m0 = 1 - ss_ratio[0] * u[k], m1 = d[k] - ss_ratio[1] * u[k];
-      d[k] = m0 > 0 && m1 > 0 && std::isfinite(m1) ? t * (std::log(m1 / m0) + ln_between) + ln_to_medium
-                                                   : ln_to_medium;  // the second node's not positive: the first's alone
+      d[k] = m0 > 0 && m1 > 0 && std::isfinite(m1) ? m1 / m0 : std::numeric_limits<double>::quiet_NaN();
     }
+    log_array(d.data(), d.data(), n);
+    for (std::size_t k = 0; k < n; ++k)  // the second node's not positive: the first's alone
+      d[k] = std::isnan(d[k]) ? ln_to_medium : t * (d[k] + ln_between) + ln_to_medium;
     exp_array(d.data(), d.data(), n);
     const double ratio = 1 / ss_ratio[0];
     for (std::size_t k = 0; k < n; ++k) {
-      if (far(k)) continue;
       const double m0 = 1 - ss_ratio[0] * u[k];
       // Where the first node is all single scattering within rounding (the near field), its y scaled,
       // y = y_ss (1 - alpha / alpha_0) + (alpha / alpha_0)^2 y_0, which meets it at alpha_0.
-      ln_y[k] = v0[k] + std::log(m0 > 0 ? m0 * d[k] + u[k] : u[k] * (1 - ratio) + ratio * ratio);
+      u[k] = m0 > 0 ? m0 * d[k] + u[k] : u[k] * (1 - ratio) + ratio * ratio;
     }
+    log_array(u.data(), u.data(), n);
+    for (std::size_t k = 0; k < n; ++k)
+      if (!far(k)) ln_y[k] = v0[k] + u[k];
   }
 };
 
@@ -403,11 +421,14 @@ struct AboveLastNode {
   }
   void continue_profile(const ExactTable& table, std::vector<double>& ln_y) const {
     const auto sm = classical_dipole::sources(medium), sn = classical_dipole::sources(node);  // once, not per radius
+    std::vector<double> ratio(ln_y.size());
     for (std::size_t k = 0; k < ln_y.size(); ++k) {
       const double r = table.radius(k);
-      ln_y[k] += std::log(classical_dipole::reflectance(sm, medium.albedo_prime, r) /
-                          classical_dipole::reflectance(sn, node.albedo_prime, r));
+      ratio[k] = classical_dipole::reflectance(sm, medium.albedo_prime, r) /
+                 classical_dipole::reflectance(sn, node.albedo_prime, r);
     }
+    log_array(ratio.data(), ratio.data(), ratio.size());  // the logarithms in one vectorised pass
+    for (std::size_t k = 0; k < ln_y.size(); ++k) ln_y[k] += ratio[k];
   }
 };
 
