@@ -65,15 +65,9 @@ constexpr double kLn2Hi = 0.693147180369123816490, kLn2Lo = 1.908214929270587700
   const double k = field - (subnormal ? 1023.0 + 52 : 1023.0);
   const double f = std::bit_cast<double>((u & kMantissa) + std::bit_cast<std::uint64_t>(kSqrtHalf)) - 1;
   const double s = f / (2 + f), z = s * s;
-  double p = 2.0 / 19;
-  p = p * z + 2.0 / 17;
-  p = p * z + 2.0 / 15;
-  p = p * z + 2.0 / 13;
-  p = p * z + 2.0 / 11;
-  p = p * z + 2.0 / 9;
-  p = p * z + 2.0 / 7;
-  p = p * z + 2.0 / 5;
-  p = p * z + 2.0 / 3;
+  constexpr double kSeries[] = {2.0 / 19, 2.0 / 17, 2.0 / 15, 2.0 / 13, 2.0 / 11, 2.0 / 9, 2.0 / 7, 2.0 / 5, 2.0 / 3};
+  double p = 0;
+  for (const double c : kSeries) p = p * z + c;  // Horner, from s^18 / 19 down
   const double r = p * z, half_f2 = 0.5 * f * f;
   const double y = k * kLn2Hi - ((half_f2 - (s * (half_f2 + r) + k * kLn2Lo)) - f);
   // 0 -> -inf, negative -> NaN, +inf -> +inf, NaN stays NaN (every comparison false).

@@ -90,7 +90,8 @@ Action register_materials(CLI::App& app) {
   };
   const auto add_object_size = [o](CLI::App* c) {
     c->add_option("--object-size", o->object_size,
-                  "Size of the object, mm: diffusion is marked invalid where the transport mfp exceeds it [10]");
+                  "Size of the object, mm: a channel whose transport mfp exceeds it gets a warning (object_size: "
+                  "light leaves before it becomes diffuse; a semi-infinite profile misstates the object) [10]");
   };
 
   auto* list = sub->add_subcommand("list", "List materials: name, source, eta");
