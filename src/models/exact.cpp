@@ -228,8 +228,9 @@ double prepend_head(const Reduced<double>& m, double ln_r0, double d_ln_r, std::
 __attribute__((target_clones("avx2", "default"))) void interpolate_rows(const ExactTable& table, const Weights& we,
                                                                         const Weights& wg, const Weights& wa,
                                                                         std::vector<double>& out) {
-  std::array<const float*, 64> rows{};
-  std::array<double, 64> weights{};
+  constexpr std::size_t kMostRows = 4 * 4 * 4;  // Weights name at most four nodes on each axis
+  std::array<const float*, kMostRows> rows{};
+  std::array<double, kMostRows> weights{};
   std::size_t count = 0;
   for (int e = 0; e < we.count; ++e)
     for (int gi = 0; gi < wg.count; ++gi)
