@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "montecarlo/fastmath.hpp"
+
 namespace bssrdf {
 namespace {
 
@@ -46,31 +48,15 @@ constexpr double kLn2Hi = 0.693147180369123816490, kLn2Lo = 1.908214929270587700
   return x <= -745.0 ? 0.0 : y;
 }
 
-// ln x = k ln 2 + ln(1 + f), 1 + f = x / 2^k in [sqrt(1/2), sqrt(2)), from the bits without a branch: adding
-// 1.0's bits less sqrt(1/2)'s carries into the exponent field exactly when the significand is at least sqrt(2)
-// (only 64-bit additions, masks and a logical shift, which SSE2 has). Then, as Cody & Waite (1980) and
-// fdlibm's log arrange it so that f (exact) carries the result and only small terms are rounded,
-//   ln(1 + f) = f - (f^2 / 2 - s (f^2 / 2 + R)),  s = f / (2 + f),  R = 2 (s^2 / 3 + s^4 / 5 + ... + s^18 / 19)
-// (ln(1 + f) = 2 atanh s; |s| <= 0.172, so the series' next term is below 3e-17 of the result). Subnormal x
-// are scaled by 2^52 first.
+// ln x by the Monte Carlo tracer's logarithm (montecarlo/fastmath.hpp: fdlibm's algorithm, branch-free, written for
+// vector lanes), here without fused operations (no FMA in the baseline instruction set) and for every double: a
+// subnormal x is scaled by 2^52 and its exponent corrected exactly; 0 -> -inf, negative -> NaN, +inf -> +inf, NaN
+// stays NaN (every comparison false).
 [[gnu::always_inline]] inline double log_lane(double x) {
-  constexpr double kSmallest = 0x1p-1022, kSqrtHalf = 0.70710678118654752440;
-  constexpr std::uint64_t kMantissa = (std::uint64_t{1} << 52) - 1;
-  const bool subnormal = x < kSmallest;
-  const double scaled = subnormal ? x * 0x1p52 : x;
-  const std::uint64_t shift = std::bit_cast<std::uint64_t>(1.0) - std::bit_cast<std::uint64_t>(kSqrtHalf);
-  const std::uint64_t u = std::bit_cast<std::uint64_t>(scaled) + shift;
-  // The exponent field (0 to 2047) as a double, through the bits of 2^52 + field.
-  const double field = std::bit_cast<double>((u >> 52) | std::bit_cast<std::uint64_t>(0x1p52)) - 0x1p52;
-  const double k = field - (subnormal ? 1023.0 + 52 : 1023.0);
-  const double f = std::bit_cast<double>((u & kMantissa) + std::bit_cast<std::uint64_t>(kSqrtHalf)) - 1;
-  const double s = f / (2 + f), z = s * s;
-  constexpr double kSeries[] = {2.0 / 19, 2.0 / 17, 2.0 / 15, 2.0 / 13, 2.0 / 11, 2.0 / 9, 2.0 / 7, 2.0 / 5, 2.0 / 3};
-  double p = 0;
-  for (const double c : kSeries) p = p * z + c;  // Horner, from s^18 / 19 down
-  const double r = p * z, half_f2 = 0.5 * f * f;
-  const double y = k * kLn2Hi - ((half_f2 - (s * (half_f2 + r) + k * kLn2Lo)) - f);
-  // 0 -> -inf, negative -> NaN, +inf -> +inf, NaN stays NaN (every comparison false).
+  const bool subnormal = x < 0x1p-1022;
+  mc::LogReduced<double> p = mc::log_reduce(subnormal ? x * 0x1p52 : x);
+  p.dk -= subnormal ? 52.0 : 0.0;
+  const double y = mc::log_finish<mc::Unfused>(p, p.f / (2.0 + p.f));
   const double ends = x == 0 ? -INFINITY : (x == INFINITY ? INFINITY : NAN);
   return x > 0 && x < INFINITY ? y : ends;
 }

@@ -12,7 +12,7 @@ namespace bssrdf {
 void exp_array(const double* x, double* out, std::size_t n);
 
 // ln x for a whole array, in the same way (the exact model's build below its first albedo node takes three
-// logarithms per radius): within 1 ulp of std::log (tested at 10^6 random points, subnormal arguments included);
+// logarithms per radius), by the Monte Carlo tracer's branch-free logarithm: within 1 ulp of std::log (tested at 10^6 random points, subnormal arguments included);
 // -inf at 0, NaN below 0 and for NaN, +inf at +inf. `out` may be `x`.
 void log_array(const double* x, double* out, std::size_t n);
 

@@ -1,7 +1,8 @@
-// Internal to the Monte Carlo solver: branch-free logarithm and sine/cosine kernels and the
-// conversions of random bits to uniform doubles, written so the compiler can vectorise the photon
-// lanes of the tracer (SSE2 is enough: no calls, no table look-ups, no 64-bit integer to double
-// conversion). Accuracy is that of the C library (about 1 ulp): they change rounding, not physics.
+// Internal to the Monte Carlo solver (log_array, src/exp_array.cpp, takes its logarithm too):
+// branch-free logarithm and sine/cosine kernels and the conversions of random bits to uniform doubles,
+// written so the compiler can vectorise the photon lanes of the tracer (SSE2 is enough: no calls, no
+// table look-ups, no 64-bit integer to double conversion). Accuracy is that of the C library (about
+// 1 ulp): they change rounding, not physics.
 #pragma once
 
 #include <bit>

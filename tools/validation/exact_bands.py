@@ -73,7 +73,7 @@ def region(p):
 
 def main():
     if len(sys.argv) < 2:
-        print("usage: exact_bands.py OUTPUT... [--then LATER_OUTPUT...]...", file=sys.stderr)
+        print("usage: exact_bands.py OUTPUT... [--then LATER_OUTPUT...]... [--also CURRENT_OUTPUT...]", file=sys.stderr)
         return 2
     groups, also, target = [[]], [], None
     for arg in sys.argv[1:]:
